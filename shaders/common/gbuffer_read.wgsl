@@ -1,0 +1,17 @@
+// The G-buffer as the screen-space passes read it (bind group 1, bindings 0-2), and view-space
+// position reconstructed from reverse-Z depth.
+
+@group(1) @binding(0) var g_albedo: texture_2d<f32>;
+@group(1) @binding(1) var g_normal: texture_2d<f32>;
+@group(1) @binding(2) var g_depth: texture_depth_2d;
+
+// View-space position of the surface at `pixel` with depth `depth` (> 0). With
+// z_clip = a·z + b and w = -z, depth = -a - b / z, so z = -b / (depth + a).
+fn view_position(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let a = frame.view_to_clip[2][2];
+    let b = frame.view_to_clip[3][2];
+    let z = -b / max(depth + a, 1e-30);
+    let uv = pixel * frame.viewport.zw;
+    let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
+    return vec3<f32>(ndc.x * -z / frame.view_to_clip[0][0], ndc.y * -z / frame.view_to_clip[1][1], z);
+}

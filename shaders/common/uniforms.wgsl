@@ -1,0 +1,42 @@
+// Per-frame data shared by every pass (bind group 0). Mirrors `FrameUniforms` and `GpuLight`
+// in src/render/uniforms.rs field for field.
+
+struct Frame {
+    world_to_view: mat4x4<f32>,
+    view_to_clip: mat4x4<f32>,
+    clip_to_view: mat4x4<f32>,
+    view_to_world: mat4x4<f32>,
+    // width, height, 1/width, 1/height
+    viewport: vec4<f32>,
+    // near, far (0 = infinite), exposure, smallest light distance squared
+    camera: vec4<f32>,
+    // ambient radiance (rgb), unused
+    ambient: vec4<f32>,
+    // sky radiance scale, sky mip count, unused, unused
+    sky: vec4<f32>,
+    // light count, frame index, unused, unused
+    counts: vec4<u32>,
+}
+
+struct Light {
+    // xyz world position, w radiant intensity
+    world_position: vec4<f32>,
+    // xyz view-space position, w unused
+    view_position: vec4<f32>,
+    // linear rgb colour, w half edge of the emissive cube
+    color: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> lights: array<Light>;
+
+const PI: f32 = 3.14159265358979;
+
+// Normalises `v`, or returns `fallback` when `v` is zero or too small to normalise.
+fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let len2 = dot(v, v);
+    if len2 > 1e-30 && len2 < 1e30 {
+        return v * inverseSqrt(len2);
+    }
+    return fallback;
+}

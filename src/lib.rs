@@ -1,0 +1,14 @@
+//! `ssdo`: a deferred wgpu renderer for screen-space directional occlusion (Ritschel, Grosch &
+//! Seidel 2009), with screen-space ambient occlusion beside it for comparison.
+//!
+//! The binary (`src/main.rs`) is a thin command line over this library; the tests drive the same
+//! library headlessly on a software adapter.
+
+pub mod error;
+pub mod gpu;
+pub mod output;
+pub mod render;
+pub mod scene;
+pub mod shaders;
+
+pub use error::{Error, Result};

@@ -1,0 +1,39 @@
+//! Offscreen rendering to an image: the same renderer as the window, drawing into an sRGB
+//! texture that is read back.
+
+use super::readback::read_texture;
+use super::Renderer;
+use crate::gpu::Gpu;
+use crate::scene::OrbitCamera;
+use crate::{Error, Result};
+
+/// The output format of offscreen captures.
+pub const CAPTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// An offscreen output texture of the renderer's size.
+pub fn output_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("capture_output"),
+        size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: CAPTURE_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// Renders one frame of the current plan and returns it as an sRGB image.
+pub fn capture(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
+    let size = renderer.size();
+    let texture = output_texture(gpu, size);
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder =
+        gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("capture_encoder") });
+    renderer.encode(gpu, &mut encoder, camera, &view);
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = read_texture(gpu, &texture)?;
+    image::RgbaImage::from_raw(size.0, size.1, bytes)
+        .ok_or_else(|| Error::Gpu("readback returned the wrong number of bytes".into()))
+}

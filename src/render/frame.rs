@@ -1,0 +1,138 @@
+//! Bind group 0: the per-frame uniforms and the light array, shared by every pass.
+
+use glam::{Vec3, Vec4Swizzles};
+
+use super::uniforms::{mat, FrameUniforms, GpuLight};
+use crate::scene::{LightRig, OrbitCamera, PointLight};
+
+/// What the frame uniforms are computed from, besides the camera and the scene.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameInputs {
+    pub size: (u32, u32),
+    pub exposure: f32,
+    pub ambient: Vec3,
+    pub sky_scale: f32,
+    pub sky_mips: u32,
+}
+
+pub struct FrameData {
+    pub layout: wgpu::BindGroupLayout,
+    pub bind_group: wgpu::BindGroup,
+    uniforms: wgpu::Buffer,
+    lights: wgpu::Buffer,
+    light_capacity: usize,
+    frame_index: u32,
+}
+
+impl FrameData {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("frame_layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: stages,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: stages,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame_uniforms"),
+            size: std::mem::size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (lights, bind_group) = Self::light_buffer(device, &layout, &uniforms, 1);
+        Self { layout, bind_group, uniforms, lights, light_capacity: 1, frame_index: 0 }
+    }
+
+    /// A light array for `capacity` lights (at least one: a storage binding cannot be empty).
+    fn light_buffer(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        uniforms: &wgpu::Buffer,
+        capacity: usize,
+    ) -> (wgpu::Buffer, wgpu::BindGroup) {
+        let lights = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame_lights"),
+            size: (capacity.max(1) * std::mem::size_of::<GpuLight>()) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame_bind_group"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: uniforms.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: lights.as_entire_binding() },
+            ],
+        });
+        (lights, bind_group)
+    }
+
+    /// Bytes held by the frame buffers.
+    pub fn bytes(&self) -> u64 {
+        self.uniforms.size() + self.lights.size()
+    }
+
+    /// Writes this frame's uniforms and lights; grows the light array when needed.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        camera: &OrbitCamera,
+        lights: &[PointLight],
+        rig: &LightRig,
+        inputs: &FrameInputs,
+    ) {
+        let (w, h) = inputs.size;
+        let world_to_view = camera.world_to_view();
+        let view_to_clip = camera.view_to_clip(w as f32 / h as f32);
+        let uniforms = FrameUniforms {
+            world_to_view: mat(world_to_view),
+            view_to_clip: mat(view_to_clip),
+            clip_to_view: mat(view_to_clip.inverse()),
+            view_to_world: mat(world_to_view.inverse()),
+            viewport: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
+            camera: [camera.near, camera.far.unwrap_or(0.0), inputs.exposure, rig.min_distance.powi(2)],
+            ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, 0.0],
+            sky: [inputs.sky_scale, inputs.sky_mips as f32, 0.0, 0.0],
+            counts: [lights.len() as u32, self.frame_index, 0, 0],
+        };
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
+
+        if lights.len() > self.light_capacity {
+            self.light_capacity = lights.len().next_power_of_two();
+            (self.lights, self.bind_group) =
+                Self::light_buffer(device, &self.layout, &self.uniforms, self.light_capacity);
+        }
+        let gpu_lights: Vec<GpuLight> = lights
+            .iter()
+            .map(|l| GpuLight {
+                world_position: l.position.extend(l.intensity).into(),
+                view_position: (world_to_view * l.position.extend(1.0)).xyz().extend(0.0).into(),
+                color: l.color.extend(rig.cube_half_size).into(),
+            })
+            .collect();
+        if !gpu_lights.is_empty() {
+            queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&gpu_lights));
+        }
+        self.frame_index = self.frame_index.wrapping_add(1);
+    }
+}

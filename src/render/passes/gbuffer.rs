@@ -1,0 +1,269 @@
+//! G-buffer pass: the deferred renderer's geometry pass. It rasterises the model once into
+//! albedo + specular strength, view-space normal + shininess, and reverse-Z depth (cleared to 0,
+//! compared with `Greater`). Every mode reads these; position is reconstructed from depth.
+//!
+//! Untextured materials use a pipeline built with `TEXTURED = false`, which never samples; the
+//! textured pipeline is only built when the model has a textured material.
+
+use wgpu::util::DeviceExt;
+
+use super::super::targets::{Targets, ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
+use super::super::uniforms::MaterialParams;
+use crate::gpu::Gpu;
+use crate::scene::model::TextureImage;
+use crate::scene::{Model, Vertex};
+use crate::{shaders, Result};
+
+/// One draw: a range of indices with a material bind group.
+struct Draw {
+    first_index: u32,
+    index_count: u32,
+    bind_group: wgpu::BindGroup,
+    textured: bool,
+}
+
+/// The model on the GPU.
+pub struct SceneGpu {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    draws: Vec<Draw>,
+    pub textured: bool,
+    pub bytes: u64,
+}
+
+fn upload_texture(
+    gpu: &Gpu,
+    label: &str,
+    image: &TextureImage,
+    format: wgpu::TextureFormat,
+) -> (wgpu::TextureView, u64) {
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let shrunk;
+    let image = if image.width > max || image.height > max {
+        log::warn!("{label}: {}x{} exceeds the adapter's {max}; downscaling", image.width, image.height);
+        let src = image::RgbaImage::from_raw(image.width, image.height, image.rgba.clone())
+            .expect("texture size matches its data");
+        let scale = max as f32 / image.width.max(image.height) as f32;
+        let (w, h) = (((image.width as f32 * scale) as u32).max(1), ((image.height as f32 * scale) as u32).max(1));
+        let small = image::imageops::resize(&src, w, h, image::imageops::FilterType::Triangle);
+        shrunk = TextureImage { width: w, height: h, rgba: small.into_raw() };
+        &shrunk
+    } else {
+        image
+    };
+    let texture = gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &image.rgba,
+    );
+    (texture.create_view(&wgpu::TextureViewDescriptor::default()), image.rgba.len() as u64)
+}
+
+pub struct GBufferPass {
+    pub material_layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+    plain: wgpu::RenderPipeline,
+    textured: Option<wgpu::RenderPipeline>,
+    pipeline_layout: wgpu::PipelineLayout,
+    module: wgpu::ShaderModule,
+}
+
+impl GBufferPass {
+    pub fn new(gpu: &Gpu, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
+        let device = &gpu.device;
+        let module = shaders::module(device, "gbuffer.wgsl")?;
+        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("gbuffer_material_layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                super::texture_entry(1, true, wgpu::TextureViewDimension::D2),
+                super::texture_entry(2, true, wgpu::TextureViewDimension::D2),
+                super::sampler_entry(3),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gbuffer_pipeline_layout"),
+            bind_group_layouts: &[Some(frame_layout), Some(&material_layout)],
+            immediate_size: 0,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("gbuffer_material_sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let plain = Self::pipeline(device, &pipeline_layout, &module, false);
+        Ok(Self { material_layout, sampler, plain, textured: None, pipeline_layout, module })
+    }
+
+    fn pipeline(
+        device: &wgpu::Device,
+        layout: &wgpu::PipelineLayout,
+        module: &wgpu::ShaderModule,
+        textured: bool,
+    ) -> wgpu::RenderPipeline {
+        let constants = [("TEXTURED", if textured { 1.0 } else { 0.0 })];
+        let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(if textured { "gbuffer_textured_pipeline" } else { "gbuffer_plain_pipeline" }),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: options.clone(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+                })],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: wgpu::StencilState::default(),
+                bias: wgpu::DepthBiasState::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_main"),
+                compilation_options: options,
+                targets: &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
+
+    /// Uploads `model` and builds its material bind groups (and the textured pipeline, if any
+    /// material has a map and it does not exist yet).
+    pub fn upload(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
+        let device = &gpu.device;
+        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("scene_vertices"),
+            contents: bytemuck::cast_slice(&model.vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("scene_indices"),
+            contents: bytemuck::cast_slice(&model.indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let mut bytes = vertices.size() + indices.size();
+        let white = TextureImage { width: 1, height: 1, rgba: vec![255; 4] };
+        let (white_srgb, _) =
+            upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
+        let (white_linear, _) =
+            upload_texture(gpu, "material_default_specular", &white, wgpu::TextureFormat::Rgba8Unorm);
+        let draws = model
+            .parts
+            .iter()
+            .map(|part| {
+                let m = &model.materials[part.material];
+                let params = MaterialParams {
+                    diffuse: [m.diffuse[0], m.diffuse[1], m.diffuse[2], m.specular.iter().sum::<f32>() / 3.0],
+                    params: [m.shininess, 0.0, 0.0, 0.0],
+                };
+                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&format!("material_{}_params", m.name)),
+                    contents: bytemuck::bytes_of(&params),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                bytes += uniform.size();
+                let mut map =
+                    |image: &Option<TextureImage>, kind: &str, format, fallback: &wgpu::TextureView| match image {
+                        Some(image) => {
+                            let (view, size) =
+                                upload_texture(gpu, &format!("material_{}_{kind}", m.name), image, format);
+                            bytes += size;
+                            view
+                        }
+                        None => fallback.clone(),
+                    };
+                let diffuse = map(&m.diffuse_map, "diffuse", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
+                let specular = map(&m.specular_map, "specular", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&format!("material_{}_bind_group", m.name)),
+                    layout: &self.material_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&diffuse) },
+                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&specular) },
+                        wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                    ],
+                });
+                Draw {
+                    first_index: part.first_index,
+                    index_count: part.index_count,
+                    bind_group,
+                    textured: m.is_textured(),
+                }
+            })
+            .collect::<Vec<_>>();
+        let textured = draws.iter().any(|d| d.textured);
+        if textured && self.textured.is_none() {
+            self.textured = Some(Self::pipeline(device, &self.pipeline_layout, &self.module, true));
+        }
+        SceneGpu { vertices, indices, draws, textured, bytes }
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        targets: &Targets,
+        frame: &wgpu::BindGroup,
+        scene: &SceneGpu,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer_pass"),
+            color_attachments: &[
+                super::color_attachment(&targets.albedo.view, true),
+                super::color_attachment(&targets.normal.view, true),
+            ],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth.view,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for draw in &scene.draws {
+            let pipeline = match (&self.textured, draw.textured) {
+                (Some(textured), true) => textured,
+                _ => &self.plain,
+            };
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(1, &draw.bind_group, &[]);
+            pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
+        }
+    }
+}

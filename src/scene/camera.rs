@@ -1,0 +1,72 @@
+//! An orbit camera and reverse-Z projections.
+//!
+//! Reverse-Z maps the near plane to depth 1 and the far plane (or infinity) to 0; with a float
+//! depth buffer this keeps depth precision roughly uniform in log scale, so a near plane of 1e-6
+//! still resolves a floor far away. The background is exactly depth 0.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use super::Bounds;
+
+/// Orbits `target` at `distance`; yaw 0 looks down -Z from +Z, pitch is elevation in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrbitCamera {
+    pub target: Vec3,
+    pub yaw_deg: f32,
+    pub pitch_deg: f32,
+    pub distance: f32,
+    pub fov_y_deg: f32,
+    pub near: f32,
+    /// `None` is an infinite far plane.
+    pub far: Option<f32>,
+}
+
+impl OrbitCamera {
+    /// Frames `bounds`: the whole bounding sphere fits the vertical field of view.
+    pub fn framing(bounds: &Bounds) -> Self {
+        let fov_y_deg: f32 = 45.0;
+        let radius = bounds.radius();
+        let distance = radius / (0.5 * fov_y_deg.to_radians()).sin() * 0.92;
+        Self {
+            target: bounds.center(),
+            yaw_deg: 35.0,
+            pitch_deg: 22.0,
+            distance,
+            fov_y_deg,
+            near: distance * 1e-3,
+            far: None,
+        }
+    }
+
+    pub fn eye(&self) -> Vec3 {
+        let (yaw, pitch) = (self.yaw_deg.to_radians(), self.pitch_deg.clamp(-89.9, 89.9).to_radians());
+        self.target
+            + self.distance.max(f32::MIN_POSITIVE)
+                * Vec3::new(pitch.cos() * yaw.sin(), pitch.sin(), pitch.cos() * yaw.cos())
+    }
+
+    pub fn world_to_view(&self) -> Mat4 {
+        glam::camera::rh::view::look_at_mat4(self.eye(), self.target, Vec3::Y)
+    }
+
+    pub fn view_to_clip(&self, aspect: f32) -> Mat4 {
+        reverse_z_perspective(self.fov_y_deg.to_radians(), aspect, self.near, self.far)
+    }
+}
+
+/// Right-handed perspective (camera looks down -Z) with depth 1 at `near` and 0 at `far`, or at
+/// infinity when `far` is `None`. In clip space `z = a·z_view + b`, `w = -z_view`, so depth is
+/// `-a - b / z_view` with `a = n / (f - n)`, `b = n·f / (f - n)`; for `f → ∞`, `a = 0`, `b = n`.
+pub fn reverse_z_perspective(fov_y: f32, aspect: f32, near: f32, far: Option<f32>) -> Mat4 {
+    let f = 1.0 / (0.5 * fov_y).tan();
+    let (a, b) = match far {
+        Some(far) if far.is_finite() && far > near => (near / (far - near), near * far / (far - near)),
+        _ => (0.0, near),
+    };
+    Mat4::from_cols(
+        Vec4::new(f / aspect.max(f32::MIN_POSITIVE), 0.0, 0.0, 0.0),
+        Vec4::new(0.0, f, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, a, -1.0),
+        Vec4::new(0.0, 0.0, b, 0.0),
+    )
+}

@@ -1,0 +1,110 @@
+//! What is rendered: a model, point lights, a sky and a camera, with defaults that scale with
+//! the model's bounds so a model in millimetres and one in kilometres both look right.
+
+pub mod builtin;
+pub mod camera;
+pub mod lights;
+pub mod model;
+pub mod skybox;
+
+use std::path::Path;
+
+use glam::Vec3;
+
+pub use camera::OrbitCamera;
+pub use lights::{LightRig, PointLight};
+pub use model::{Material, Model, Vertex};
+pub use skybox::Skybox;
+
+use crate::Result;
+
+/// The default model, relative to the repository root.
+pub const DEFAULT_MODEL: &str = "models/cornell/cornell.obj";
+/// The default sky folder, relative to the repository root.
+pub const DEFAULT_SKYBOX: &str = "skyboxes/day";
+/// Where sky folders live.
+pub const SKYBOX_ROOT: &str = "skyboxes";
+/// The default number of point lights, as in the source project.
+pub const DEFAULT_LIGHTS: usize = 8;
+
+/// Axis-aligned bounds of finite points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+impl Bounds {
+    /// Bounds of the finite points; `None` when there are none.
+    pub fn from_points(points: impl IntoIterator<Item = Vec3>) -> Option<Self> {
+        let mut it = points.into_iter().filter(|p| p.is_finite());
+        let first = it.next()?;
+        Some(it.fold(Self { min: first, max: first }, |b, p| Self { min: b.min.min(p), max: b.max.max(p) }))
+    }
+
+    pub fn center(&self) -> Vec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// Half the diagonal; never zero, so a single point or a flat model still has a scale.
+    pub fn radius(&self) -> f32 {
+        let r = 0.5 * (self.max - self.min).length();
+        if r > 0.0 && r.is_finite() {
+            r
+        } else {
+            1.0_f32.max(self.center().abs().max_element() * 1e-3)
+        }
+    }
+}
+
+/// A model lit by point lights.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub model: Model,
+    pub lights: Vec<PointLight>,
+    pub rig: LightRig,
+}
+
+impl Scene {
+    /// `model` with `count` random lights from `seed`.
+    pub fn new(model: Model, count: usize, seed: u64) -> Self {
+        let rig = LightRig::for_bounds(&model.bounds);
+        let lights = lights::random_lights(count, seed, &model.bounds, &rig);
+        Self { model, lights, rig }
+    }
+
+    /// Replaces the lights (count and seed) keeping the model.
+    pub fn relight(&mut self, count: usize, seed: u64) {
+        self.lights = lights::random_lights(count, seed, &self.model.bounds, &self.rig);
+    }
+
+    /// Default AO/DO sampling radius: a tenth of the scene radius.
+    pub fn default_radius(&self) -> f32 {
+        0.1 * self.model.bounds.radius()
+    }
+}
+
+/// Loads the model at `path`, or the default scene. When the default file is not there (the
+/// binary run outside the repository) the same scene is built in memory instead.
+pub fn load_model(path: Option<&Path>) -> Result<Model> {
+    match path {
+        Some(p) => model::load_obj(p),
+        None if Path::new(DEFAULT_MODEL).is_file() => model::load_obj(Path::new(DEFAULT_MODEL)),
+        None => {
+            log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
+            builtin::cornell()
+        }
+    }
+}
+
+/// Loads the sky folder at `path`, or the default sky (built in memory if its folder is absent).
+pub fn load_skybox(path: Option<&Path>) -> Result<Skybox> {
+    match path {
+        Some(p) => Skybox::load(p),
+        None if Path::new(DEFAULT_SKYBOX).is_dir() => Skybox::load(Path::new(DEFAULT_SKYBOX)),
+        None => {
+            log::info!("{DEFAULT_SKYBOX} not found; using the built-in daylight sky");
+            Ok(Skybox::from_fn("day", 128, builtin::day_sky))
+        }
+    }
+}

@@ -1,0 +1,394 @@
+//! Wavefront OBJ + MTL loading through `tobj`, hardened for the files people actually have.
+//!
+//! tobj does the parsing; around it we decode Latin-1 and UTF-16 text, pad single-value colour
+//! lines in MTL files (tobj 4.0.5 panics on `Kd 0.5`, which the format allows), check every
+//! attribute array against the vertex count (tobj reports success with arrays of the wrong length
+//! for some malformed faces), drop triangles with out-of-range indices or non-finite positions,
+//! compute normals where they are missing, and resolve texture paths as exporters write them
+//! (Windows backslashes, options before the name, wrong letter case). Anything recoverable is a
+//! warning with a fallback; anything else is one error naming the file and the problem.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+use super::Bounds;
+use crate::{Error, Result};
+
+/// One vertex as the G-buffer pass reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+}
+
+/// An 8-bit RGBA texture in sRGB encoding, as decoded from a file.
+#[derive(Clone, Debug)]
+pub struct TextureImage {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+}
+
+impl TextureImage {
+    /// The fallback for a texture that is missing or unreadable: a magenta/grey checker, so the
+    /// problem is visible on screen as well as in the log.
+    pub fn checker() -> Self {
+        let size = 8u32;
+        let rgba = (0..size * size)
+            .flat_map(
+                |i| if ((i % size) / 2 + (i / size) / 2) % 2 == 0 { [200, 40, 200, 255] } else { [90, 90, 90, 255] },
+            )
+            .collect();
+        Self { width: size, height: size, rgba }
+    }
+}
+
+/// Surface description: Blinn-Phong with optional diffuse and specular maps.
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: String,
+    /// Linear diffuse albedo (multiplies the diffuse map).
+    pub diffuse: [f32; 3],
+    /// Linear specular colour; the G-buffer keeps its mean as the specular strength.
+    pub specular: [f32; 3],
+    pub shininess: f32,
+    pub diffuse_map: Option<TextureImage>,
+    pub specular_map: Option<TextureImage>,
+}
+
+impl Material {
+    pub fn plain(name: &str, diffuse: [f32; 3]) -> Self {
+        Self { name: name.into(), diffuse, specular: [0.0; 3], shininess: 32.0, diffuse_map: None, specular_map: None }
+    }
+
+    pub fn is_textured(&self) -> bool {
+        self.diffuse_map.is_some() || self.specular_map.is_some()
+    }
+}
+
+/// A run of indices drawn with one material.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Part {
+    pub first_index: u32,
+    pub index_count: u32,
+    pub material: usize,
+}
+
+/// Triangles ready for upload: one vertex and one index buffer, parts sorted by material.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub name: String,
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
+    pub parts: Vec<Part>,
+    pub materials: Vec<Material>,
+    pub bounds: Bounds,
+    /// What was repaired or replaced while loading, one line each.
+    pub warnings: Vec<String>,
+}
+
+impl Model {
+    /// Builds a model from triangles grouped by material (`groups[i]` are the triangles, as
+    /// vertex triples, of `materials[i]`). Fails when there is nothing to draw.
+    pub fn from_groups(name: &str, materials: Vec<Material>, groups: Vec<Vec<Vertex>>) -> Result<Self> {
+        let mut vertices = Vec::new();
+        let mut indices = Vec::new();
+        let mut parts = Vec::new();
+        for (material, triangles) in groups.into_iter().enumerate() {
+            if triangles.is_empty() {
+                continue;
+            }
+            let first_index = indices.len() as u32;
+            for v in triangles {
+                indices.push(vertices.len() as u32);
+                vertices.push(v);
+            }
+            parts.push(Part { first_index, index_count: indices.len() as u32 - first_index, material });
+        }
+        let bounds = Bounds::from_points(vertices.iter().map(|v| Vec3::from(v.position)))
+            .ok_or_else(|| Error::input(name, "no triangles with finite vertices"))?;
+        Ok(Self { name: name.into(), vertices, indices, parts, materials, bounds, warnings: Vec::new() })
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    pub fn is_textured(&self) -> bool {
+        self.materials.iter().any(Material::is_textured)
+    }
+
+    /// World-space triangle `i` as three positions.
+    pub fn triangle(&self, i: usize) -> [Vec3; 3] {
+        let p = |k: usize| Vec3::from(self.vertices[self.indices[3 * i + k] as usize].position);
+        [p(0), p(1), p(2)]
+    }
+
+    /// Uniformly scales the model about the origin (the stability suite's scale cases).
+    pub fn scaled(mut self, factor: f32) -> Self {
+        for v in &mut self.vertices {
+            v.position = (Vec3::from(v.position) * factor).into();
+        }
+        self.bounds = Bounds { min: self.bounds.min * factor, max: self.bounds.max * factor };
+        self
+    }
+}
+
+/// Reads text that may be UTF-8, UTF-16 (with a byte-order mark) or Latin-1.
+pub fn decode_text(bytes: &[u8]) -> String {
+    let utf16 = |le: bool| {
+        let units: Vec<u16> = bytes[2..]
+            .chunks_exact(2)
+            .map(|c| if le { u16::from_le_bytes([c[0], c[1]]) } else { u16::from_be_bytes([c[0], c[1]]) })
+            .collect();
+        String::from_utf16_lossy(&units)
+    };
+    match bytes {
+        [0xFF, 0xFE, ..] => utf16(true),
+        [0xFE, 0xFF, ..] => utf16(false),
+        [0xEF, 0xBB, 0xBF, rest @ ..] => String::from_utf8_lossy(rest).into_owned(),
+        _ => match std::str::from_utf8(bytes) {
+            Ok(text) => text.to_owned(),
+            Err(_) => bytes.iter().map(|&b| b as char).collect(),
+        },
+    }
+}
+
+/// Pads colour statements that give one value (`Kd 0.5`, allowed by the format) to three, which
+/// is what they mean and what tobj can parse.
+fn sanitize_mtl(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 64);
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        let keyword = words.next().unwrap_or("");
+        let values: Vec<&str> = words.collect();
+        if matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Tf") && values.len() == 1 && values[0].parse::<f32>().is_ok()
+        {
+            out.push_str(&format!("{keyword} {0} {0} {0}\n", values[0]));
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// Splits a texture statement's argument into the file name, dropping the options exporters put
+/// before it (`-bm 0.5 -s 1 1 1 bricks.png`) and turning Windows separators into `/`.
+pub fn texture_file_name(argument: &str) -> Option<String> {
+    let words: Vec<&str> = argument.split_whitespace().collect();
+    let mut i = 0;
+    while i < words.len() && words[i].starts_with('-') && words[i].len() > 1 {
+        let max_args = match words[i] {
+            "-o" | "-s" | "-t" => 3,
+            "-mm" => 2,
+            _ => 1,
+        };
+        i += 1;
+        let mut taken = 0;
+        while taken < max_args && i < words.len() && (taken == 0 || words[i].parse::<f32>().is_ok()) {
+            i += 1;
+            taken += 1;
+        }
+    }
+    let name = words[i.min(words.len())..].join(" ").replace('\\', "/");
+    let name = name.trim_start_matches("./").to_string();
+    (!name.is_empty()).then_some(name)
+}
+
+/// Finds a texture file next to the MTL: as written, then by its file name alone, then ignoring
+/// letter case (files made on Windows often disagree with their MTL about case).
+fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
+    let direct = dir.join(name);
+    if direct.is_file() {
+        return Some(direct);
+    }
+    let file_name = Path::new(name).file_name()?.to_string_lossy().to_lowercase();
+    let base = dir.join(Path::new(name).parent().unwrap_or(Path::new("")));
+    for folder in [base, dir.to_path_buf()] {
+        let Ok(entries) = std::fs::read_dir(&folder) else { continue };
+        for entry in entries.flatten() {
+            if entry.file_name().to_string_lossy().to_lowercase() == file_name && entry.path().is_file() {
+                return Some(entry.path());
+            }
+        }
+    }
+    None
+}
+
+/// Decodes an image file whatever its extension says, within a size limit.
+pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
+    let mut reader = image::ImageReader::open(path)
+        .map_err(|e| Error::input(path, format!("cannot open: {e}")))?
+        .with_guessed_format()
+        .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(max_side);
+    limits.max_image_height = Some(max_side);
+    limits.max_alloc = Some(4 * 1024 * 1024 * 1024);
+    reader.limits(limits);
+    reader.decode().map_err(|e| Error::input(path, format!("not a readable image: {e}")))
+}
+
+/// Largest texture side accepted when loading (textures are also checked against the device).
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+
+fn load_texture(dir: &Path, argument: &str, warnings: &mut Vec<String>) -> TextureImage {
+    let Some(name) = texture_file_name(argument) else {
+        warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
+        return TextureImage::checker();
+    };
+    let Some(path) = find_texture(dir, &name) else {
+        warnings.push(format!("{}: texture not found; using a checker", dir.join(&name).display()));
+        return TextureImage::checker();
+    };
+    match read_image(&path, MAX_TEXTURE_SIDE) {
+        Ok(image) => {
+            let rgba = image.to_rgba8();
+            TextureImage { width: rgba.width(), height: rgba.height(), rgba: rgba.into_raw() }
+        }
+        Err(e) => {
+            warnings.push(format!("{e}; using a checker"));
+            TextureImage::checker()
+        }
+    }
+}
+
+fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
+    match v {
+        Some(c) if c.iter().all(|x| x.is_finite()) => c.map(|x| x.clamp(0.0, 1.0)),
+        _ => default,
+    }
+}
+
+fn convert_material(m: &tobj::Material, dir: &Path, warnings: &mut Vec<String>) -> Material {
+    Material {
+        name: m.name.clone(),
+        diffuse: finite3(m.diffuse, [0.8; 3]),
+        specular: finite3(m.specular, [0.0; 3]),
+        shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
+        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(dir, t, warnings)),
+        specular_map: m.specular_texture.as_deref().map(|t| load_texture(dir, t, warnings)),
+    }
+}
+
+/// Loads an OBJ file (and its MTL files and textures).
+pub fn load_obj(path: &Path) -> Result<Model> {
+    let bytes = std::fs::read(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    if bytes.iter().all(|b| b.is_ascii_whitespace()) {
+        return Err(Error::input(path, "the file is empty"));
+    }
+    let text = decode_text(&bytes);
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let warnings = RefCell::new(Vec::new());
+
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let material_loader = |mtl: &Path| {
+        let mtl_path = dir.join(mtl.to_string_lossy().replace('\\', "/"));
+        match std::fs::read(&mtl_path) {
+            Ok(bytes) => {
+                let text = sanitize_mtl(&decode_text(&bytes));
+                tobj::load_mtl_buf(&mut text.as_bytes())
+            }
+            Err(e) => {
+                warnings
+                    .borrow_mut()
+                    .push(format!("{}: cannot read material file ({e}); using a default material", mtl_path.display()));
+                Err(tobj::LoadError::OpenFileFailed)
+            }
+        }
+    };
+    // tobj has panicked on malformed input before; a panic in a parser is still a bad file.
+    let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
+    }))
+    .map_err(|_| Error::input(path, "malformed OBJ (the parser gave up on it)"))?;
+    let (models, materials) = parsed.map_err(|e| Error::input(path, format!("malformed OBJ: {e}")))?;
+
+    let mut warnings = warnings.into_inner();
+    let tobj_materials = materials.unwrap_or_else(|e| {
+        if e != tobj::LoadError::OpenFileFailed {
+            warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));
+        }
+        Vec::new()
+    });
+    let mut materials: Vec<Material> =
+        tobj_materials.iter().map(|m| convert_material(m, &dir, &mut warnings)).collect();
+    let default_material = materials.len();
+    materials.push(Material::plain("default", [0.8; 3]));
+
+    let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); materials.len()];
+    let mut dropped = 0usize;
+    for model in &models {
+        let mesh = &model.mesh;
+        let count = mesh.positions.len() / 3;
+        let has_normals = mesh.normals.len() == 3 * count;
+        let has_uvs = mesh.texcoords.len() == 2 * count;
+        if !mesh.normals.is_empty() && !has_normals {
+            warnings.push(format!("object '{}': normal count does not match vertices; computing normals", model.name));
+        }
+        if !mesh.texcoords.is_empty() && !has_uvs {
+            warnings.push(format!(
+                "object '{}': texture coordinate count does not match vertices; ignoring them",
+                model.name
+            ));
+        }
+        let material = match mesh.material_id {
+            Some(id) if id < default_material => id,
+            Some(id) => {
+                warnings
+                    .push(format!("object '{}': material #{id} is not defined; using a default material", model.name));
+                default_material
+            }
+            None => default_material,
+        };
+        for tri in mesh.indices.chunks_exact(3) {
+            let idx = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+            if idx.iter().any(|&i| i >= count) {
+                dropped += 1;
+                continue;
+            }
+            let pos = idx.map(|i| Vec3::from_slice(&mesh.positions[3 * i..3 * i + 3]));
+            if !pos.iter().all(|p| p.is_finite()) {
+                dropped += 1;
+                continue;
+            }
+            let face_normal = (pos[1] - pos[0]).cross(pos[2] - pos[0]).try_normalize().unwrap_or(Vec3::Y);
+            for (k, &i) in idx.iter().enumerate() {
+                let normal = if has_normals {
+                    Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3]).try_normalize().unwrap_or(face_normal)
+                } else {
+                    face_normal
+                };
+                // OBJ puts v = 0 at the bottom of the image; textures start at the top row.
+                let uv = if has_uvs { [mesh.texcoords[2 * i], 1.0 - mesh.texcoords[2 * i + 1]] } else { [0.0, 0.0] };
+                let uv = if uv.iter().all(|x| x.is_finite()) { uv } else { [0.0, 0.0] };
+                groups[material].push(Vertex { position: pos[k].into(), normal: normal.into(), uv });
+            }
+        }
+    }
+    if dropped > 0 {
+        warnings.push(format!("dropped {dropped} triangle(s) with out-of-range indices or non-finite positions"));
+    }
+    if groups.iter().all(Vec::is_empty) {
+        return Err(Error::input(path, "no triangles to draw (no faces, or only points and lines)"));
+    }
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
+    let mut out = Model::from_groups(&name, materials, groups)
+        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
+    for w in &warnings {
+        log::warn!("{}: {w}", path.display());
+    }
+    out.warnings = warnings;
+    Ok(out)
+}

@@ -1,0 +1,256 @@
+//! Skyboxes: six square faces of equal size in a folder, read into linear RGB.
+//!
+//! Faces are named `right left top bottom front back` (or `px nx py ny pz nz`) for +X, -X, +Y,
+//! -Y, +Z, -Z, with the orientation of the GL/Vulkan cube-map convention (the one most skybox
+//! images on the web are made for). `.png` and `.jpg` are sRGB and converted to linear; `.hdr`
+//! and `.exr` are linear already. Non-finite and negative texels are replaced by 0, with a
+//! warning, so the renderer never sees them.
+
+use std::path::Path;
+
+use glam::Vec3;
+
+use super::model::read_image;
+use crate::{Error, Result};
+
+/// Face names in cube-layer order (+X, -X, +Y, -Y, +Z, -Z): the long name and the short one.
+pub const FACE_NAMES: [(&str, &str); 6] =
+    [("right", "px"), ("left", "nx"), ("top", "py"), ("bottom", "ny"), ("front", "pz"), ("back", "nz")];
+
+/// File extensions tried for each face, in this order.
+pub const EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "hdr", "exr"];
+
+/// Largest face side accepted when loading.
+pub const MAX_FACE_SIDE: u32 = 8192;
+
+#[derive(Clone, Debug)]
+pub struct Skybox {
+    pub name: String,
+    /// Side of each square face in texels.
+    pub size: u32,
+    /// Six faces of `size * size` linear RGB texels, rows top to bottom.
+    pub faces: Vec<Vec<[f32; 3]>>,
+    pub warnings: Vec<String>,
+}
+
+/// The world direction through face `face` at cube coordinates `s`, `t` in [-1, 1]
+/// (s grows along a row, t down the rows). Not normalised.
+pub fn face_direction(face: usize, s: f32, t: f32) -> Vec3 {
+    match face {
+        0 => Vec3::new(1.0, -t, -s),
+        1 => Vec3::new(-1.0, -t, s),
+        2 => Vec3::new(s, 1.0, t),
+        3 => Vec3::new(s, -1.0, -t),
+        4 => Vec3::new(s, -t, 1.0),
+        _ => Vec3::new(-s, -t, -1.0),
+    }
+}
+
+/// The face and cube coordinates (s, t in [-1, 1]) that direction `d` looks through;
+/// the inverse of [`face_direction`]. A zero or non-finite direction gives face +Y's centre.
+pub fn direction_to_face(d: Vec3) -> (usize, f32, f32) {
+    if !d.is_finite() || d == Vec3::ZERO {
+        return (2, 0.0, 0.0);
+    }
+    let a = d.abs();
+    if a.x >= a.y && a.x >= a.z {
+        if d.x > 0.0 {
+            (0, -d.z / a.x, -d.y / a.x)
+        } else {
+            (1, d.z / a.x, -d.y / a.x)
+        }
+    } else if a.y >= a.z {
+        if d.y > 0.0 {
+            (2, d.x / a.y, d.z / a.y)
+        } else {
+            (3, d.x / a.y, -d.z / a.y)
+        }
+    } else if d.z > 0.0 {
+        (4, d.x / a.z, -d.y / a.z)
+    } else {
+        (5, -d.x / a.z, -d.y / a.z)
+    }
+}
+
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn find_face(dir: &Path, names: (&str, &str)) -> Option<std::path::PathBuf> {
+    let entries: Vec<_> = std::fs::read_dir(dir).ok()?.flatten().map(|e| e.path()).collect();
+    for name in [names.0, names.1] {
+        for ext in EXTENSIONS {
+            let found = entries.iter().find(|p| {
+                let stem = p.file_stem().map(|s| s.to_string_lossy().to_lowercase());
+                let e = p.extension().map(|s| s.to_string_lossy().to_lowercase());
+                stem.as_deref() == Some(name) && e.as_deref() == Some(ext) && p.is_file()
+            });
+            if let Some(p) = found {
+                return Some(p.clone());
+            }
+        }
+    }
+    None
+}
+
+impl Skybox {
+    /// Loads the six faces from `dir`; an incomplete or inconsistent folder is an error naming the
+    /// folder or the face.
+    pub fn load(dir: &Path) -> Result<Self> {
+        if !dir.is_dir() {
+            return Err(Error::input(dir, "skybox folder not found"));
+        }
+        let mut faces = Vec::with_capacity(6);
+        let mut warnings = Vec::new();
+        let mut size = 0;
+        let mut kinds = Vec::new();
+        let mut first_face = String::new();
+        for (index, names) in FACE_NAMES.iter().enumerate() {
+            let path = find_face(dir, *names).ok_or_else(|| {
+                Error::input(
+                    dir,
+                    format!(
+                        "skybox face '{}' is missing (looked for {}.* and {}.* with .png .jpg .hdr .exr)",
+                        names.0, names.0, names.1
+                    ),
+                )
+            })?;
+            let image = read_image(&path, MAX_FACE_SIDE)?;
+            let (w, h) = (image.width(), image.height());
+            if w != h {
+                return Err(Error::input(&path, format!("skybox face is {w}x{h}; faces must be square")));
+            }
+            if index == 0 {
+                size = w;
+                first_face = path.display().to_string();
+            } else if w != size {
+                return Err(Error::input(
+                    &path,
+                    format!(
+                        "skybox face is {w}x{w} but {first_face} is {size}x{size}; all faces must be the same size"
+                    ),
+                ));
+            }
+            let hdr = matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_));
+            kinds.push(hdr);
+            let rgb = image.to_rgb32f();
+            let mut bad = 0usize;
+            let texels = rgb
+                .pixels()
+                .map(|p| {
+                    p.0.map(|c| {
+                        let c = if hdr { c } else { srgb_to_linear(c) };
+                        if c.is_finite() && c >= 0.0 {
+                            c
+                        } else {
+                            bad += 1;
+                            0.0
+                        }
+                    })
+                })
+                .collect();
+            if bad > 0 {
+                warnings.push(format!("{}: {bad} non-finite or negative value(s) replaced by 0", path.display()));
+            }
+            faces.push(texels);
+        }
+        if kinds.iter().any(|&k| k != kinds[0]) {
+            let hdr: Vec<&str> = FACE_NAMES.iter().zip(&kinds).filter(|(_, &k)| k).map(|(n, _)| n.0).collect();
+            return Err(Error::input(
+                dir,
+                format!("faces mix HDR ({}) and LDR images; use one kind for all six", hdr.join(", ")),
+            ));
+        }
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        let name =
+            dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| dir.display().to_string());
+        Ok(Self { name, size, faces, warnings })
+    }
+
+    /// A sky computed from a function of the (unit) world direction.
+    pub fn from_fn(name: &str, size: u32, radiance: impl Fn(Vec3) -> Vec3) -> Self {
+        let faces = (0..6)
+            .map(|face| {
+                (0..size * size)
+                    .map(|i| {
+                        let s = 2.0 * ((i % size) as f32 + 0.5) / size as f32 - 1.0;
+                        let t = 2.0 * ((i / size) as f32 + 0.5) / size as f32 - 1.0;
+                        radiance(face_direction(face, s, t).normalize()).max(Vec3::ZERO).into()
+                    })
+                    .collect()
+            })
+            .collect();
+        Self { name: name.into(), size, faces, warnings: Vec::new() }
+    }
+
+    /// A sky of the same radiance in every direction (the white-furnace test's sky).
+    pub fn constant(radiance: Vec3) -> Self {
+        Self::from_fn("constant", 4, |_| radiance)
+    }
+
+    /// Radiance in direction `d` (nearest texel).
+    pub fn sample(&self, d: Vec3) -> Vec3 {
+        let (face, s, t) = direction_to_face(d);
+        let texel = |c: f32| ((0.5 * (c + 1.0) * self.size as f32) as u32).min(self.size - 1);
+        Vec3::from(self.faces[face][(texel(t) * self.size + texel(s)) as usize])
+    }
+
+    /// Largest channel value anywhere on the sky.
+    pub fn max_value(&self) -> f32 {
+        self.faces.iter().flatten().flat_map(|t| t.iter().copied()).fold(0.0, f32::max)
+    }
+
+    /// Mean radiance over the sphere, weighting each texel by its solid angle.
+    pub fn mean(&self) -> Vec3 {
+        let mut sum = Vec3::ZERO;
+        let mut weight = 0.0;
+        let n = self.size;
+        for (face, texels) in self.faces.iter().enumerate() {
+            for (i, t) in texels.iter().enumerate() {
+                let s = 2.0 * ((i as u32 % n) as f32 + 0.5) / n as f32 - 1.0;
+                let tt = 2.0 * ((i as u32 / n) as f32 + 0.5) / n as f32 - 1.0;
+                let w = face_direction(face, s, tt).length().powi(-3);
+                sum += Vec3::from(*t) * w;
+                weight += w;
+            }
+        }
+        sum / weight.max(f32::MIN_POSITIVE)
+    }
+
+    /// Mip chain of every face, level 0 first: each level averages 2x2 texels of the one above.
+    pub fn mip_chain(&self) -> Vec<Vec<Vec<[f32; 3]>>> {
+        let mut levels = vec![self.faces.clone()];
+        let mut size = self.size;
+        while size > 1 {
+            let next = size / 2;
+            let above = levels.last().expect("level 0 exists");
+            let level = above
+                .iter()
+                .map(|face| {
+                    (0..next * next)
+                        .map(|i| {
+                            let (x, y) = (2 * (i % next), 2 * (i / next));
+                            let mut acc = [0.0f32; 3];
+                            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                                let t = face[((y + dy).min(size - 1) * size + (x + dx).min(size - 1)) as usize];
+                                for c in 0..3 {
+                                    acc[c] += 0.25 * t[c];
+                                }
+                            }
+                            acc
+                        })
+                        .collect()
+                })
+                .collect();
+            levels.push(level);
+            size = next;
+        }
+        levels
+    }
+}

@@ -1,0 +1,73 @@
+//! WGSL sources, embedded in the binary, and a tiny `#include "path"` resolver.
+//!
+//! Shared code (uniform structs, the full-screen triangle, lighting, sampling helpers) lives in
+//! `shaders/common/`. A line `#include "common/x.wgsl"` is replaced by that file's text the
+//! first time it is seen and dropped after that (include-once), so two includes of the same
+//! helper never define it twice. Variants are WGSL `override` constants, never string surgery.
+
+use crate::{Error, Result};
+
+/// Every WGSL file under `shaders/`, by its path relative to that folder.
+pub const SOURCES: &[(&str, &str)] = &[
+    ("common/uniforms.wgsl", include_str!("../shaders/common/uniforms.wgsl")),
+    ("common/fullscreen.wgsl", include_str!("../shaders/common/fullscreen.wgsl")),
+    ("common/lighting.wgsl", include_str!("../shaders/common/lighting.wgsl")),
+    ("common/gbuffer_read.wgsl", include_str!("../shaders/common/gbuffer_read.wgsl")),
+    ("gbuffer.wgsl", include_str!("../shaders/gbuffer.wgsl")),
+    ("composite.wgsl", include_str!("../shaders/composite.wgsl")),
+    ("skybox.wgsl", include_str!("../shaders/skybox.wgsl")),
+    ("light_cubes.wgsl", include_str!("../shaders/light_cubes.wgsl")),
+    ("tonemap.wgsl", include_str!("../shaders/tonemap.wgsl")),
+];
+
+/// The shaders that are compiled as modules (the rest are only included).
+pub fn entry_points() -> impl Iterator<Item = &'static str> {
+    SOURCES.iter().map(|(name, _)| *name).filter(|name| !name.starts_with("common/"))
+}
+
+fn source(name: &str) -> Result<&'static str> {
+    SOURCES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
+        .ok_or_else(|| Error::Setting(format!("shader {name}: no such embedded WGSL file")))
+}
+
+/// Returns `name` with every `#include` resolved, each file included at most once.
+pub fn resolve(name: &str) -> Result<String> {
+    let mut seen = Vec::new();
+    let mut out = String::new();
+    append(name, &mut seen, &mut out)?;
+    Ok(out)
+}
+
+fn append(name: &str, seen: &mut Vec<String>, out: &mut String) -> Result<()> {
+    if seen.iter().any(|s| s == name) {
+        return Ok(());
+    }
+    seen.push(name.to_owned());
+    for line in source(name)?.lines() {
+        match line.trim().strip_prefix("#include") {
+            Some(rest) => {
+                let target = rest.trim().trim_matches('"');
+                append(target, seen, out)
+                    .map_err(|e| Error::Setting(format!("{name}: include of {target} failed: {e}")))?;
+            }
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Compiles `name` (with its includes) into a shader module labelled after the file.
+pub fn module(device: &wgpu::Device, name: &str) -> Result<wgpu::ShaderModule> {
+    let code = resolve(name)?;
+    let label = format!("{}_shader", name.trim_end_matches(".wgsl"));
+    Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(&label),
+        source: wgpu::ShaderSource::Wgsl(code.into()),
+    }))
+}

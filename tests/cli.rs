@@ -1,0 +1,97 @@
+//! The `ssdo` binary as a user runs it: files written atomically, one-line errors with
+//! documented exit codes, never a panic (exit 101).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn ssdo(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ssdo"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+fn error_line(output: &Output) -> String {
+    stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
+}
+
+fn has_adapter() -> bool {
+    let ok = ssdo::gpu::Gpu::headless().is_ok();
+    if !ok && std::env::var("CI").is_ok_and(|v| v == "true") {
+        panic!("{}", ssdo::gpu::NO_ADAPTER_HELP);
+    }
+    ok
+}
+
+#[test]
+fn capture_writes_the_png_and_no_temporary_files() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let result =
+        ssdo(&["capture", "--mode", "off", "--size", "161x97", "--out", out.path().to_str().unwrap(), "--print-plan"]);
+    assert!(result.status.success(), "{}", stderr(&result));
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(stdout.contains("pass gbuffer") && stdout.contains("pass tonemap"), "{stdout}");
+    let files: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(files, vec!["off.png".to_string()]);
+    let image = image::open(out.path().join("off.png")).unwrap();
+    assert_eq!((image.width(), image.height()), (161, 97));
+}
+
+#[test]
+fn bad_inputs_are_one_line_with_their_exit_code() {
+    let out = tempfile::tempdir().unwrap();
+    let out = out.path().to_str().unwrap();
+    let broken = tempfile::tempdir().unwrap();
+    std::fs::write(broken.path().join("bad.obj"), "v 1 2 zz\nf 1 2 3\n").unwrap();
+    let bad_obj = broken.path().join("bad.obj");
+    let cases: Vec<(Vec<&str>, i32, &str)> = vec![
+        (vec!["capture", "--model", "no/such/model.obj", "--out", out], 3, "no/such/model.obj"),
+        (vec!["capture", "--model", bad_obj.to_str().unwrap(), "--out", out], 3, "bad.obj: malformed OBJ"),
+        (vec!["capture", "--skybox", "no/such/sky", "--out", out], 3, "no/such/sky: skybox folder not found"),
+        (vec!["capture", "--exposure", "NaN", "--out", out], 2, "--exposure"),
+        (vec!["capture", "--distance", "-1", "--out", out], 2, "--distance"),
+    ];
+    for (args, code, needle) in cases {
+        let result = ssdo(&args);
+        let line = error_line(&result);
+        assert_eq!(result.status.code(), Some(code), "{args:?}: {}", stderr(&result));
+        assert!(line.contains(needle), "{args:?}: '{line}'");
+    }
+    assert!(std::fs::read_dir(out).unwrap().next().is_none(), "nothing written on error");
+}
+
+#[test]
+fn usage_errors_come_from_the_parser() {
+    for args in [vec!["capture", "--mode", "sideways"], vec!["capture", "--size", "12by4"]] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&result).contains(args[2]), "{}", stderr(&result));
+    }
+}
+
+#[test]
+fn zero_and_oversized_sizes_are_refused() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    for size in ["0x10", "100000x10"] {
+        let result = ssdo(&["capture", "--size", size, "--out", out.path().to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(2), "{size}: {}", stderr(&result));
+        assert!(error_line(&result).contains("size"), "{}", stderr(&result));
+    }
+    assert!(!Path::new(out.path()).join("off.png").exists());
+}

@@ -1,0 +1,54 @@
+//! Shared helpers for the tests that render on a GPU adapter (lavapipe in CI).
+
+#![allow(dead_code)]
+
+use glam::Vec3;
+use ssdo::gpu::{Gpu, NO_ADAPTER_HELP};
+use ssdo::render::capture::{capture, CAPTURE_FORMAT};
+use ssdo::render::{Renderer, Settings};
+use ssdo::scene::{OrbitCamera, Scene, Skybox};
+
+/// A headless device, or `None` (test skipped) when there is no adapter outside CI. Under
+/// `CI=true` a missing adapter fails the test with the install hint.
+pub fn gpu() -> Option<Gpu> {
+    match Gpu::headless() {
+        Ok(gpu) => Some(gpu),
+        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => panic!("{e}\n{NO_ADAPTER_HELP}"),
+        Err(e) => {
+            eprintln!("skipping: {e}");
+            None
+        }
+    }
+}
+
+pub fn renderer(gpu: &Gpu, scene: &Scene, sky: &Skybox, size: (u32, u32), settings: Settings) -> Renderer {
+    Renderer::new(gpu, scene, sky, size, CAPTURE_FORMAT, settings).expect("renderer builds")
+}
+
+pub fn shoot(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> image::RgbaImage {
+    capture(gpu, renderer, camera).expect("capture succeeds")
+}
+
+/// A camera at `eye` looking at `target`, expressed as an orbit.
+pub fn looking(target: Vec3, yaw_deg: f32, pitch_deg: f32, distance: f32) -> OrbitCamera {
+    OrbitCamera { target, yaw_deg, pitch_deg, distance, fov_y_deg: 45.0, near: distance * 1e-3, far: None }
+}
+
+/// The displayed value of linear radiance `x` (exposure 1): ACES fit, then sRGB, 0-255.
+pub fn displayed(x: f32) -> f32 {
+    let y = ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
+    let s = if y <= 0.0031308 { 12.92 * y } else { 1.055 * y.powf(1.0 / 2.4) - 0.055 };
+    s * 255.0
+}
+
+/// Mean RGB (0-255) of a rectangle of an image.
+pub fn mean_rgb(image: &image::RgbaImage, x0: u32, y0: u32, w: u32, h: u32) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for y in y0..y0 + h {
+        for x in x0..x0 + w {
+            let p = image.get_pixel(x, y).0;
+            sum += Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32);
+        }
+    }
+    sum / (w * h) as f32
+}

@@ -1,0 +1,206 @@
+//! Rendered-image tests on the software adapter, at small sizes. Each would fail if its pass
+//! were wrong: the G-buffer's normals and depth, the point lights, the sky, the light cubes,
+//! tone mapping and the padded readback.
+
+mod common;
+
+use common::{displayed, gpu, looking, mean_rgb, renderer, shoot};
+use glam::{Vec3, Vec4Swizzles};
+use ssdo::render::readback::{read_depth, read_rgba16f};
+use ssdo::render::{Mode, Settings, Step};
+use ssdo::scene::{builtin, PointLight, Scene, Skybox};
+
+fn no_ambient() -> Settings {
+    Settings { ambient: 0.0, ..Settings::default() }
+}
+
+#[test]
+fn plane_normal_and_depth_come_out_as_expected() {
+    let Some(gpu) = gpu() else { return };
+    let scene = Scene::new(builtin::plane(10.0, builtin::WHITE).unwrap(), 0, 1);
+    let sky = Skybox::constant(Vec3::splat(0.5));
+    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    let camera = looking(Vec3::ZERO, 20.0, 30.0, 4.0);
+    shoot(&gpu, &mut r, &camera);
+    let normals = read_rgba16f(&gpu, &r.targets().normal.texture).unwrap();
+    let expected = (camera.world_to_view() * Vec3::Y.extend(0.0)).xyz();
+    let centre = normals[60 * 160 + 80];
+    assert!((Vec3::new(centre[0], centre[1], centre[2]) - expected).length() < 2e-3, "{centre:?} vs {expected}");
+    assert_eq!(centre[3], 32.0, "shininess travels in w");
+    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    // Reverse-Z, infinite far: depth = near / (distance along the view axis). Intersect the ray
+    // through the centre of pixel (80, 60) with the plane y = 0.
+    let p = camera.view_to_clip(160.0 / 120.0);
+    let ndc = (80.5 / 160.0 * 2.0 - 1.0, 1.0 - 60.5 / 120.0 * 2.0);
+    let view_dir = Vec3::new(ndc.0 / p.x_axis.x, ndc.1 / p.y_axis.y, -1.0);
+    let world_dir = (camera.world_to_view().inverse() * view_dir.extend(0.0)).xyz();
+    let t = -camera.eye().y / world_dir.y;
+    let d = depth[60 * 160 + 80];
+    assert!((d - camera.near / t).abs() < 1e-4 * d, "centre depth {d} vs {}", camera.near / t);
+}
+
+#[test]
+fn readback_is_correct_at_an_odd_size() {
+    let Some(gpu) = gpu() else { return };
+    // A level camera over an endless floor: the horizon is one straight row. A wrong row pitch
+    // in the readback shears it.
+    let scene = Scene::new(builtin::plane(1e4, builtin::WHITE).unwrap(), 0, 1);
+    let sky = Skybox::constant(Vec3::new(0.2, 0.4, 0.8));
+    let mut r = renderer(&gpu, &scene, &sky, (161, 97), Settings::default());
+    let camera = looking(Vec3::new(0.0, 1.0, 0.0), 0.0, 0.0, 1.0);
+    let image = shoot(&gpu, &mut r, &camera);
+    assert_eq!(image.dimensions(), (161, 97));
+    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    assert_eq!(depth.len(), 161 * 97);
+    let horizon = |x: usize| (0..97).find(|&y| depth[y * 161 + x] > 0.0).expect("floor visible");
+    let first = horizon(0);
+    assert!((40..=56).contains(&first), "horizon near the middle, got row {first}");
+    for x in [1, 80, 159, 160] {
+        assert_eq!(horizon(x), first, "column {x}");
+    }
+    let sky_pixel = image.get_pixel(100, 5).0;
+    assert!(sky_pixel[2] > sky_pixel[0] + 40, "sky above the horizon: {sky_pixel:?}");
+    let floor_pixel = image.get_pixel(100, 90).0;
+    assert_ne!(floor_pixel, sky_pixel);
+}
+
+#[test]
+fn background_shows_the_sky_through_tone_mapping() {
+    let Some(gpu) = gpu() else { return };
+    let radiance = Vec3::new(0.1, 0.3, 0.9);
+    let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
+    let sky = Skybox::constant(radiance);
+    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    // Looking up: only sky in view.
+    let image = shoot(&gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0));
+    let got = mean_rgb(&image, 10, 10, 140, 100);
+    let want = Vec3::new(displayed(radiance.x), displayed(radiance.y), displayed(radiance.z));
+    assert!((got - want).abs().max_element() < 2.5, "sky {got} vs {want}");
+    // sky_scale multiplies it.
+    r.settings.sky_scale = 0.5;
+    let half = mean_rgb(&shoot(&gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0)), 10, 10, 140, 100);
+    assert!((half.z - displayed(0.45)).abs() < 2.5, "{half}");
+}
+
+#[test]
+fn floor_under_a_red_light_is_redder_than_elsewhere() {
+    let Some(gpu) = gpu() else { return };
+    let mut scene = Scene::new(builtin::plane(2.0, builtin::WHITE).unwrap(), 0, 1);
+    let intensity = 1.0;
+    scene.lights = vec![PointLight { position: Vec3::new(-1.0, 0.3, 0.0), color: Vec3::new(1.0, 0.0, 0.0), intensity }];
+    let sky = Skybox::constant(Vec3::ZERO);
+    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings { ambient: 0.2, ..Settings::default() });
+    assert!(r.plan().has(Step::LightCubes));
+    // Straight down on the plane: x maps to columns, the light sits left of centre.
+    let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
+    let image = shoot(&gpu, &mut r, &camera);
+    let project = |p: Vec3| {
+        let clip = camera.view_to_clip(160.0 / 120.0) * camera.world_to_view() * p.extend(1.0);
+        ((clip.x / clip.w * 0.5 + 0.5) * 160.0, (0.5 - clip.y / clip.w * 0.5) * 120.0)
+    };
+    // Just beside the light (the cube covers the point straight below it).
+    let (x, y) = project(Vec3::new(-1.0, 0.0, 0.25));
+    let under = mean_rgb(&image, x as u32 - 1, y as u32 - 1, 3, 3);
+    let (fx, fy) = project(Vec3::new(1.5, 0.0, 0.0));
+    let far = mean_rgb(&image, fx as u32 - 1, fy as u32 - 1, 3, 3);
+    assert!(under.x > under.y + 40.0, "red near the light: {under}");
+    assert!(under.x > far.x + 40.0, "redder than far away: {under} vs {far}");
+    assert!((far.x - far.y).abs() < 12.0, "grey far from it: {far}");
+    // Irradiance falls as 1/d²: check the HDR value straight against the formula.
+    let hdr = read_rgba16f(&gpu, &r.targets().hdr.texture).unwrap();
+    let (hx, hy) = project(Vec3::new(1.5, 0.0, 0.0));
+    let got = hdr[hy as usize * 160 + hx as usize][0];
+    let to_light = Vec3::new(-1.0, 0.3, 0.0) - Vec3::new(1.5, 0.0, 0.0);
+    let cos = 0.3 / to_light.length();
+    let want = 0.2 * 0.75 + 0.75 / std::f32::consts::PI * intensity * cos / to_light.length_squared();
+    assert!((got - want).abs() < 0.03 * want, "HDR red {got} vs {want}");
+}
+
+#[test]
+fn light_cubes_show_their_colour_and_leave_with_the_lights() {
+    let Some(gpu) = gpu() else { return };
+    let mut scene = Scene::new(builtin::plane(2.0, builtin::WHITE).unwrap(), 0, 1);
+    scene.rig.cube_half_size = 0.2;
+    scene.lights =
+        vec![PointLight { position: Vec3::new(0.0, 1.0, 0.0), color: Vec3::new(0.0, 1.0, 0.0), intensity: 0.01 }];
+    let sky = Skybox::constant(Vec3::ZERO);
+    let mut r = renderer(&gpu, &scene, &sky, (160, 120), no_ambient());
+    let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
+    let image = shoot(&gpu, &mut r, &camera);
+    let centre = mean_rgb(&image, 78, 58, 4, 4);
+    assert!(centre.y > 200.0 && centre.x < 30.0, "green cube in the middle: {centre}");
+
+    r.set_lights(&gpu, Vec::new()).unwrap();
+    assert!(!r.plan().has(Step::LightCubes), "no lights, no cube pass");
+    let image = shoot(&gpu, &mut r, &camera);
+    assert!(mean_rgb(&image, 78, 58, 4, 4).max_element() < 3.0, "nothing lights the floor now");
+}
+
+#[test]
+fn default_scene_renders_finite_with_every_part_visible() {
+    let Some(gpu) = gpu() else { return };
+    let model = ssdo::scene::load_model(None).unwrap();
+    let scene = Scene::new(model, 8, 1);
+    let sky = ssdo::scene::load_skybox(None).unwrap();
+    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
+    let image = shoot(&gpu, &mut r, &camera);
+    let hdr = read_rgba16f(&gpu, &r.targets().hdr.texture).unwrap();
+    assert!(hdr.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)), "HDR finite and non-negative");
+    let red = image.pixels().filter(|p| p[0] > 120 && p[1] < 70 && p[2] < 70).count();
+    let blue = image.pixels().filter(|p| p[2] > 120 && p[0] < 70 && p[1] < 90).count();
+    assert!(red > 500 && blue > 500, "both walls visible: red {red}, blue {blue}");
+    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    let background = depth.iter().filter(|d| **d == 0.0).count();
+    assert!(background > 1000, "sky visible around the room: {background}");
+}
+
+#[test]
+fn textured_model_renders_its_texture() {
+    let Some(gpu) = gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    // Top row red, blue; bottom row green, white. OBJ's v = 1 is the top of the image.
+    let mut img = image::RgbImage::new(2, 2);
+    img.put_pixel(0, 0, image::Rgb([255, 0, 0]));
+    img.put_pixel(1, 0, image::Rgb([0, 0, 255]));
+    img.put_pixel(0, 1, image::Rgb([0, 255, 0]));
+    img.put_pixel(1, 1, image::Rgb([255, 255, 255]));
+    img.save(dir.path().join("lr.png")).unwrap();
+    std::fs::write(dir.path().join("m.mtl"), "newmtl t\nKd 1 1 1\nmap_Kd lr.png\n").unwrap();
+    std::fs::write(
+        dir.path().join("m.obj"),
+        "mtllib m.mtl\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\nusemtl t\nf 1/1/1 2/2/1 3/3/1 4/4/1\n",
+    )
+    .unwrap();
+    let model = ssdo::scene::model::load_obj(&dir.path().join("m.obj")).unwrap();
+    let scene = Scene::new(model, 0, 1);
+    let mut r = renderer(
+        &gpu,
+        &scene,
+        &Skybox::constant(Vec3::ZERO),
+        (160, 120),
+        Settings { ambient: 1.0, ..Settings::default() },
+    );
+    // Looking down with -Z up on screen: texel centres (u, v = 0.25, 0.75) land 24 px from the
+    // middle of the 160x120 view.
+    let image = shoot(&gpu, &mut r, &looking(Vec3::ZERO, 0.0, 89.9, 3.0));
+    let at = |x: u32, y: u32| mean_rgb(&image, x - 1, y - 1, 3, 3);
+    let (top_left, top_right, bottom_left, bottom_right) = (at(56, 36), at(104, 36), at(56, 84), at(104, 84));
+    assert!(top_left.x > 150.0 && top_left.y < 60.0 && top_left.z < 60.0, "top left red: {top_left}");
+    assert!(top_right.z > 150.0 && top_right.x < 60.0, "top right blue: {top_right}");
+    assert!(bottom_left.y > 150.0 && bottom_left.x < 60.0, "bottom left green: {bottom_left}");
+    assert!(bottom_right.min_element() > 150.0, "bottom right white: {bottom_right}");
+}
+
+#[test]
+fn modes_without_an_implementation_are_clear_errors() {
+    let Some(gpu) = gpu() else { return };
+    let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
+    let mut r = renderer(&gpu, &scene, &Skybox::constant(Vec3::ONE), (16, 16), Settings::default());
+    for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
+        if let Err(e) = r.set_mode(&gpu, mode) {
+            assert!(e.to_string().contains(mode.name()), "{e}");
+            assert_eq!(r.settings.mode, Mode::Off, "a failed switch keeps the old mode");
+        }
+    }
+}

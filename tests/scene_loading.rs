@@ -1,0 +1,268 @@
+//! Model, sky, light and camera code on the CPU: what loads, what is repaired with a warning,
+//! and what fails with a message naming the file and the problem.
+
+use std::path::Path;
+
+use glam::{Vec3, Vec4Swizzles};
+use ssdo::scene::camera::reverse_z_perspective;
+use ssdo::scene::model::{load_obj, texture_file_name};
+use ssdo::scene::skybox::{direction_to_face, face_direction};
+use ssdo::scene::{builtin, lights, Bounds, OrbitCamera, Scene, Skybox};
+use ssdo::Error;
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) {
+    std::fs::write(dir.join(name), bytes).unwrap();
+}
+
+fn png(dir: &Path, name: &str, w: u32, h: u32, rgb: [u8; 3]) {
+    image::RgbImage::from_pixel(w, h, image::Rgb(rgb)).save(dir.join(name)).unwrap();
+}
+
+const QUAD: &str = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\n";
+
+#[test]
+fn default_model_loads_with_bounds() {
+    let model = load_obj(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/models/cornell/cornell.obj"))).unwrap();
+    assert!(model.warnings.is_empty(), "{:?}", model.warnings);
+    assert!(model.triangle_count() > 1000);
+    assert!((model.bounds.min - Vec3::new(-2.0, 0.0, -2.0)).abs().max_element() < 1e-4);
+    assert!((model.bounds.max - Vec3::new(2.0, 2.2, 2.0)).abs().max_element() < 1e-4);
+    let names: Vec<_> = model.materials.iter().map(|m| m.name.as_str()).collect();
+    for wanted in ["floor", "red_wall", "blue_wall", "object"] {
+        assert!(names.contains(&wanted), "{names:?}");
+    }
+    let red = model.materials.iter().find(|m| m.name == "red_wall").unwrap();
+    assert!(red.diffuse[0] > 5.0 * red.diffuse[1]);
+}
+
+#[test]
+fn generated_obj_matches_builtin_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let built = builtin::cornell().unwrap();
+    let path = dir.path().join("scene.obj");
+    builtin::write_obj(&built, &path).unwrap();
+    let loaded = load_obj(&path).unwrap();
+    assert_eq!(loaded.triangle_count(), built.triangle_count());
+    assert_eq!(loaded.bounds, built.bounds);
+}
+
+#[test]
+fn textures_resolve_through_backslashes_options_and_case() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("tex")).unwrap();
+    png(&dir.path().join("tex"), "Bricks.png", 4, 4, [200, 10, 10]);
+    png(dir.path(), "spec.png", 2, 2, [128, 128, 128]);
+    write(
+        dir.path(),
+        "m.mtl",
+        b"newmtl a\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 64\nmap_Kd -bm 0.5 -s 1 1 1 .\\tex\\bricks.png\nmap_Ks spec.png\n",
+    );
+    write(dir.path(), "m.obj", format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1/1/1 2/2/1 3/3/1 4/4/1\n").as_bytes());
+    let model = load_obj(&dir.path().join("m.obj")).unwrap();
+    assert!(model.warnings.is_empty(), "{:?}", model.warnings);
+    let material = &model.materials[model.parts[0].material];
+    let diffuse = material.diffuse_map.as_ref().expect("diffuse map loaded");
+    assert_eq!((diffuse.width, diffuse.height), (4, 4));
+    assert_eq!(&diffuse.rgba[..3], &[200, 10, 10]);
+    assert!(material.specular_map.is_some());
+    assert_eq!(material.shininess, 64.0);
+    assert!(model.is_textured());
+}
+
+#[test]
+fn texture_statement_options_are_skipped() {
+    assert_eq!(texture_file_name("-o 0.5 0.5 -clamp on wood.jpg").as_deref(), Some("wood.jpg"));
+    assert_eq!(texture_file_name("textures\\My Wood.jpg").as_deref(), Some("textures/My Wood.jpg"));
+    assert_eq!(texture_file_name("-bm 1"), None);
+}
+
+#[test]
+fn missing_texture_and_mtl_fall_back_with_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "m.mtl", b"newmtl a\nKd 0.5\nmap_Kd nowhere.png\n");
+    write(dir.path(), "m.obj", format!("mtllib m.mtl\nmtllib absent.mtl\n{QUAD}usemtl a\nf 1 2 3\n").as_bytes());
+    let model = load_obj(&dir.path().join("m.obj")).unwrap();
+    let material = &model.materials[model.parts[0].material];
+    assert_eq!(material.diffuse, [0.5, 0.5, 0.5], "single-value Kd is grey");
+    assert!(material.diffuse_map.is_some(), "missing texture becomes a checker");
+    let text = model.warnings.join("\n");
+    assert!(text.contains("nowhere.png") && text.contains("absent.mtl"), "{text}");
+}
+
+#[test]
+fn missing_normals_are_computed_and_bad_triangles_dropped() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "m.obj", b"v 0 0 0\nv 1 0 0\nv 0 0 -1\nv nan 0 0\nf 1 2 3\nf 1 2 4\n");
+    let model = load_obj(&dir.path().join("m.obj")).unwrap();
+    assert_eq!(model.triangle_count(), 1);
+    assert!(model.warnings.iter().any(|w| w.contains("dropped 1")), "{:?}", model.warnings);
+    for v in &model.vertices {
+        assert!((Vec3::from(v.normal) - Vec3::Y).length() < 1e-6, "normal {:?}", v.normal);
+    }
+    assert_eq!(model.bounds.max, Vec3::new(1.0, 0.0, 0.0), "bounds ignore the NaN vertex");
+}
+
+#[test]
+fn bad_models_fail_with_the_file_and_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "empty.obj", b"");
+    write(dir.path(), "lines.obj", b"v 0 0 0\nv 1 0 0\nl 1 2\n");
+    write(dir.path(), "junk.obj", b"v 0 0 zz\nf 1 2 3\n");
+    for (name, problem) in [
+        ("empty.obj", "empty"),
+        ("lines.obj", "no triangles"),
+        ("junk.obj", "malformed"),
+        ("absent.obj", "cannot read"),
+    ] {
+        let path = dir.path().join(name);
+        match load_obj(&path) {
+            Err(e @ Error::Input { .. }) => {
+                let message = e.to_string();
+                assert!(message.contains(name) && message.contains(problem), "{message}");
+                assert_eq!(e.exit_code(), 3);
+            }
+            other => panic!("{name}: expected an input error, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn latin1_and_utf16_files_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut latin1 = b"# caf\xe9\n".to_vec();
+    latin1.extend_from_slice(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write(dir.path(), "latin1.obj", &latin1);
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let mut utf16 = vec![0xFF, 0xFE];
+    utf16.extend(text.encode_utf16().flat_map(u16::to_le_bytes));
+    write(dir.path(), "utf16.obj", &utf16);
+    for name in ["latin1.obj", "utf16.obj"] {
+        assert_eq!(load_obj(&dir.path().join(name)).unwrap().triangle_count(), 1, "{name}");
+    }
+}
+
+fn sky_folder(faces: &[(&str, u32)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, size) in faces {
+        png(dir.path(), &format!("{name}.png"), *size, *size, [128, 128, 128]);
+    }
+    dir
+}
+
+#[test]
+fn repository_skies_load() {
+    for (name, size) in [("day", 128), ("redblue", 32), ("sun", 64)] {
+        let sky = Skybox::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("skyboxes").join(name)).unwrap();
+        assert_eq!(sky.size, size, "{name}");
+        assert!(sky.max_value().is_finite());
+    }
+    let sun = Skybox::load(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/skyboxes/sun"))).unwrap();
+    assert!(sun.max_value() > 1000.0, "the HDR sun keeps its radiance");
+}
+
+#[test]
+fn redblue_is_blue_above_and_red_below() {
+    let sky = Skybox::load(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/skyboxes/redblue"))).unwrap();
+    let up = sky.sample(Vec3::Y);
+    let down = sky.sample(-Vec3::Y);
+    assert!(up.z > 5.0 * up.x, "up {up}");
+    assert!(down.x > 5.0 * down.z, "down {down}");
+}
+
+#[test]
+fn short_face_names_are_accepted() {
+    let dir = sky_folder(&[("px", 8), ("nx", 8), ("py", 8), ("ny", 8), ("pz", 8), ("nz", 8)]);
+    assert_eq!(Skybox::load(dir.path()).unwrap().size, 8);
+}
+
+#[test]
+fn incomplete_or_inconsistent_skies_fail_naming_the_face() {
+    let five = sky_folder(&[("right", 8), ("left", 8), ("top", 8), ("bottom", 8), ("front", 8)]);
+    let message = Skybox::load(five.path()).unwrap_err().to_string();
+    assert!(message.contains("'back'") && message.contains("missing"), "{message}");
+
+    let mismatched = sky_folder(&[("right", 8), ("left", 8), ("top", 16), ("bottom", 8), ("front", 8), ("back", 8)]);
+    let message = Skybox::load(mismatched.path()).unwrap_err().to_string();
+    assert!(message.contains("top.png") && message.contains("same size"), "{message}");
+
+    let dir = sky_folder(&[("right", 8), ("left", 8), ("top", 8), ("bottom", 8), ("front", 8)]);
+    png(dir.path(), "back.png", 8, 4, [0, 0, 0]);
+    let message = Skybox::load(dir.path()).unwrap_err().to_string();
+    assert!(message.contains("back.png") && message.contains("square"), "{message}");
+
+    let message = Skybox::load(Path::new("/nonexistent/sky")).unwrap_err().to_string();
+    assert!(message.contains("/nonexistent/sky") && message.contains("not found"), "{message}");
+}
+
+#[test]
+fn cube_face_mapping_round_trips() {
+    for face in 0..6 {
+        for (s, t) in [(0.0, 0.0), (0.5, -0.25), (-0.9, 0.8)] {
+            let (f, s2, t2) = direction_to_face(face_direction(face, s, t) * 3.0);
+            assert_eq!(f, face);
+            assert!((s - s2).abs() < 1e-5 && (t - t2).abs() < 1e-5, "face {face}: ({s},{t}) -> ({s2},{t2})");
+        }
+    }
+    assert_eq!(direction_to_face(Vec3::Y).0, 2, "+Y is the top face");
+}
+
+#[test]
+fn constant_sky_mean_and_mips_are_exact() {
+    let sky = Skybox::constant(Vec3::new(0.5, 1.0, 2.0));
+    assert!((sky.mean() - Vec3::new(0.5, 1.0, 2.0)).length() < 1e-5);
+    let mips = sky.mip_chain();
+    assert_eq!(mips.len(), 3, "4 -> 2 -> 1");
+    assert_eq!(mips[2][0][0], [0.5, 1.0, 2.0]);
+}
+
+#[test]
+fn reverse_z_maps_near_to_one_and_infinity_to_zero() {
+    for far in [None, Some(100.0)] {
+        let p = reverse_z_perspective(1.0, 1.5, 0.1, far);
+        let depth = |z: f32| {
+            let c = p * glam::Vec4::new(0.0, 0.0, z, 1.0);
+            c.z / c.w
+        };
+        assert!((depth(-0.1) - 1.0).abs() < 1e-6);
+        assert!(depth(-10.0) < depth(-1.0), "farther is smaller");
+        match far {
+            Some(f) => assert!(depth(-f).abs() < 1e-6),
+            None => assert!(depth(-1e9) < 1e-7),
+        }
+    }
+}
+
+#[test]
+fn camera_frames_any_scale() {
+    for scale in [1e-3f32, 1.0, 1e4] {
+        let bounds = Bounds { min: Vec3::splat(-scale), max: Vec3::splat(scale) };
+        let camera = OrbitCamera::framing(&bounds);
+        let view = camera.world_to_view();
+        let center = view * bounds.center().extend(1.0);
+        assert!(
+            (center.xyz().length() - camera.distance).abs() < 1e-3 * camera.distance,
+            "the centre is straight ahead"
+        );
+        assert!(camera.distance > bounds.radius() && camera.near < 0.1 * camera.distance);
+    }
+}
+
+#[test]
+fn lights_are_seeded_saturated_and_scaled() {
+    let model = builtin::cornell().unwrap();
+    let a = Scene::new(model.clone(), 8, 7);
+    let b = Scene::new(model.clone(), 8, 7);
+    let c = Scene::new(model.clone(), 8, 8);
+    assert_eq!(a.lights, b.lights);
+    assert_ne!(a.lights, c.lights);
+    for light in &a.lights {
+        assert!((light.color.max_element() - 1.0).abs() < 1e-6);
+        assert!(light.color.min_element() < 0.25, "saturated: {}", light.color);
+        let p = light.position;
+        assert!(p.cmpge(model.bounds.min).all() && p.cmple(model.bounds.max).all(), "inside the bounds: {p}");
+    }
+    let big = Scene::new(model.scaled(1000.0), 8, 7);
+    let ratio = big.lights[0].intensity / a.lights[0].intensity;
+    assert!((ratio / 1e6 - 1.0).abs() < 1e-3, "intensity scales with size squared");
+    assert!(lights::hue_to_rgb(0.0).abs_diff_eq(Vec3::X, 1e-6));
+}
