@@ -4,14 +4,15 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 use clap::{Args, Parser, Subcommand};
 
 use ssdo::gpu::Gpu;
-use ssdo::render::capture::{capture, CAPTURE_FORMAT};
-use ssdo::render::{Mode, Renderer, Settings};
+use ssdo::render::capture::{capture, output_texture, CAPTURE_FORMAT};
+use ssdo::render::{Mode, Renderer, Settings, Variant};
 use ssdo::scene::{self, OrbitCamera, Scene};
-use ssdo::{output, Error, Result};
+use ssdo::{compare, output, Error, Result};
 
 #[derive(Parser)]
 #[command(name = "ssdo", version, about = "Screen-space directional occlusion renderer (wgpu)")]
@@ -22,8 +23,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render the scene offscreen and write PNGs: <out>/<mode>.png.
+    /// Render the scene offscreen and write PNGs: <out>/<mode>.png (and compare.png for all).
     Capture(CaptureArgs),
+    /// Render each mode repeatedly and print per-pass GPU times.
+    Bench(BenchArgs),
 }
 
 /// A size written as WIDTHxHEIGHT.
@@ -50,6 +53,10 @@ fn parse_mode(s: &str) -> std::result::Result<ModeChoice, String> {
     s.parse::<Mode>().map(ModeChoice::One).map_err(|e| e.to_string())
 }
 
+fn parse_variant(s: &str) -> std::result::Result<Variant, String> {
+    s.parse::<Variant>().map_err(|e| e.to_string())
+}
+
 #[derive(Args)]
 struct SceneArgs {
     /// OBJ model to load [default: models/cornell/cornell.obj]
@@ -73,14 +80,45 @@ struct SceneArgs {
     /// Camera distance from the model's centre [default: frames the model]
     #[arg(long, allow_negative_numbers = true)]
     distance: Option<f32>,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// Algorithm family: default, or classic (the source documents' SSAO and SSDO)
+    #[arg(long, default_value = "default", value_parser = parse_variant)]
+    variant: Variant,
+    /// Samples per pixel of the SSAO/SSDO pass, 1-256 [default: 16; classic 64]
+    #[arg(long)]
+    samples: Option<usize>,
+    /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
+    #[arg(long, allow_negative_numbers = true)]
+    radius: Option<f32>,
+    /// Depth bias of the occlusion test, as a fraction of the radius
+    #[arg(long, default_value_t = 0.03, allow_negative_numbers = true)]
+    bias: f32,
+    /// How much of the AO is applied (0 to 1)
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    ao_strength: f32,
+    /// AO is raised to this power
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    ao_power: f32,
+    /// Multiplier on SSDO's sky light
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    sky_strength: f32,
+    /// Multiplier on SSDO's indirect bounce
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    indirect_strength: f32,
+    /// Leave the AO/DO noise unfiltered
+    #[arg(long)]
+    no_blur: bool,
     /// Exposure applied before tone mapping
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     exposure: f32,
-    /// Constant ambient radiance
-    #[arg(long, default_value_t = 0.25)]
-    ambient: f32,
+    /// Constant ambient radiance [default: 0.25; classic 0.5]
+    #[arg(long, allow_negative_numbers = true)]
+    ambient: Option<f32>,
     /// Multiplier on the sky's radiance
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     sky_scale: f32,
 }
 
@@ -88,8 +126,10 @@ struct SceneArgs {
 struct CaptureArgs {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Mode to render: off, ssao, ssdo, both, or all
-    #[arg(long, default_value = "off", value_parser = parse_mode)]
+    #[command(flatten)]
+    render: RenderArgs,
+    /// Mode to render: off, ssao, ssdo, both, or all (also writes compare.png)
+    #[arg(long, default_value = "all", value_parser = parse_mode)]
     mode: ModeChoice,
     /// Image size, WIDTHxHEIGHT
     #[arg(long, default_value = "800x600", value_parser = parse_size)]
@@ -102,7 +142,24 @@ struct CaptureArgs {
     print_plan: bool,
 }
 
-fn finite_positive(name: &str, value: f32) -> Result<f32> {
+#[derive(Args)]
+struct BenchArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    render: RenderArgs,
+    /// Image size, WIDTHxHEIGHT
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    size: Size,
+    /// Frames measured per mode (after two warm-up frames)
+    #[arg(long, default_value_t = 20)]
+    frames: usize,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    json: bool,
+}
+
+fn non_negative(name: &str, value: f32) -> Result<f32> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
@@ -134,15 +191,55 @@ impl SceneArgs {
         }
         Ok(camera)
     }
+}
 
+impl RenderArgs {
     fn settings(&self, mode: Mode) -> Result<Settings> {
+        let base = match self.variant {
+            Variant::Default => Settings::default(),
+            Variant::Classic => Settings::classic(),
+        };
+        let samples = self.samples.unwrap_or(base.samples);
+        if !(1..=256).contains(&samples) {
+            return Err(Error::Setting(format!("--samples {samples}: must be between 1 and 256")));
+        }
+        let radius = self.radius.map(|r| non_negative("radius", r)).transpose()?;
         Ok(Settings {
             mode,
-            exposure: finite_positive("exposure", self.exposure)?,
-            ambient: finite_positive("ambient", self.ambient)?,
-            sky_scale: finite_positive("sky-scale", self.sky_scale)?,
+            variant: self.variant,
+            samples,
+            radius,
+            bias: non_negative("bias", self.bias)?,
+            ao_strength: non_negative("ao-strength", self.ao_strength)?.min(1.0),
+            ao_power: non_negative("ao-power", self.ao_power)?,
+            sky_strength: non_negative("sky-strength", self.sky_strength)?,
+            indirect_strength: non_negative("indirect-strength", self.indirect_strength)?,
+            blur: !self.no_blur,
+            exposure: non_negative("exposure", self.exposure)?,
+            ambient: non_negative("ambient", self.ambient.unwrap_or(base.ambient))?,
+            sky_scale: non_negative("sky-scale", self.sky_scale)?,
         })
     }
+}
+
+/// The caption of a mode's panel in the comparison image.
+fn caption(renderer: &Renderer, scene: &Scene, sky: &str) -> Vec<String> {
+    let s = &renderer.settings;
+    let mut lines =
+        vec![format!("{}  [{}]", s.mode.title(), Mode::ALL.iter().position(|m| *m == s.mode).unwrap_or(0) + 1)];
+    if s.mode != Mode::Off {
+        lines.push(format!(
+            "{} variant, {} samples, radius {:.3}, {}",
+            s.variant,
+            s.samples,
+            renderer.radius(),
+            if s.blur { "blurred" } else { "no blur" }
+        ));
+    } else {
+        lines.push("ambient + point lights, no occlusion".into());
+    }
+    lines.push(format!("sky {sky}, {} lights, ambient {}", scene.lights.len(), s.ambient));
+    lines
 }
 
 fn run_capture(args: &CaptureArgs) -> Result<()> {
@@ -150,22 +247,30 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::One(mode) => vec![mode],
         ModeChoice::All => Mode::ALL.to_vec(),
     };
+    let settings = args.render.settings(modes[0])?;
     let (scene, sky) = args.scene.load()?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     let size = (args.size.0, args.size.1);
     gpu.check_size(size.0, size.1)?;
-    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, args.scene.settings(modes[0])?)?;
+    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
+    let mut panels = Vec::new();
     for mode in modes {
-        renderer.set_mode(&gpu, mode)?;
+        renderer.set_mode(&gpu, mode);
         if args.print_plan {
             print_plan(&renderer);
         }
-        let started = std::time::Instant::now();
+        let started = Instant::now();
         let image = capture(&gpu, &mut renderer, &camera)?;
         let path = args.out.join(format!("{}.png", mode.name()));
         output::save_png(&path, &image)?;
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
+        println!("wrote {}", path.display());
+        panels.push((caption(&renderer, &scene, &sky.name), image));
+    }
+    if panels.len() > 1 {
+        let path = args.out.join("compare.png");
+        output::save_png(&path, &compare::grid(&panels))?;
         println!("wrote {}", path.display());
     }
     Ok(())
@@ -174,14 +279,141 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
 fn print_plan(renderer: &Renderer) {
     let plan = renderer.plan();
     println!("plan {}:", plan.mode);
-    for step in &plan.steps {
-        println!("  pass {}", step.name());
+    for name in plan.step_names() {
+        println!("  pass {name}");
     }
     let allocations = renderer.allocations();
     for (name, bytes) in &allocations {
         println!("  bytes {name} {bytes}");
     }
     println!("  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>());
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    match values.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => values[n / 2],
+        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
+    }
+}
+
+/// One mode's medians: frame time and each pass.
+struct ModeTiming {
+    mode: Mode,
+    frame_ms: f64,
+    wall_ms: f64,
+    passes: Vec<(&'static str, f64)>,
+}
+
+fn run_bench(args: &BenchArgs) -> Result<()> {
+    if args.frames == 0 {
+        return Err(Error::Setting("--frames 0: measure at least one frame".into()));
+    }
+    let settings = args.render.settings(Mode::Off)?;
+    let (scene, sky) = args.scene.load()?;
+    let camera = args.scene.camera(&scene)?;
+    let gpu = Gpu::headless()?;
+    let size = (args.size.0, args.size.1);
+    gpu.check_size(size.0, size.1)?;
+    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
+    let timestamps = renderer.enable_timing(&gpu);
+    let target = output_texture(&gpu, size);
+    let view = target.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut results = Vec::new();
+    for mode in Mode::ALL {
+        renderer.set_mode(&gpu, mode);
+        let mut frames = Vec::new();
+        let mut walls = Vec::new();
+        let mut per_pass: Vec<(&'static str, Vec<f64>)> =
+            renderer.plan().step_names().into_iter().map(|n| (n, Vec::new())).collect();
+        // Two warm-up frames: the first compiles shaders on a software driver.
+        for frame in 0..args.frames + 2 {
+            let started = Instant::now();
+            let mut encoder =
+                gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench_encoder") });
+            renderer.encode(&gpu, &mut encoder, &camera, &view);
+            gpu.queue.submit([encoder.finish()]);
+            gpu.wait()?;
+            let wall = started.elapsed().as_secs_f64() * 1e3;
+            let timings = renderer.read_timings(&gpu)?;
+            if frame < 2 {
+                continue;
+            }
+            walls.push(wall);
+            match timings {
+                Some(steps) => {
+                    frames.push(steps.iter().map(|(_, ms)| ms).sum());
+                    for ((_, ms), (_, list)) in steps.iter().zip(per_pass.iter_mut()) {
+                        list.push(*ms);
+                    }
+                }
+                None => frames.push(wall),
+            }
+        }
+        gpu.check()?;
+        let passes =
+            if timestamps { per_pass.into_iter().map(|(n, mut v)| (n, median(&mut v))).collect() } else { Vec::new() };
+        results.push(ModeTiming { mode, frame_ms: median(&mut frames), wall_ms: median(&mut walls), passes });
+    }
+    let frame = |m: Mode| results.iter().find(|r| r.mode == m).map_or(f64::NAN, |r| r.frame_ms);
+    let ratio_ssdo_ssao = frame(Mode::Ssdo) / frame(Mode::Ssao);
+    let ratio_both_ssdo = frame(Mode::Both) / frame(Mode::Ssdo);
+    let method = if timestamps {
+        "timestamp queries (GPU time per pass)"
+    } else {
+        "synchronised wall time per frame (no timestamp queries)"
+    };
+    let s = &renderer.settings;
+    if args.json {
+        let modes: serde_json::Map<String, serde_json::Value> = results
+            .iter()
+            .map(|r| {
+                let passes: serde_json::Map<String, serde_json::Value> =
+                    r.passes.iter().map(|(n, ms)| (n.to_string(), serde_json::json!(ms))).collect();
+                (
+                    r.mode.name().to_string(),
+                    serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes }),
+                )
+            })
+            .collect();
+        let json = serde_json::json!({
+            "device": gpu.describe(),
+            "software": gpu.is_software(),
+            "timing": if timestamps { "timestamp" } else { "wall" },
+            "size": [size.0, size.1],
+            "frames": args.frames,
+            "variant": s.variant.name(),
+            "samples": s.samples,
+            "blur": s.blur,
+            "modes": modes,
+            "ratios": { "ssdo_over_ssao": ratio_ssdo_ssao, "both_over_ssdo": ratio_both_ssdo },
+        });
+        println!("{}", serde_json::to_string_pretty(&json).expect("JSON of numbers and strings"));
+    } else {
+        println!("device: {}{}", gpu.describe(), if gpu.is_software() { " — a CPU rasteriser, not a GPU" } else { "" });
+        println!("timing: {method}; median of {} frames after 2 warm-up frames", args.frames);
+        println!(
+            "size {}x{}, {} variant, {} samples, blur {}",
+            size.0,
+            size.1,
+            s.variant,
+            s.samples,
+            if s.blur { "on" } else { "off" }
+        );
+        for r in &results {
+            let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
+            println!(
+                "{:>5}: frame {:8.2} ms (wall {:8.2} ms)  {}",
+                r.mode.name(),
+                r.frame_ms,
+                r.wall_ms,
+                passes.join(", ")
+            );
+        }
+        println!("SSDO/SSAO frame-time ratio {ratio_ssdo_ssao:.3}; Both/SSDO {ratio_both_ssdo:.3}");
+    }
+    Ok(())
 }
 
 fn main() -> ExitCode {
@@ -191,6 +423,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Capture(args) => run_capture(args),
+        Command::Bench(args) => run_bench(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

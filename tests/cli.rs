@@ -95,3 +95,63 @@ fn zero_and_oversized_sizes_are_refused() {
     }
     assert!(!Path::new(out.path()).join("off.png").exists());
 }
+
+#[test]
+fn capture_all_writes_four_modes_and_the_comparison() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let result =
+        ssdo(&["capture", "--mode", "all", "--size", "96x72", "--samples", "8", "--out", out.path().to_str().unwrap()]);
+    assert!(result.status.success(), "{}", stderr(&result));
+    let mut files: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["both.png", "compare.png", "off.png", "ssao.png", "ssdo.png"]);
+    let compare = image::open(out.path().join("compare.png")).unwrap();
+    assert!(compare.width() > 2 * 96 && compare.height() > 2 * 72, "a 2x2 grid with captions");
+    let off = image::open(out.path().join("off.png")).unwrap().to_rgb8();
+    let ssdo_img = image::open(out.path().join("ssdo.png")).unwrap().to_rgb8();
+    assert_ne!(off, ssdo_img, "the modes differ");
+}
+
+#[test]
+fn bench_json_has_every_mode_and_pass() {
+    if !has_adapter() {
+        return;
+    }
+    let result = ssdo(&["bench", "--size", "64x48", "--frames", "2", "--samples", "8", "--json"]);
+    assert!(result.status.success(), "{}", stderr(&result));
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).expect("stdout is JSON");
+    assert!(json["device"].is_string());
+    for mode in ["off", "ssao", "ssdo", "both"] {
+        let m = &json["modes"][mode];
+        assert!(m["frame_ms"].as_f64().is_some_and(|ms| ms > 0.0), "{mode}: {m}");
+        if json["timing"] == "timestamp" {
+            assert!(m["passes"]["gbuffer"].as_f64().is_some(), "{mode}: {m}");
+        }
+    }
+    assert!(json["modes"]["both"]["passes"].get("ssao_ssdo").is_some() || json["timing"] != "timestamp");
+    assert!(json["ratios"]["ssdo_over_ssao"].as_f64().is_some());
+}
+
+#[test]
+fn sampling_settings_are_validated() {
+    for (args, needle) in [
+        (vec!["capture", "--samples", "0"], "--samples 0"),
+        (vec!["capture", "--samples", "1000"], "--samples 1000"),
+        (vec!["capture", "--radius", "-1"], "--radius"),
+        (vec!["bench", "--frames", "0"], "--frames 0"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+    let result = ssdo(&["capture", "--variant", "fancy"]);
+    assert_eq!(result.status.code(), Some(2));
+    assert!(stderr(&result).contains("fancy"));
+}

@@ -14,6 +14,8 @@ struct Frame {
     ambient: vec4<f32>,
     // sky radiance scale, sky mip count, unused, unused
     sky: vec4<f32>,
+    // AO strength, AO power, unused, unused
+    shading: vec4<f32>,
     // light count, frame index, unused, unused
     counts: vec4<u32>,
 }

@@ -13,6 +13,8 @@ pub struct FrameInputs {
     pub ambient: Vec3,
     pub sky_scale: f32,
     pub sky_mips: u32,
+    /// AO strength, AO power, unused, unused
+    pub shading: [f32; 4],
 }
 
 pub struct FrameData {
@@ -113,6 +115,7 @@ impl FrameData {
             camera: [camera.near, camera.far.unwrap_or(0.0), inputs.exposure, rig.min_distance.powi(2)],
             ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, 0.0],
             sky: [inputs.sky_scale, inputs.sky_mips as f32, 0.0, 0.0],
+            shading: inputs.shading,
             counts: [lights.len() as u32, self.frame_index, 0, 0],
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));

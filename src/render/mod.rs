@@ -6,6 +6,7 @@
 
 pub mod capture;
 pub mod frame;
+pub mod kernel;
 pub mod modes;
 pub mod passes;
 pub mod readback;
@@ -19,19 +20,41 @@ use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::Result;
 use frame::{FrameData, FrameInputs};
+pub use kernel::Variant;
 pub use modes::{Mode, Plan, SceneFeatures, Step};
+use passes::blur::BlurPass;
 use passes::composite::CompositePass;
 use passes::gbuffer::{GBufferPass, SceneGpu};
 use passes::light_cubes::LightCubesPass;
+use passes::lighting::LightingPass;
+use passes::occlusion::{OcclusionData, OcclusionPass, SamplingParams};
 use passes::skybox::{sky_layout, SkyGpu, SkyboxPass};
 use passes::tonemap::TonemapPass;
 use targets::Targets;
 use timing::GpuTimer;
 
-/// What the user can change without reloading anything.
+/// What the user can change without reloading anything. The renderer follows changes on the
+/// next frame, rebuilding only what the change affects (a mode or blur switch re-plans).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     pub mode: Mode,
+    pub variant: Variant,
+    /// Samples per pixel of the sampling pass (1 to 256).
+    pub samples: usize,
+    /// Sampling radius in model units; `None` is a tenth of the scene's bounding radius.
+    pub radius: Option<f32>,
+    /// Depth bias of the occlusion test, as a fraction of the radius.
+    pub bias: f32,
+    /// 0 leaves the ambient term unoccluded, 1 applies AO fully.
+    pub ao_strength: f32,
+    /// AO is raised to this power before it is applied.
+    pub ao_power: f32,
+    /// Multiplies SSDO's sky light.
+    pub sky_strength: f32,
+    /// Multiplies SSDO's indirect bounce.
+    pub indirect_strength: f32,
+    /// Denoise the sampling output.
+    pub blur: bool,
     /// Multiplies HDR radiance before tone mapping.
     pub exposure: f32,
     /// Constant ambient radiance (grey), multiplied by albedo and AO.
@@ -42,21 +65,52 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { mode: Mode::Off, exposure: 1.0, ambient: 0.25, sky_scale: 1.0 }
+        Self {
+            mode: Mode::Off,
+            variant: Variant::Default,
+            samples: 16,
+            radius: None,
+            bias: 0.03,
+            ao_strength: 1.0,
+            ao_power: 1.0,
+            sky_strength: 1.0,
+            indirect_strength: 1.0,
+            blur: true,
+            exposure: 1.0,
+            ambient: 0.25,
+            sky_scale: 1.0,
+        }
+    }
+}
+
+impl Settings {
+    /// The classic variant's defaults: 64 samples and seed 004's `albedo·0.5·AO` ambient.
+    pub fn classic() -> Self {
+        Self { variant: Variant::Classic, samples: 64, ambient: 0.5, ..Self::default() }
     }
 }
 
 pub struct Renderer {
     pub settings: Settings,
     plan: Plan,
+    /// The variant the passes were last prepared for.
+    prepared_variant: Variant,
     lights: Vec<PointLight>,
     rig: LightRig,
+    /// Default sampling radius of the current scene.
+    scene_radius: f32,
     frame: FrameData,
+    occlusion_data: OcclusionData,
     sky_layout: wgpu::BindGroupLayout,
+    /// Bound where a pass's input does not exist in the current plan (1x1, never read).
+    unused: wgpu::TextureView,
     targets: Targets,
     scene: SceneGpu,
     sky: SkyGpu,
     gbuffer: GBufferPass,
+    lighting: LightingPass,
+    occlusion: OcclusionPass,
+    blur: BlurPass,
     composite: CompositePass,
     skybox: SkyboxPass,
     light_cubes: LightCubesPass,
@@ -76,35 +130,41 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        let plan = Plan::new(settings.mode, SceneFeatures { lights: scene.lights.len() })?;
+        let plan = Plan::new(settings.mode, SceneFeatures { lights: scene.lights.len() }, settings.blur);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan);
         let mut gbuffer = GBufferPass::new(gpu, &frame.layout)?;
         let scene_gpu = gbuffer.upload(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
-        let composite = CompositePass::new(device, &frame.layout, &targets, &plan)?;
-        let skybox = SkyboxPass::new(device, &frame.layout, &sky_layout)?;
-        let light_cubes = LightCubesPass::new(device, &frame.layout)?;
-        let tonemap = TonemapPass::new(device, &frame.layout, &targets, output)?;
-        gpu.check()?;
-        Ok(Self {
+        let unused = targets::Target::new(device, "unused_input", (1, 1), targets::DO_FORMAT).view;
+        let mut renderer = Self {
             settings,
-            plan,
+            prepared_variant: settings.variant,
             lights: scene.lights.clone(),
             rig: scene.rig,
+            scene_radius: scene.default_radius(),
+            occlusion_data: OcclusionData::new(device),
+            lighting: LightingPass::new(device, &frame.layout, &targets)?,
+            occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
+            blur: BlurPass::new(device, &frame.layout)?,
+            composite: CompositePass::new(device, &frame.layout)?,
+            skybox: SkyboxPass::new(device, &frame.layout, &sky_layout)?,
+            light_cubes: LightCubesPass::new(device, &frame.layout)?,
+            tonemap: TonemapPass::new(device, &frame.layout, &targets, output)?,
+            plan,
             frame,
             sky_layout,
+            unused,
             targets,
             scene: scene_gpu,
             sky: sky_gpu,
             gbuffer,
-            composite,
-            skybox,
-            light_cubes,
-            tonemap,
             timer: None,
-        })
+        };
+        renderer.prepare_passes(gpu);
+        gpu.check()?;
+        Ok(renderer)
     }
 
     pub fn plan(&self) -> &Plan {
@@ -119,39 +179,62 @@ impl Renderer {
         &self.targets
     }
 
-    /// Rebuilds the plan (and what depends on it) after a mode or light-count change.
-    fn replan(&mut self, gpu: &Gpu) -> Result<()> {
-        let plan = Plan::new(self.settings.mode, SceneFeatures { lights: self.lights.len() })?;
+    /// Brings the plan, targets and pipelines in line with the settings and lights: only what a
+    /// change affects is rebuilt. Called by [`Renderer::encode`]; call it to read the new plan.
+    pub fn apply(&mut self, gpu: &Gpu) {
+        let plan = Plan::new(self.settings.mode, SceneFeatures { lights: self.lights.len() }, self.settings.blur);
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
+        } else if self.settings.variant != self.prepared_variant {
+            self.prepare_passes(gpu);
         }
-        Ok(())
     }
 
     fn rebuild_targets(&mut self, gpu: &Gpu) {
         self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan);
-        self.composite.resize(&gpu.device, &self.targets, &self.plan);
-        self.tonemap.resize(&gpu.device, &self.targets);
+        self.prepare_passes(gpu);
         self.timer = self.timer.as_ref().map(|_| GpuTimer::new(gpu, &self.plan));
     }
 
-    pub fn set_mode(&mut self, gpu: &Gpu, mode: Mode) -> Result<()> {
-        let previous = self.settings.mode;
-        self.settings.mode = mode;
-        self.replan(gpu).inspect_err(|_| self.settings.mode = previous)
+    /// Rebuilds the passes' bind groups for the targets, and their pipelines where the plan or
+    /// variant asks for a different one.
+    fn prepare_passes(&mut self, gpu: &Gpu) {
+        let (device, t, plan, variant) = (&gpu.device, &self.targets, &self.plan, self.settings.variant);
+        self.lighting.resize(device, t);
+        self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused);
+        self.blur.prepare(device, t, plan, variant, &self.occlusion_data);
+        self.composite.prepare(device, t, plan, variant, &self.unused);
+        self.tonemap.resize(device, t);
+        self.prepared_variant = variant;
     }
 
-    pub fn set_lights(&mut self, gpu: &Gpu, lights: Vec<PointLight>) -> Result<()> {
+    pub fn set_mode(&mut self, gpu: &Gpu, mode: Mode) {
+        self.settings.mode = mode;
+        self.apply(gpu);
+    }
+
+    pub fn set_lights(&mut self, gpu: &Gpu, lights: Vec<PointLight>) {
         self.lights = lights;
-        self.replan(gpu)
+        self.apply(gpu);
     }
 
     /// Replaces the model and lights.
-    pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<()> {
+    pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
         self.scene = self.gbuffer.upload(gpu, &scene.model);
         self.rig = scene.rig;
-        self.set_lights(gpu, scene.lights.clone())
+        self.scene_radius = scene.default_radius();
+        self.set_lights(gpu, scene.lights.clone());
+    }
+
+    /// Whether the current model needs the textured G-buffer pipeline.
+    pub fn uses_texture_path(&self) -> bool {
+        self.scene.textured
+    }
+
+    /// The sampling radius in use, in model units.
+    pub fn radius(&self) -> f32 {
+        self.settings.radius.unwrap_or(self.scene_radius)
     }
 
     /// Replaces the sky; on error the old sky stays.
@@ -191,6 +274,9 @@ impl Renderer {
         list.push(("scene_geometry_and_materials".into(), self.scene.bytes));
         list.push(("sky_cubemap".into(), self.sky.bytes));
         list.push(("frame_uniforms_and_lights".into(), self.frame.bytes()));
+        if self.plan.decl.samples() {
+            list.push(("occlusion_params".into(), self.occlusion_data.buffer.size()));
+        }
         list
     }
 
@@ -202,25 +288,45 @@ impl Renderer {
         camera: &OrbitCamera,
         output: &wgpu::TextureView,
     ) {
-        let scene = (&self.lights, &self.rig);
-        let ambient = Vec3::splat(self.settings.ambient);
+        self.apply(gpu);
+        let s = self.settings;
         let inputs = FrameInputs {
             size: self.targets.size,
-            exposure: self.settings.exposure,
-            ambient,
-            sky_scale: self.settings.sky_scale * self.sky.encode_scale,
+            exposure: s.exposure,
+            ambient: Vec3::splat(s.ambient),
+            sky_scale: s.sky_scale * self.sky.encode_scale,
             sky_mips: self.sky.mip_levels,
+            shading: [s.ao_strength, s.ao_power, 0.0, 0.0],
         };
-        self.frame.update(&gpu.device, &gpu.queue, camera, scene.0, scene.1, &inputs);
-        let frame = &self.frame.bind_group;
-        let t = &self.targets;
+        self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
+        if self.plan.decl.samples() {
+            let radius = self.radius();
+            let samples = s.samples.clamp(1, uniforms::MAX_SAMPLES);
+            let params = SamplingParams {
+                variant: s.variant,
+                samples,
+                radius,
+                bias: s.bias * radius,
+                sky_mip: kernel::sky_mip_level(self.sky.size, samples),
+                sky_strength: s.sky_strength,
+                indirect_strength: s.indirect_strength,
+            };
+            self.occlusion_data.update(&gpu.queue, &params);
+        }
+        let (frame, sky, t) = (&self.frame.bind_group, &self.sky.bind_group, &self.targets);
         for (index, step) in self.plan.steps.iter().enumerate() {
             let ts = self.timer.as_ref().map(|timer| timer.writes(index));
-            encoder.push_debug_group(step.name());
+            encoder.push_debug_group(step.name_in(self.plan.mode));
             match step {
                 // Geometry once: albedo, normal, depth.
                 Step::GBuffer => self.gbuffer.encode(encoder, ts, t, frame, &self.scene),
-                // Ambient, occlusion and direct light into HDR.
+                // Point lights: displayed direct light, and the radiance SSDO bounces.
+                Step::Lighting => self.lighting.encode(encoder, ts, t, frame),
+                // AO and/or DO from one set of hemisphere samples.
+                Step::Occlusion => self.occlusion.encode(encoder, ts, t, frame, sky),
+                // Denoise AO/DO.
+                Step::Blur => self.blur.encode(encoder, ts, t, frame),
+                // Ambient·AO + DO (+ direct light) into HDR.
                 Step::Composite => self.composite.encode(encoder, ts, t, frame),
                 // Sky behind everything.
                 Step::Skybox => self.skybox.encode(encoder, ts, t, frame, &self.sky),

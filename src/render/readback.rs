@@ -61,6 +61,12 @@ pub fn read_rgba16f(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>>
     Ok(halves.chunks_exact(4).map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()]).collect())
 }
 
+/// A texture of one half float per pixel (AO), as f32.
+pub fn read_r16f(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
+    let bytes = read_texture(gpu, texture)?;
+    Ok(bytemuck::cast_slice::<u8, half::f16>(&bytes).iter().map(|h| h.to_f32()).collect())
+}
+
 /// A depth texture as f32.
 pub fn read_depth(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
     let bytes = read_texture(gpu, texture)?;

@@ -37,7 +37,51 @@ impl Target {
     }
 }
 
-/// The G-buffer and the intermediate buffers of the current plan.
+pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
+pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The view of an optional target.
+pub fn view_of(target: &Option<Target>) -> Option<&wgpu::TextureView> {
+    target.as_ref().map(|t| &t.view)
+}
+
+/// The view of an optional target, or `unused` where it does not exist.
+pub fn view_or<'a>(target: &'a Option<Target>, unused: &'a wgpu::TextureView) -> &'a wgpu::TextureView {
+    view_of(target).unwrap_or(unused)
+}
+
+/// The sampling pass's outputs (raw, or blurred): whichever the plan computes.
+pub struct OcclusionTargets {
+    /// Ambient occlusion in [0, 1] (SSAO only).
+    pub ao: Option<Target>,
+    /// SSDO and SSAO+SSDO: rgb = sky light + indirect bounce (before albedo), a = AO.
+    pub directional: Option<Target>,
+}
+
+impl OcclusionTargets {
+    fn new(device: &wgpu::Device, plan: &Plan, size: (u32, u32), blurred: bool) -> Self {
+        let name = |raw: &'static str, blur: &'static str| if blurred { blur } else { raw };
+        let make = |wanted: bool, name: &'static str, format| wanted.then(|| Target::new(device, name, size, format));
+        let directional = plan.decl.directional_occlusion;
+        Self {
+            ao: make(plan.decl.ambient_occlusion && !directional, name("ao_raw", "ao_blurred"), AO_FORMAT),
+            directional: make(directional, name("do_raw", "do_blurred"), DO_FORMAT),
+        }
+    }
+
+    /// The one target the sampling pass (and the blur) writes.
+    pub fn output(&self) -> Option<&Target> {
+        self.ao.as_ref().or(self.directional.as_ref())
+    }
+
+    pub fn all(&self) -> impl Iterator<Item = &Target> {
+        [&self.ao, &self.directional].into_iter().flatten()
+    }
+}
+
+/// The G-buffer and the intermediate buffers of the current plan. A buffer the plan does not
+/// use is `None`, not allocated.
 pub struct Targets {
     pub size: (u32, u32),
     /// rgb albedo, a specular strength
@@ -47,21 +91,37 @@ pub struct Targets {
     pub depth: Target,
     /// Linear HDR radiance before tone mapping.
     pub hdr: Target,
+    /// Diffuse radiance of each surface under the point lights: SSDO's bounce source.
+    pub bounce: Option<Target>,
+    /// What the sampling pass writes.
+    pub raw: OcclusionTargets,
+    /// What the blur writes (when the plan blurs).
+    pub blurred: Option<OcclusionTargets>,
 }
 
 impl Targets {
-    pub fn new(device: &wgpu::Device, size: (u32, u32), _plan: &Plan) -> Self {
+    pub fn new(device: &wgpu::Device, size: (u32, u32), plan: &Plan) -> Self {
         Self {
             size,
             albedo: Target::new(device, "gbuffer_albedo", size, ALBEDO_FORMAT),
             normal: Target::new(device, "gbuffer_normal", size, NORMAL_FORMAT),
             depth: Target::new(device, "gbuffer_depth", size, DEPTH_FORMAT),
             hdr: Target::new(device, "hdr_color", size, HDR_FORMAT),
+            bounce: plan.indirect().then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
+            raw: OcclusionTargets::new(device, plan, size, false),
+            blurred: plan.blur.then(|| OcclusionTargets::new(device, plan, size, true)),
         }
+    }
+
+    /// The AO/DO buffers the composite reads: blurred when the plan blurs.
+    pub fn occlusion(&self) -> &OcclusionTargets {
+        self.blurred.as_ref().unwrap_or(&self.raw)
     }
 
     /// Every allocated target with its size in bytes.
     pub fn allocations(&self) -> Vec<(&'static str, u64)> {
-        [&self.albedo, &self.normal, &self.depth, &self.hdr].iter().map(|t| (t.name, t.bytes)).collect()
+        let fixed = [&self.albedo, &self.normal, &self.depth, &self.hdr].into_iter();
+        let optional = self.bounce.iter().chain(self.raw.all()).chain(self.blurred.iter().flat_map(|b| b.all()));
+        fixed.chain(optional).map(|t| (t.name, t.bytes)).collect()
     }
 }

@@ -20,6 +20,8 @@ pub struct FrameUniforms {
     pub ambient: [f32; 4],
     /// sky radiance scale, sky mip count, unused, unused
     pub sky: [f32; 4],
+    /// AO strength, AO power, unused, unused
+    pub shading: [f32; 4],
     /// light count, frame index, unused, unused
     pub counts: [u32; 4],
 }
@@ -46,7 +48,26 @@ pub struct MaterialParams {
     pub params: [f32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 4 * 64 + 5 * 16);
+/// Sampling parameters of the occlusion pass (mirrors `OcclusionParams` in
+/// `shaders/common/occlusion_params.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct OcclusionUniforms {
+    /// Tangent-space offsets (z along the normal) for a unit radius; w unused.
+    pub kernel: [[f32; 4]; MAX_SAMPLES],
+    /// The 4x4 tile of per-pixel rotations: (cos, sin) or a random tangent-plane vector.
+    pub rotations: [[f32; 4]; 16],
+    /// radius, bias (view units), sample count, sky mip level
+    pub params: [f32; 4],
+    /// sky-light strength, indirect strength, unused, unused
+    pub strengths: [f32; 4],
+}
+
+/// Largest kernel the occlusion pass takes.
+pub const MAX_SAMPLES: usize = 256;
+
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 4 * 64 + 6 * 16);
+const _: () = assert!(std::mem::size_of::<OcclusionUniforms>() == (MAX_SAMPLES + 16 + 2) * 16);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 48);
 const _: () = assert!(std::mem::size_of::<MaterialParams>() == 32);
 

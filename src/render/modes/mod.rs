@@ -2,7 +2,10 @@
 //! that declaration and the scene's features into the list of steps the frame runs. Nothing a
 //! mode or scene does not need is in the plan, and so nothing for it is allocated or run.
 
+mod both;
 mod off;
+mod ssao;
+mod ssdo;
 
 use std::fmt;
 use std::str::FromStr;
@@ -41,12 +44,19 @@ impl Mode {
         }
     }
 
-    /// What this mode needs; `None` for a mode this build does not implement yet.
-    pub fn declaration(self) -> Option<&'static ModeDecl> {
+    /// What this mode needs.
+    pub fn declaration(self) -> &'static ModeDecl {
         match self {
-            Mode::Off => Some(&off::DECL),
-            Mode::Ssao | Mode::Ssdo | Mode::Both => None,
+            Mode::Off => &off::DECL,
+            Mode::Ssao => &ssao::DECL,
+            Mode::Ssdo => &ssdo::DECL,
+            Mode::Both => &both::DECL,
         }
+    }
+
+    /// The mode for keys 1-4.
+    pub fn from_key(key: u32) -> Option<Mode> {
+        Mode::ALL.get(key.checked_sub(1)? as usize).copied()
     }
 }
 
@@ -70,6 +80,17 @@ impl FromStr for Mode {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ModeDecl {
     pub mode: Mode,
+    /// Ambient occlusion: darkens the ambient term.
+    pub ambient_occlusion: bool,
+    /// Directional occlusion: sky light from the open directions and one indirect bounce.
+    pub directional_occlusion: bool,
+}
+
+impl ModeDecl {
+    /// Whether the mode runs the sampling pass at all.
+    pub fn samples(&self) -> bool {
+        self.ambient_occlusion || self.directional_occlusion
+    }
 }
 
 /// What the scene brings that changes the plan.
@@ -83,6 +104,12 @@ pub struct SceneFeatures {
 pub enum Step {
     /// Rasterise the model into albedo, normal and depth.
     GBuffer,
+    /// Point lights once per pixel: the displayed direct light and the radiance SSDO bounces.
+    Lighting,
+    /// The sampling pass: AO, DO, or both from one set of samples.
+    Occlusion,
+    /// Depth- and normal-aware (or classic box) blur of the sampling pass's output.
+    Blur,
     /// Ambient, occlusion and point lighting into the HDR target.
     Composite,
     /// Sky where nothing was drawn.
@@ -94,9 +121,22 @@ pub enum Step {
 }
 
 impl Step {
+    /// The step's name in a plan of `mode` (the sampling pass is named after what it computes).
+    pub fn name_in(self, mode: Mode) -> &'static str {
+        match (self, mode) {
+            (Step::Occlusion, Mode::Ssao) => "ssao",
+            (Step::Occlusion, Mode::Ssdo) => "ssdo",
+            (Step::Occlusion, _) => "ssao_ssdo",
+            _ => self.name(),
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Step::GBuffer => "gbuffer",
+            Step::Lighting => "lighting",
+            Step::Occlusion => "occlusion",
+            Step::Blur => "blur",
             Step::Composite => "composite",
             Step::Skybox => "skybox",
             Step::LightCubes => "light_cubes",
@@ -109,29 +149,51 @@ impl Step {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
     pub mode: Mode,
+    pub decl: ModeDecl,
     pub features: SceneFeatures,
+    pub blur: bool,
     pub steps: Vec<Step>,
 }
 
 impl Plan {
-    pub fn new(mode: Mode, features: SceneFeatures) -> Result<Self> {
-        let decl = mode.declaration().ok_or_else(|| {
-            Error::Setting(format!("mode '{mode}' is not implemented in this build (available: off)"))
-        })?;
-        let mut steps = vec![Step::GBuffer, Step::Composite, Step::Skybox];
-        if features.lights > 0 {
+    /// The steps of `mode` for a scene with `features`; `blur` denoises the sampling output.
+    pub fn new(mode: Mode, features: SceneFeatures, blur: bool) -> Self {
+        let decl = *mode.declaration();
+        let lights = features.lights > 0;
+        let mut steps = vec![Step::GBuffer];
+        if decl.directional_occlusion && lights {
+            steps.push(Step::Lighting);
+        }
+        if decl.samples() {
+            steps.push(Step::Occlusion);
+            if blur {
+                steps.push(Step::Blur);
+            }
+        }
+        steps.extend([Step::Composite, Step::Skybox]);
+        if lights {
             steps.push(Step::LightCubes);
         }
         steps.push(Step::Tonemap);
-        Ok(Self { mode: decl.mode, features, steps })
+        Self { mode, decl, features, blur: blur && decl.samples(), steps }
+    }
+
+    /// The names of the steps, in order.
+    pub fn step_names(&self) -> Vec<&'static str> {
+        self.steps.iter().map(|s| s.name_in(self.mode)).collect()
+    }
+
+    /// Whether SSDO's indirect bounce has a radiance buffer to read (a lighting pass ran).
+    pub fn indirect(&self) -> bool {
+        self.has(Step::Lighting)
     }
 
     pub fn has(&self, step: Step) -> bool {
         self.steps.contains(&step)
     }
 
-    /// Whether the composite runs the point-light loop itself.
+    /// Whether the composite runs the point-light loop itself (lights, but no lighting pass).
     pub fn light_loop(&self) -> bool {
-        self.features.lights > 0
+        self.features.lights > 0 && !self.has(Step::Lighting)
     }
 }

@@ -3,4 +3,4 @@
 
 use super::{Mode, ModeDecl};
 
-pub const DECL: ModeDecl = ModeDecl { mode: Mode::Off };
+pub const DECL: ModeDecl = ModeDecl { mode: Mode::Off, ambient_occlusion: false, directional_occlusion: false };

@@ -1,21 +1,33 @@
 //! Composite: ambient·albedo·AO + DO + direct point lighting into the linear HDR target.
 //! The pipeline is specialised to the plan (override constants): without lights there is no
-//! light loop in the shader at all.
+//! light loop in the shader, without AO no AO read, and so on. After a lighting pass it blends
+//! additively onto the direct light that pass wrote instead of clearing.
 
-use super::super::modes::Plan;
-use super::super::targets::{Targets, HDR_FORMAT};
-use super::{color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc};
+use super::super::kernel::Variant;
+use super::super::modes::{Plan, Step};
+use super::super::targets::{view_or, Targets, HDR_FORMAT};
+use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc};
 use crate::{shaders, Result};
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Variant {
+struct Key {
     light_loop: bool,
+    additive: bool,
+    ao: bool,
+    directional: bool,
+    classic: bool,
 }
 
-impl Variant {
-    fn of(plan: &Plan) -> Self {
-        Self { light_loop: plan.light_loop() }
+impl Key {
+    fn of(plan: &Plan, variant: Variant) -> Self {
+        Self {
+            light_loop: plan.light_loop(),
+            additive: plan.has(Step::Lighting),
+            ao: plan.decl.ambient_occlusion,
+            directional: plan.decl.directional_occlusion,
+            classic: variant == Variant::Classic,
+        }
     }
 }
 
@@ -23,69 +35,79 @@ pub struct CompositePass {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     frame_layout: wgpu::BindGroupLayout,
-    variant: Variant,
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
+    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    bind_group: Option<wgpu::BindGroup>,
 }
 
 impl CompositePass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        targets: &Targets,
-        plan: &Plan,
-    ) -> Result<Self> {
+    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
         let module = shaders::module(device, "composite.wgsl")?;
+        let [a, n, d] = gbuffer_entries();
+        let input = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("composite_layout"),
-            entries: &[
-                texture_entry(0, false, wgpu::TextureViewDimension::D2),
-                texture_entry(1, false, wgpu::TextureViewDimension::D2),
-                depth_entry(2),
-            ],
+            entries: &[a, n, d, input(3), input(4)],
         });
-        let variant = Variant::of(plan);
-        let pipeline = Self::pipeline(device, &module, frame_layout, &layout, variant);
-        let bind_group = Self::bind_group(device, &layout, targets);
-        Ok(Self { module, layout, frame_layout: frame_layout.clone(), variant, pipeline, bind_group })
+        Ok(Self { module, layout, frame_layout: frame_layout.clone(), pipeline: None, bind_group: None })
     }
 
-    fn pipeline(
+    /// Builds the pipeline the plan needs (if it changed) and the bind group for `targets`.
+    pub fn prepare(
+        &mut self,
         device: &wgpu::Device,
-        module: &wgpu::ShaderModule,
-        frame_layout: &wgpu::BindGroupLayout,
-        layout: &wgpu::BindGroupLayout,
+        targets: &Targets,
+        plan: &Plan,
         variant: Variant,
-    ) -> wgpu::RenderPipeline {
-        fullscreen_pipeline(
-            device,
-            &FullscreenDesc {
-                label: "composite_pipeline",
-                module,
-                bind_group_layouts: &[Some(frame_layout), Some(layout)],
-                format: HDR_FORMAT,
-                depth: None,
-                constants: &[("LIGHT_LOOP", variant.light_loop as u8 as f64)],
-            },
-        )
-    }
-
-    fn bind_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, targets: &Targets) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("composite_bind_group"),
-            layout,
-            entries: &view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]),
-        })
-    }
-
-    /// Rebuilds the bind group for new targets and the pipeline if the plan changed variant.
-    pub fn resize(&mut self, device: &wgpu::Device, targets: &Targets, plan: &Plan) {
-        let variant = Variant::of(plan);
-        if variant != self.variant {
-            self.pipeline = Self::pipeline(device, &self.module, &self.frame_layout, &self.layout, variant);
-            self.variant = variant;
+        unused: &wgpu::TextureView,
+    ) {
+        let key = Key::of(plan, variant);
+        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+            let f = |b: bool| b as u8 as f64;
+            let blend = key.additive.then_some(wgpu::BlendState {
+                color: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Add,
+                },
+                alpha: wgpu::BlendComponent::REPLACE,
+            });
+            let pipeline = fullscreen_pipeline(
+                device,
+                &FullscreenDesc {
+                    label: "composite_pipeline",
+                    module: &self.module,
+                    entry: "fs_main",
+                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: HDR_FORMAT,
+                        blend,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                    depth: None,
+                    constants: &[
+                        ("LIGHT_LOOP", f(key.light_loop)),
+                        ("HAS_AO", f(key.ao)),
+                        ("HAS_DO", f(key.directional)),
+                        ("AO_IN_DO", f(key.directional)),
+                        ("CLASSIC", f(key.classic)),
+                    ],
+                },
+            );
+            self.pipeline = Some((key, pipeline));
         }
-        self.bind_group = Self::bind_group(device, &self.layout, targets);
+        let occlusion = targets.occlusion();
+        let views = [
+            &targets.albedo.view,
+            &targets.normal.view,
+            &targets.depth.view,
+            view_or(&occlusion.ao, unused),
+            view_or(&occlusion.directional, unused),
+        ];
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("composite_bind_group"),
+            layout: &self.layout,
+            entries: &super::view_entries(&views),
+        }));
     }
 
     pub fn encode(
@@ -95,17 +117,18 @@ impl CompositePass {
         targets: &Targets,
         frame: &wgpu::BindGroup,
     ) {
+        let (Some((key, pipeline)), Some(bind_group)) = (&self.pipeline, &self.bind_group) else { return };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("composite_pass"),
-            color_attachments: &[color_attachment(&targets.hdr.view, true)],
+            color_attachments: &[color_attachment(&targets.hdr.view, !key.additive)],
             depth_stencil_attachment: None,
             timestamp_writes: timestamps,
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, &self.bind_group, &[]);
+        pass.set_bind_group(1, bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
 }

@@ -2,9 +2,12 @@
 //! once; `resize` rebuilds only what depends on the targets (bind groups); `encode` records one
 //! labelled pass. The helpers here keep the pipeline and attachment boilerplate in one place.
 
+pub mod blur;
 pub mod composite;
 pub mod gbuffer;
 pub mod light_cubes;
+pub mod lighting;
+pub mod occlusion;
 pub mod skybox;
 pub mod tonemap;
 
@@ -49,6 +52,29 @@ pub fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// Layout entries 0-2 of the full-screen passes: albedo, normal (unfilterable floats), depth.
+pub fn gbuffer_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
+    [
+        texture_entry(0, false, wgpu::TextureViewDimension::D2),
+        texture_entry(1, false, wgpu::TextureViewDimension::D2),
+        depth_entry(2),
+    ]
+}
+
+/// A layout entry for a uniform buffer read by fragment shaders.
+pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// Bind group entries for a list of texture views, numbered from 0.
 pub fn view_entries<'a>(views: &[&'a wgpu::TextureView]) -> Vec<wgpu::BindGroupEntry<'a>> {
     views
@@ -56,6 +82,13 @@ pub fn view_entries<'a>(views: &[&'a wgpu::TextureView]) -> Vec<wgpu::BindGroupE
         .enumerate()
         .map(|(i, view)| wgpu::BindGroupEntry { binding: i as u32, resource: wgpu::BindingResource::TextureView(view) })
         .collect()
+}
+
+/// Colour attachments for views that may be absent, all cleared.
+pub fn cleared_attachments<'a>(
+    views: &[Option<&'a wgpu::TextureView>],
+) -> Vec<Option<wgpu::RenderPassColorAttachment<'a>>> {
+    views.iter().map(|v| v.and_then(|view| color_attachment(view, true))).collect()
 }
 
 /// A colour attachment that either clears to black or keeps what is there.
@@ -75,13 +108,21 @@ pub fn color_attachment(view: &wgpu::TextureView, clear: bool) -> Option<wgpu::R
 pub struct FullscreenDesc<'a> {
     pub label: &'a str,
     pub module: &'a wgpu::ShaderModule,
+    /// Fragment entry point.
+    pub entry: &'a str,
     pub bind_group_layouts: &'a [Option<&'a wgpu::BindGroupLayout>],
-    pub format: wgpu::TextureFormat,
+    /// One per fragment output; `None` discards that output.
+    pub targets: &'a [Option<wgpu::ColorTargetState>],
     pub depth: Option<wgpu::DepthStencilState>,
     pub constants: &'a [(&'a str, f64)],
 }
 
-/// A pipeline that draws the full-screen triangle of `common/fullscreen.wgsl` with `fs_main`.
+/// Colour target states for formats that may be absent (an output the plan does not keep).
+pub fn color_targets(formats: &[Option<wgpu::TextureFormat>]) -> Vec<Option<wgpu::ColorTargetState>> {
+    formats.iter().map(|f| f.map(Into::into)).collect()
+}
+
+/// A pipeline that draws the full-screen triangle of `common/fullscreen.wgsl`.
 pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&format!("{}_layout", desc.label)),
@@ -103,9 +144,9 @@ pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> 
         multisample: wgpu::MultisampleState::default(),
         fragment: Some(wgpu::FragmentState {
             module: desc.module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(desc.entry),
             compilation_options: options,
-            targets: &[Some(desc.format.into())],
+            targets: desc.targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -18,6 +18,8 @@ pub struct SkyGpu {
     /// Multiply stored values by this to get radiance.
     pub encode_scale: f32,
     pub mip_levels: u32,
+    /// Face size of mip 0.
+    pub size: u32,
     pub bytes: u64,
     pub mean: glam::Vec3,
 }
@@ -88,7 +90,7 @@ impl SkyGpu {
             label: Some("sky_sampler"),
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
             ..Default::default()
         });
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -99,7 +101,7 @@ impl SkyGpu {
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
             ],
         });
-        Ok(Self { bind_group, encode_scale, mip_levels: levels.len() as u32, bytes, mean: sky.mean() })
+        Ok(Self { bind_group, encode_scale, mip_levels: levels.len() as u32, size: sky.size, bytes, mean: sky.mean() })
     }
 }
 
@@ -120,7 +122,8 @@ impl SkyboxPass {
                 label: "skybox_pipeline",
                 module: &module,
                 bind_group_layouts: &[Some(frame_layout), None, Some(sky_layout)],
-                format: HDR_FORMAT,
+                entry: "fs_main",
+                targets: &[Some(HDR_FORMAT.into())],
                 depth: Some(wgpu::DepthStencilState {
                     format: DEPTH_FORMAT,
                     depth_write_enabled: Some(false),

@@ -1,0 +1,75 @@
+// Denoise of the AO / DO buffers over a 4x4 window: the window of the 4x4 rotation tile, so on a
+// flat surface every one of the 16 rotations is averaged and the tile pattern cancels.
+//
+//  * BILATERAL (default): each neighbour is weighted by how close it lies to the centre pixel's
+//    tangent plane (relative to the sampling radius) and how well the normals agree, so the blur
+//    does not cross silhouettes or creases (no halos).
+//  * otherwise the classic 4x4 box blur of the source documents.
+// Neighbours on the sky or holding non-finite values are left out.
+
+#include "common/uniforms.wgsl"
+#include "common/gbuffer_read.wgsl"
+#include "common/occlusion_params.wgsl"
+#include "common/fullscreen.wgsl"
+
+@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+// The sampling pass's output: AO (SSAO, r) or DO + AO (SSDO and both, rgb + a).
+@group(1) @binding(4) var input: texture_2d<f32>;
+
+override BILATERAL: bool = true;
+// The input is the one-channel AO target (SSAO) rather than DO + AO.
+override AO_ONLY: bool = false;
+
+fn finite4(v: vec4<f32>) -> bool {
+    return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
+}
+
+
+fn blur(position: vec2<f32>) -> vec4<f32> {
+    let pixel = vec2<i32>(position);
+    let depth = textureLoad(g_depth, pixel, 0);
+    if depth <= 0.0 {
+        // A sky pixel: no occlusion, no DO.
+        return select(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(1.0, 0.0, 0.0, 1.0), AO_ONLY);
+    }
+    let n = textureLoad(g_normal, pixel, 0).xyz;
+    let p = view_position(position, depth);
+    let size = vec2<i32>(frame.viewport.xy);
+    let tolerance = 0.25 * occ.params.x;
+
+    var sum = vec4<f32>(0.0);
+    var total = 0.0;
+    for (var y = -2; y < 2; y += 1) {
+        for (var x = -2; x < 2; x += 1) {
+            let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), size - 1);
+            let d = textureLoad(g_depth, t, 0);
+            if d <= 0.0 {
+                continue;
+            }
+            var w = 1.0;
+            if BILATERAL {
+                let q = view_position(vec2<f32>(t) + 0.5, d);
+                let plane = abs(dot(n, q - p));
+                let n_t = textureLoad(g_normal, t, 0).xyz;
+                let agree = max(dot(n, n_t), 0.0);
+                w = max(1.0 - plane / tolerance, 0.0) * agree * agree * agree * agree;
+            }
+            let value = textureLoad(input, t, 0);
+            if w <= 0.0 || !finite4(value) {
+                continue;
+            }
+            sum += w * value;
+            total += w;
+        }
+    }
+    if total > 0.0 {
+        return sum / total;
+    }
+    return textureLoad(input, pixel, 0);
+}
+
+// The AO target has one channel and the DO target four; one entry point serves both.
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
+    return blur(in.position.xy);
+}

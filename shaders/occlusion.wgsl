@@ -1,0 +1,180 @@
+// The sampling pass: SSAO, SSDO, or both from one set of samples.
+//
+// Every pixel takes N samples in the hemisphere above its surface (a kernel in tangent space,
+// scaled towards the centre, rotated per pixel by one of 16 rotations tiled 4x4), projects each
+// to the screen and compares it with the surface the depth buffer holds there.
+//
+//  * SSAO: a sample behind that surface, within range, is occluded. AO = 1 - occluded share.
+//  * SSDO (Ritschel, Grosch & Seidel 2009): an unoccluded sample brings the sky's radiance from
+//    its direction (the cube map read at the mip level of the sample's solid angle); an occluded
+//    one brings one bounce from the surface in front of it, a small patch whose diffuse radiance
+//    the lighting pass wrote.
+//
+// Default variant (normalised so that the white-furnace test holds exactly):
+//   direct   = Σ v_i L_sky(ω_i) cosθ_i / Σ cosθ_i            (E/π of the visible sky)
+//   indirect = 1/N Σ o_i L_s cosθ_r min(R² cosθ_s / d², 2)   (patch area πR²/N; each patch's
+//              solid angle is capped at its share 2π/N, so d → 0 cannot blow it up)
+//   AO       = 1 - Σ o_i cosθ_i / Σ cosθ_i                    (cosine-weighted, like the reference)
+// Albedo is applied in the composite, so the blur never mixes textures. DO leaves this pass as one
+// buffer, rgb = sky·strength + indirect·strength and a = AO, so SSDO and SSAO+SSDO write (and
+// blur) exactly the same target; a debug view of one term sets the other's strength to 0.
+//
+// Classic variant (the source documents, seeds 001 and 004): random kernel and 4x4 random
+// rotation vectors, occlusion += (behind ? 1 : 0)·rangeCheck, AO = 1 - occlusion/N;
+// indirect += rangeCheck·max(dot(n_s, normalize(p - s)), 0)·albedo_s, sky += rangeCheck·sky·cosθ,
+// both divided by N and added without the receiver's albedo.
+//
+// Samples that project off-screen or behind the camera are skipped: not counted in the default
+// variant, counted as contributing nothing in the classic one (which divides by N regardless).
+
+#include "common/uniforms.wgsl"
+#include "common/gbuffer_read.wgsl"
+#include "common/occlusion_params.wgsl"
+#include "common/fullscreen.wgsl"
+
+@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(4) var bounce_map: texture_2d<f32>;
+// The sky's mip chain, read at one whole level per pass (the sampler's mip filter is nearest):
+// the level already matches a sample's solid angle, and bilinear costs half of trilinear.
+@group(2) @binding(0) var sky_map: texture_cube<f32>;
+@group(2) @binding(1) var sky_sampler: sampler;
+
+override COMPUTE_AO: bool = true;
+override COMPUTE_DO: bool = true;
+// The scene has point lights, so there is a bounce buffer to read.
+override INDIRECT: bool = true;
+override CLASSIC: bool = false;
+
+struct Occlusion {
+    ao: f32,
+    direct: vec3<f32>,
+    indirect: vec3<f32>,
+}
+
+// An orthonormal basis around unit `n` without a singularity (Duff et al. 2017).
+fn basis(n: vec3<f32>) -> mat3x3<f32> {
+    let s = select(-1.0, 1.0, n.z >= 0.0);
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    return mat3x3<f32>(vec3<f32>(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3<f32>(b, s + n.y * n.y * a, -n.y), n);
+}
+
+// Tangent frame at `pixel`, rotated by the pixel's entry of the 4x4 rotation tile.
+fn tangent_frame(n: vec3<f32>, pixel: vec2<i32>) -> mat3x3<f32> {
+    let r = occ.rotations[u32(pixel.x & 3) + 4u * u32(pixel.y & 3)];
+    let b = basis(n);
+    if CLASSIC {
+        // Gram-Schmidt of the tile's random view-space vector, as the source does.
+        let v = vec3<f32>(r.xy, 0.0);
+        let t = safe_normalize(v - n * dot(v, n), b[0]);
+        return mat3x3<f32>(t, cross(n, t), n);
+    }
+    let t = b[0] * r.x + b[1] * r.y;
+    return mat3x3<f32>(t, cross(n, t), n);
+}
+
+fn evaluate(position: vec2<f32>) -> Occlusion {
+    var out: Occlusion;
+    out.ao = 1.0;
+    let pixel = vec2<i32>(position);
+    let depth = textureLoad(g_depth, pixel, 0);
+    if depth <= 0.0 {
+        return out;
+    }
+    let n = textureLoad(g_normal, pixel, 0).xyz;
+    let p = view_position(position, depth);
+    let radius = occ.params.x;
+    let bias = occ.params.y;
+    let count = min(u32(occ.params.z), MAX_SAMPLES);
+    let tbn = tangent_frame(n, pixel);
+    let size = vec2<i32>(frame.viewport.xy);
+
+    var occluded = 0.0;
+    var weight = 0.0;
+    var direct = vec3<f32>(0.0);
+    var indirect = vec3<f32>(0.0);
+    var valid = 0u;
+    for (var i = 0u; i < count; i += 1u) {
+        let offset = tbn * occ.kernel[i].xyz;
+        let q = p + offset * radius;
+        let clip = frame.view_to_clip * vec4<f32>(q, 1.0);
+        if clip.w <= 0.0 {
+            continue;
+        }
+        let ndc = clip.xy / clip.w;
+        let texel_f = floor(vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.viewport.xy);
+        if any(texel_f < vec2<f32>(0.0)) || any(texel_f >= frame.viewport.xy) {
+            continue;
+        }
+        let texel = vec2<i32>(texel_f);
+        valid += 1u;
+        let sample_depth = textureLoad(g_depth, texel, 0);
+        // The surface seen at the sample's pixel (none where the sky is).
+        let has_surface = sample_depth > 0.0;
+        let s = view_position(texel_f + 0.5, max(sample_depth, 1e-30));
+        let dir = safe_normalize(offset, n);
+        let cos_r = max(dot(n, dir), 0.0);
+        // Range check: a surface far in front of the receiver does not occlude it.
+        let range = smoothstep(0.0, 1.0, radius / max(abs(p.z - s.z), radius * 1e-4));
+
+        if CLASSIC {
+            let behind_ao = select(0.0, 1.0, has_surface && s.z >= q.z + bias);
+            occluded += behind_ao * range;
+            if COMPUTE_DO {
+                if has_surface && s.z >= q.z {
+                    if INDIRECT {
+                        let n_s = textureLoad(g_normal, texel, 0).xyz;
+                        let albedo_s = textureLoad(g_albedo, texel, 0).rgb;
+                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s;
+                    }
+                } else {
+                    let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
+                    direct += range * textureSampleLevel(sky_map, sky_sampler, world, 0.0).rgb * cos_r;
+                }
+            }
+        } else {
+            let o = select(0.0, range, has_surface && s.z > q.z + bias);
+            occluded += o * cos_r;
+            weight += cos_r;
+            if COMPUTE_DO {
+                let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
+                direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.params.w).rgb;
+                if INDIRECT && o > 0.0 {
+                    let n_s = textureLoad(g_normal, texel, 0).xyz;
+                    let to_receiver = p - s;
+                    let d2 = max(dot(to_receiver, to_receiver), 1e-30);
+                    let w = to_receiver * inverseSqrt(d2);
+                    let cos_s = max(dot(n_s, w), 0.0);
+                    let cos_rs = max(dot(n, -w), 0.0);
+                    let solid = min(radius * radius * cos_s / d2, 2.0);
+                    indirect += o * textureLoad(bounce_map, texel, 0).rgb * cos_rs * solid;
+                }
+            }
+        }
+    }
+
+    if CLASSIC {
+        let inv_n = 1.0 / f32(max(count, 1u));
+        out.ao = 1.0 - occluded * inv_n;
+        out.direct = direct * inv_n * frame.sky.x;
+        out.indirect = indirect * inv_n;
+    } else if weight > 0.0 {
+        out.ao = 1.0 - occluded / weight;
+        out.direct = direct / weight * frame.sky.x;
+        out.indirect = indirect / f32(valid);
+    }
+    return out;
+}
+
+// SSAO: AO alone, into a one-channel target.
+@fragment
+fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(evaluate(in.position.xy).ao, 0.0, 0.0, 1.0);
+}
+
+// SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
+@fragment
+fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let o = evaluate(in.position.xy);
+    return vec4<f32>(o.direct * occ.strengths.x + o.indirect * occ.strengths.y, select(1.0, o.ao, COMPUTE_AO));
+}

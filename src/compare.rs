@@ -1,0 +1,61 @@
+//! The labelled comparison image: the four modes side by side (2x2), each with a caption band
+//! naming the mode and its key settings. Text is drawn with egui's bundled Ubuntu font.
+
+use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
+use image::{Rgba, RgbaImage};
+
+/// Writes `text` into `image` with its top-left corner at (`x`, `y`), `size` pixels high.
+pub fn draw_text(image: &mut RgbaImage, x: f32, y: f32, size: f32, color: [u8; 3], text: &str) {
+    let font = FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("egui's bundled font parses");
+    let scaled = font.as_scaled(PxScale::from(size));
+    let mut caret = x;
+    let mut previous = None;
+    for ch in text.chars() {
+        let id = font.glyph_id(ch);
+        if let Some(prev) = previous {
+            caret += scaled.kern(prev, id);
+        }
+        let glyph = id.with_scale_and_position(PxScale::from(size), ab_glyph::point(caret, y + scaled.ascent()));
+        caret += scaled.h_advance(id);
+        previous = Some(id);
+        let Some(outline) = font.outline_glyph(glyph) else { continue };
+        let bounds = outline.px_bounds();
+        outline.draw(|gx, gy, coverage| {
+            let (px, py) = (bounds.min.x as i64 + gx as i64, bounds.min.y as i64 + gy as i64);
+            if px < 0 || py < 0 || px >= image.width() as i64 || py >= image.height() as i64 {
+                return;
+            }
+            let pixel = image.get_pixel_mut(px as u32, py as u32);
+            for c in 0..3 {
+                pixel.0[c] = (pixel.0[c] as f32 * (1.0 - coverage) + color[c] as f32 * coverage).round() as u8;
+            }
+        });
+    }
+}
+
+/// A 2x2 grid of equally sized `panels`, each captioned with its lines of text below it.
+pub fn grid(panels: &[(Vec<String>, RgbaImage)]) -> RgbaImage {
+    let (w, h) = panels.first().map_or((1, 1), |(_, img)| img.dimensions());
+    let text_size = (h as f32 / 22.0).clamp(11.0, 28.0);
+    let caption =
+        (text_size * 1.25 * panels.iter().map(|(l, _)| l.len()).max().unwrap_or(1) as f32 + text_size * 0.6) as u32;
+    let gap = 4;
+    let columns = 2u32.min(panels.len() as u32).max(1);
+    let rows = (panels.len() as u32).div_ceil(columns);
+    let mut out = RgbaImage::from_pixel(
+        columns * w + (columns + 1) * gap,
+        rows * (h + caption) + (rows + 1) * gap,
+        Rgba([24, 24, 28, 255]),
+    );
+    for (i, (lines, image)) in panels.iter().enumerate() {
+        let (col, row) = (i as u32 % columns, i as u32 / columns);
+        let (x, y) = (gap + col * (w + gap), gap + row * (h + caption + gap));
+        image::imageops::replace(&mut out, image, x as i64, y as i64);
+        for (k, line) in lines.iter().enumerate() {
+            let (size, color) =
+                if k == 0 { (text_size * 1.1, [255, 255, 255]) } else { (text_size * 0.9, [190, 190, 200]) };
+            draw_text(&mut out, x as f32 + 6.0, (y + h) as f32 + 3.0 + k as f32 * text_size * 1.25, size, color, line);
+        }
+    }
+    out
+}

@@ -1,0 +1,135 @@
+//! Sample kernels and per-pixel rotations for the occlusion pass.
+//!
+//! Default: N directions spread evenly over the hemisphere by solid angle (a Fibonacci spiral in
+//! cos θ and azimuth, so every N covers it without clumps), at distances spread evenly over
+//! [0.1 R, R] (a low-discrepancy sequence). A point at distance t along a direction tests whether
+//! that direction is blocked within t; the classic kernel puts most points within 0.3 R and so
+//! misses occluders that a ray of length R (what AO of radius R means) would hit. The 16
+//! rotations of a 4x4 tile are evenly spaced angles in Bayer order, so a 4x4 blur
+//! window averages all of them. Deterministic: the same N gives the same kernel.
+//!
+//! Classic: the source documents' kernel — random points in the hemisphere's half cube,
+//! normalised, scaled by a random length and by lerp(0.1, 1, (i/N)²) — and 16 random rotation
+//! vectors in the tangent plane, from a fixed seed.
+
+use std::fmt;
+use std::str::FromStr;
+
+use glam::Vec3;
+use rand::{rngs::StdRng, RngExt, SeedableRng};
+
+use crate::{Error, Result};
+
+/// Which algorithm family the occlusion, blur and composite passes follow.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// Normalised estimators, stratified kernel, bilateral blur.
+    #[default]
+    Default,
+    /// The source documents' SSAO (seed 001) and SSDO (seed 004), reproduced as written.
+    Classic,
+}
+
+impl Variant {
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::Default => "default",
+            Variant::Classic => "classic",
+        }
+    }
+}
+
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Variant {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s.to_ascii_lowercase().as_str() {
+            "default" => Ok(Variant::Default),
+            "classic" => Ok(Variant::Classic),
+            _ => Err(Error::Setting(format!("unknown variant '{s}' (expected default or classic)"))),
+        }
+    }
+}
+
+/// The smallest cos θ of a default-kernel direction: directions within 3° of the tangent plane
+/// only pick up the surface's own depth error (they carry 0.3% of the cosine weight).
+const MIN_COS: f32 = 0.05;
+
+fn lerp(a: f32, b: f32, t: f32) -> f32 {
+    a + (b - a) * t
+}
+
+/// Radical inverse in base 3: a low-discrepancy sequence independent of the spiral's.
+fn radical_inverse_3(mut i: u32) -> f32 {
+    let (mut inv, mut f) = (0.0f32, 1.0 / 3.0);
+    while i > 0 {
+        inv += f * (i % 3) as f32;
+        i /= 3;
+        f /= 3.0;
+    }
+    inv
+}
+
+/// `n` tangent-space offsets for a unit radius.
+pub fn kernel(variant: Variant, n: usize) -> Vec<Vec3> {
+    match variant {
+        Variant::Default => {
+            let golden = std::f32::consts::PI * (3.0 - 5.0f32.sqrt());
+            (0..n)
+                .map(|i| {
+                    let cos = lerp(1.0, MIN_COS, (i as f32 + 0.5) / n as f32);
+                    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+                    let phi = golden * i as f32;
+                    let length = lerp(0.1, 1.0, radical_inverse_3(i as u32 + 1));
+                    Vec3::new(sin * phi.cos(), sin * phi.sin(), cos) * length
+                })
+                .collect()
+        }
+        Variant::Classic => {
+            let mut rng = StdRng::seed_from_u64(0x55A0);
+            (0..n)
+                .map(|i| {
+                    let mut r = || rng.random::<f32>();
+                    let v = Vec3::new(r() * 2.0 - 1.0, r() * 2.0 - 1.0, r());
+                    let v = v.try_normalize().unwrap_or(Vec3::Z) * r();
+                    let t = i as f32 / n as f32;
+                    v * lerp(0.1, 1.0, t * t)
+                })
+                .collect()
+        }
+    }
+}
+
+/// The 16 entries of the 4x4 rotation tile, row by row.
+pub fn rotations(variant: Variant) -> [[f32; 4]; 16] {
+    const BAYER: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
+    let mut out = [[0.0; 4]; 16];
+    match variant {
+        Variant::Default => {
+            for (entry, b) in out.iter_mut().zip(BAYER) {
+                let angle = std::f32::consts::TAU * (b as f32 + 0.5) / 16.0;
+                *entry = [angle.cos(), angle.sin(), 0.0, 0.0];
+            }
+        }
+        Variant::Classic => {
+            let mut rng = StdRng::seed_from_u64(0x4015E);
+            for entry in &mut out {
+                *entry = [rng.random::<f32>() * 2.0 - 1.0, rng.random::<f32>() * 2.0 - 1.0, 0.0, 0.0];
+            }
+        }
+    }
+    out
+}
+
+/// Mip level of a cube map of face size `size` whose texels cover the solid angle one of `n`
+/// hemisphere samples stands for (2π/n); a texel at a face centre covers about (2/size)².
+pub fn sky_mip_level(size: u32, n: usize) -> f32 {
+    let per_sample = std::f32::consts::TAU / n.max(1) as f32;
+    let texel = 4.0 / (size.max(1) as f32).powi(2);
+    (0.5 * (per_sample / texel).log2()).max(0.0)
+}

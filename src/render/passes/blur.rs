@@ -1,0 +1,102 @@
+//! Denoise of the sampling pass's output (`shaders/blur.wgsl`): a 4x4 window, bilateral (plane
+//! distance and normal agreement) in the default variant, the classic box blur otherwise.
+
+use super::super::kernel::Variant;
+use super::super::modes::Plan;
+use super::super::targets::Targets;
+use super::occlusion::{OcclusionData, Outputs};
+use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
+use crate::{shaders, Result};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Key {
+    outputs: Outputs,
+    bilateral: bool,
+}
+
+pub struct BlurPass {
+    module: wgpu::ShaderModule,
+    layout: wgpu::BindGroupLayout,
+    frame_layout: wgpu::BindGroupLayout,
+    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+impl BlurPass {
+    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
+        let module = shaders::module(device, "blur.wgsl")?;
+        let [a, n, d] = gbuffer_entries();
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("blur_layout"),
+            entries: &[a, n, d, uniform_entry(3), texture_entry(4, false, wgpu::TextureViewDimension::D2)],
+        });
+        Ok(Self { module, layout, frame_layout: frame_layout.clone(), pipeline: None, bind_group: None })
+    }
+
+    /// Builds what the plan needs (nothing when it does not blur).
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        targets: &Targets,
+        plan: &Plan,
+        variant: Variant,
+        data: &OcclusionData,
+    ) {
+        let Some(input) = targets.raw.output().filter(|_| plan.blur) else {
+            self.pipeline = None;
+            self.bind_group = None;
+            return;
+        };
+        let key = Key { outputs: Outputs::of(plan), bilateral: variant == Variant::Default };
+        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+            let f = |b: bool| b as u8 as f64;
+            let pipeline = fullscreen_pipeline(
+                device,
+                &FullscreenDesc {
+                    label: "blur_pipeline",
+                    module: &self.module,
+                    entry: "fs_main",
+                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    targets: &[Some(key.outputs.format().into())],
+                    depth: None,
+                    constants: &[("BILATERAL", f(key.bilateral)), ("AO_ONLY", f(!key.outputs.directional))],
+                },
+            );
+            self.pipeline = Some((key, pipeline));
+        }
+        let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
+        let mut entries: Vec<wgpu::BindGroupEntry> = super::view_entries(&views);
+        entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
+        entries.push(wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&input.view) });
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("blur_bind_group"),
+            layout: &self.layout,
+            entries: &entries,
+        }));
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        targets: &Targets,
+        frame: &wgpu::BindGroup,
+    ) {
+        let output = targets.blurred.as_ref().and_then(|b| b.output());
+        let (Some((_, pipeline)), Some(bind_group), Some(output)) = (&self.pipeline, &self.bind_group, output) else {
+            return;
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("blur_pass"),
+            color_attachments: &[color_attachment(&output.view, true)],
+            depth_stencil_attachment: None,
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_bind_group(1, bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

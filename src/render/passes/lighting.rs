@@ -1,0 +1,70 @@
+//! Lighting pass (SSDO modes with point lights): the light loop once per pixel, writing the
+//! displayed direct light into HDR and the diffuse radiance SSDO bounces into `bounce`.
+
+use super::super::targets::{Targets, BOUNCE_FORMAT, HDR_FORMAT};
+use super::{cleared_attachments, fullscreen_pipeline, gbuffer_entries, view_entries, FullscreenDesc};
+use crate::{shaders, Result};
+
+pub struct LightingPass {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+}
+
+impl LightingPass {
+    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout, targets: &Targets) -> Result<Self> {
+        let module = shaders::module(device, "lighting.wgsl")?;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("lighting_layout"),
+            entries: &gbuffer_entries(),
+        });
+        let pipeline = fullscreen_pipeline(
+            device,
+            &FullscreenDesc {
+                label: "lighting_pipeline",
+                module: &module,
+                entry: "fs_main",
+                bind_group_layouts: &[Some(frame_layout), Some(&layout)],
+                targets: &[Some(HDR_FORMAT.into()), Some(BOUNCE_FORMAT.into())],
+                depth: None,
+                constants: &[],
+            },
+        );
+        let bind_group = Self::bind_group(device, &layout, targets);
+        Ok(Self { layout, pipeline, bind_group })
+    }
+
+    fn bind_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, targets: &Targets) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("lighting_bind_group"),
+            layout,
+            entries: &view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]),
+        })
+    }
+
+    pub fn resize(&mut self, device: &wgpu::Device, targets: &Targets) {
+        self.bind_group = Self::bind_group(device, &self.layout, targets);
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        targets: &Targets,
+        frame: &wgpu::BindGroup,
+    ) {
+        let bounce = targets.bounce.as_ref().map(|t| &t.view);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("lighting_pass"),
+            color_attachments: &cleared_attachments(&[Some(&targets.hdr.view), bounce]),
+            depth_stencil_attachment: None,
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_bind_group(1, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

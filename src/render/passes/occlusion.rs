@@ -1,0 +1,211 @@
+//! The sampling pass: SSAO, SSDO, or both from one set of samples (`shaders/occlusion.wgsl`).
+//! One shader, two entry points (`fs_ao` writes AO; `fs_do` writes DO + AO); the variant (default or
+//! classic) and whether there is a bounce buffer are override constants. The pipeline is built
+//! for what the plan needs and rebuilt only when that changes.
+
+use super::super::kernel::{self, Variant};
+use super::super::modes::Plan;
+use super::super::targets::{Targets, AO_FORMAT, DO_FORMAT};
+use super::super::uniforms::{OcclusionUniforms, MAX_SAMPLES};
+use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
+use crate::{shaders, Result};
+
+/// Sampling parameters for one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplingParams {
+    pub variant: Variant,
+    pub samples: usize,
+    /// View-space radius of the hemisphere.
+    pub radius: f32,
+    /// Depth bias in view units.
+    pub bias: f32,
+    pub sky_mip: f32,
+    pub sky_strength: f32,
+    pub indirect_strength: f32,
+}
+
+/// The kernel and parameters uniform, shared by the sampling and blur passes.
+pub struct OcclusionData {
+    pub buffer: wgpu::Buffer,
+    uniforms: Box<OcclusionUniforms>,
+    kernel_key: Option<(Variant, usize)>,
+}
+
+impl OcclusionData {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("occlusion_params"),
+            size: std::mem::size_of::<OcclusionUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self { buffer, uniforms: Box::new(bytemuck::Zeroable::zeroed()), kernel_key: None }
+    }
+
+    /// Writes the parameters; the kernel is regenerated only when variant or count change.
+    pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
+        let samples = params.samples.clamp(1, MAX_SAMPLES);
+        if self.kernel_key != Some((params.variant, samples)) {
+            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant, samples)) {
+                *slot = k.extend(0.0).into();
+            }
+            self.uniforms.rotations = kernel::rotations(params.variant);
+            self.kernel_key = Some((params.variant, samples));
+        }
+        self.uniforms.params = [params.radius, params.bias, samples as f32, params.sky_mip];
+        self.uniforms.strengths = [params.sky_strength, params.indirect_strength, 0.0, 0.0];
+        queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
+    }
+}
+
+/// What a plan's sampling (and blur) pass produces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outputs {
+    pub ao: bool,
+    pub directional: bool,
+    pub indirect: bool,
+}
+
+impl Outputs {
+    pub fn of(plan: &Plan) -> Self {
+        Self {
+            ao: plan.decl.ambient_occlusion,
+            directional: plan.decl.directional_occlusion,
+            indirect: plan.indirect(),
+        }
+    }
+
+    /// The format of the one target written: AO alone, or DO + AO.
+    pub fn format(self) -> wgpu::TextureFormat {
+        if self.directional {
+            DO_FORMAT
+        } else {
+            AO_FORMAT
+        }
+    }
+}
+
+/// What distinguishes one sampling pipeline from another.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Key {
+    outputs: Outputs,
+    classic: bool,
+}
+
+impl Key {
+    fn constants(self) -> [(&'static str, f64); 4] {
+        let f = |b: bool| b as u8 as f64;
+        let o = self.outputs;
+        [
+            ("COMPUTE_AO", f(o.ao)),
+            ("COMPUTE_DO", f(o.directional)),
+            ("INDIRECT", f(o.indirect)),
+            ("CLASSIC", f(self.classic)),
+        ]
+    }
+}
+
+pub struct OcclusionPass {
+    module: wgpu::ShaderModule,
+    layout: wgpu::BindGroupLayout,
+    pipeline_layouts: [wgpu::BindGroupLayout; 2],
+    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+impl OcclusionPass {
+    pub fn new(
+        device: &wgpu::Device,
+        frame_layout: &wgpu::BindGroupLayout,
+        sky_layout: &wgpu::BindGroupLayout,
+    ) -> Result<Self> {
+        let module = shaders::module(device, "occlusion.wgsl")?;
+        let [a, n, d] = gbuffer_entries();
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("occlusion_layout"),
+            entries: &[a, n, d, uniform_entry(3), texture_entry(4, false, wgpu::TextureViewDimension::D2)],
+        });
+        Ok(Self {
+            module,
+            layout,
+            pipeline_layouts: [frame_layout.clone(), sky_layout.clone()],
+            pipeline: None,
+            bind_group: None,
+        })
+    }
+
+    /// Builds what the plan needs (nothing when it has no sampling step).
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        targets: &Targets,
+        plan: &Plan,
+        variant: Variant,
+        data: &OcclusionData,
+        unused: &wgpu::TextureView,
+    ) {
+        if !plan.decl.samples() {
+            self.pipeline = None;
+            self.bind_group = None;
+            return;
+        }
+        let key = Key { outputs: Outputs::of(plan), classic: variant == Variant::Classic };
+        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+            let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
+            let [frame, sky] = &self.pipeline_layouts;
+            let pipeline = fullscreen_pipeline(
+                device,
+                &FullscreenDesc {
+                    label: "occlusion_pipeline",
+                    module: &self.module,
+                    entry,
+                    bind_group_layouts: &[Some(frame), Some(&self.layout), Some(sky)],
+                    targets: &[Some(key.outputs.format().into())],
+                    depth: None,
+                    constants: &key.constants(),
+                },
+            );
+            self.pipeline = Some((key, pipeline));
+        }
+        let bounce = targets.bounce.as_ref().map_or(unused, |t| &t.view);
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("occlusion_bind_group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.albedo.view) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.normal.view) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&targets.depth.view) },
+                wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
+            ],
+        }));
+    }
+
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        targets: &Targets,
+        frame: &wgpu::BindGroup,
+        sky: &wgpu::BindGroup,
+    ) {
+        let (Some((_, pipeline)), Some(bind_group), Some(output)) =
+            (&self.pipeline, &self.bind_group, targets.raw.output())
+        else {
+            return;
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("occlusion_pass"),
+            color_attachments: &[color_attachment(&output.view, true)],
+            depth_stencil_attachment: None,
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_bind_group(1, bind_group, &[]);
+        pass.set_bind_group(2, sky, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

@@ -1,0 +1,342 @@
+//! SSAO and SSDO against answers known in closed form, and against each other: the white
+//! furnace, AO of an open plane and of a corner, colour bleeding, directional sky light, one
+//! pass for Both, the plan of each mode, and finite buffers everywhere.
+
+mod common;
+
+use common::{gpu, looking, renderer, shoot};
+use glam::{Vec3, Vec4Swizzles};
+use ssdo::gpu::Gpu;
+use ssdo::render::readback::{read_r16f, read_rgba16f};
+use ssdo::render::{Mode, Renderer, Settings, Variant};
+use ssdo::scene::builtin::{self, MeshBuilder};
+use ssdo::scene::{Material, Model, OrbitCamera, PointLight, Scene, Skybox};
+
+const W: u32 = 160;
+const H: u32 = 120;
+
+fn settings(mode: Mode) -> Settings {
+    Settings { mode, ambient: 0.0, ..Settings::default() }
+}
+
+/// Pixel coordinates of world point `p`.
+fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
+    let clip = camera.view_to_clip(W as f32 / H as f32) * camera.world_to_view() * p.extend(1.0);
+    let ndc = clip.xy() / clip.w;
+    assert!(clip.w > 0.0 && ndc.abs().max_element() < 0.95, "{p} is not well inside the view");
+    (((ndc.x * 0.5 + 0.5) * W as f32) as usize, ((0.5 - ndc.y * 0.5) * H as f32) as usize)
+}
+
+fn at<T: Copy>(buffer: &[T], (x, y): (usize, usize)) -> T {
+    buffer[y * W as usize + x]
+}
+
+fn rgb(p: [f32; 4]) -> Vec3 {
+    Vec3::new(p[0], p[1], p[2])
+}
+
+/// Mean over a (2r+1)² window.
+fn mean_rgb(buffer: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for yy in y - r..=y + r {
+        for xx in x - r..=x + r {
+            sum += rgb(buffer[yy * W as usize + xx]);
+        }
+    }
+    sum / ((2 * r + 1) * (2 * r + 1)) as f32
+}
+
+struct Buffers {
+    /// AO from its own target (SSAO) or from DO's alpha (SSAO+SSDO).
+    ao: Option<Vec<f32>>,
+    /// SSDO's sky light + bounce (rgb) as the sampling pass wrote it.
+    directional: Option<Vec<[f32; 4]>>,
+    hdr: Vec<[f32; 4]>,
+}
+
+/// Renders one frame and reads the sampling pass's raw (or the blurred) outputs and HDR.
+fn render(gpu: &Gpu, r: &mut Renderer, camera: &OrbitCamera, blurred: bool) -> Buffers {
+    shoot(gpu, r, camera);
+    let t = r.targets();
+    let set = if blurred { t.occlusion() } else { &t.raw };
+    let directional = set.directional.as_ref().map(|a| read_rgba16f(gpu, &a.texture).unwrap());
+    let ao = match (&set.ao, &directional) {
+        (Some(ao), _) => Some(read_r16f(gpu, &ao.texture).unwrap()),
+        (None, Some(d)) if r.plan().decl.ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
+        _ => None,
+    };
+    Buffers { ao, directional, hdr: read_rgba16f(gpu, &t.hdr.texture).unwrap() }
+}
+
+fn open_plane(albedo: f32) -> Scene {
+    Scene::new(builtin::plane(100.0, [albedo; 3]).unwrap(), 0, 1)
+}
+
+#[test]
+fn white_furnace_open_plane_returns_albedo_times_sky() {
+    let Some(gpu) = gpu() else { return };
+    let sky_radiance = Vec3::new(0.3, 0.6, 0.9);
+    let albedo = 0.5;
+    let scene = open_plane(albedo);
+    let sky = Skybox::constant(sky_radiance);
+    let camera = looking(Vec3::ZERO, 10.0, 40.0, 3.0);
+    for blur in [false, true] {
+        for samples in [4, 16, 64] {
+            let s = Settings { samples, blur, radius: Some(0.5), ..settings(Mode::Ssdo) };
+            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+            let b = render(&gpu, &mut r, &camera, true);
+            let direct = b.directional.unwrap();
+            for p in [(80, 60), (20, 100), (140, 100)] {
+                let got = rgb(at(&direct, p));
+                assert!(
+                    (got / sky_radiance - 1.0).abs().max_element() < 0.01,
+                    "DO direct {got} at {p:?}, {samples} samples, blur {blur}"
+                );
+                let hdr = rgb(at(&b.hdr, p));
+                let want = albedo * sky_radiance;
+                assert!((hdr / want - 1.0).abs().max_element() < 0.01, "radiance {hdr} vs {want} at {p:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn open_plane_ao_is_one_everywhere_including_the_edges() {
+    let Some(gpu) = gpu() else { return };
+    let scene = open_plane(0.8);
+    let sky = Skybox::constant(Vec3::ONE);
+    // Looking down steeply: samples near the borders project off-screen and must be skipped.
+    let camera = looking(Vec3::ZERO, 0.0, 70.0, 2.0);
+    for variant in [Variant::Default, Variant::Classic] {
+        let s = Settings { variant, samples: 32, radius: Some(0.4), blur: false, ..settings(Mode::Ssao) };
+        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+        let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
+        let low = ao.iter().copied().fold(1.0, f32::min);
+        assert!(low >= 0.99, "{variant}: lowest AO on an open plane {low}");
+        assert!(ao.iter().all(|a| *a <= 1.0));
+    }
+}
+
+#[test]
+fn inside_corner_is_more_occluded_than_open_floor() {
+    let Some(gpu) = gpu() else { return };
+    let mut scene = red_wall_scene();
+    scene.lights.clear();
+    let sky = Skybox::constant(Vec3::ONE);
+    // Facing the wall: the corner is a horizontal line across the middle of the view.
+    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    for variant in [Variant::Default, Variant::Classic] {
+        let s = Settings { variant, samples: 32, radius: Some(0.5), ..settings(Mode::Ssao) };
+        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+        let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
+        let corner = at(&ao, project(&camera, Vec3::new(0.1, 0.0, 0.0)));
+        let open = at(&ao, project(&camera, Vec3::new(1.8, 0.0, 1.0)));
+        assert!(open > 0.95, "{variant}: open floor AO {open}");
+        assert!(corner < open - 0.1, "{variant}: floor at the wall's foot {corner} vs open floor {open}");
+    }
+}
+
+/// A white floor (x from 0 to 4) meeting a red wall at x = 0, lit by one white light.
+fn red_wall_scene() -> Scene {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let wall = b.material(Material::plain("wall", [0.9, 0.05, 0.05]));
+    b.quad(floor, [v(0.0, 0.0, 2.0), v(4.0, 0.0, 2.0), v(4.0, 0.0, -2.0), v(0.0, 0.0, -2.0)]);
+    b.quad(wall, [v(0.0, 0.0, -2.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 2.0), v(0.0, 2.0, -2.0)]);
+    let mut scene = Scene::new(b.build("red_wall").unwrap(), 0, 1);
+    scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
+    scene
+}
+
+#[test]
+fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
+    let Some(gpu) = gpu() else { return };
+    let scene = red_wall_scene();
+    let sky = Skybox::constant(Vec3::ZERO);
+    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let near = project(&camera, Vec3::new(0.12, 0.0, 0.0));
+    let far = project(&camera, Vec3::new(1.8, 0.0, 1.0));
+    let ratio = |c: Vec3| c.x / c.y.max(1e-6);
+
+    let mut r =
+        renderer(&gpu, &scene, &sky, (W, H), Settings { radius: Some(0.5), samples: 32, ..settings(Mode::Ssdo) });
+    let b = render(&gpu, &mut r, &camera, true);
+    // The sky is black: DO is the indirect bounce alone.
+    let indirect = mean_rgb(&b.directional.unwrap(), near, 1);
+    assert!(indirect.x > 0.01 && indirect.x > 5.0 * indirect.y, "red bounce near the wall: {indirect}");
+    let ssdo_near = mean_rgb(&b.hdr, near, 1);
+    let ssdo_far = mean_rgb(&b.hdr, far, 1);
+
+    r.set_mode(&gpu, Mode::Ssao);
+    let b = render(&gpu, &mut r, &camera, true);
+    let ssao_near = mean_rgb(&b.hdr, near, 1);
+    assert!((ratio(ssao_near) - 1.0).abs() < 0.02, "SSAO floor stays white: {ssao_near}");
+    assert!(
+        ratio(ssdo_near) > 1.1 * ratio(ssao_near),
+        "SSDO floor near the wall is redder: {ssdo_near} vs {ssao_near}"
+    );
+    assert!(ratio(ssdo_near) > ratio(ssdo_far) + 0.05, "bleeding fades with distance: {ssdo_near} vs {ssdo_far}");
+}
+
+#[test]
+fn redblue_sky_lights_tops_blue_and_bottoms_red_in_ssdo_only() {
+    let Some(gpu) = gpu() else { return };
+    let mut b = MeshBuilder::default();
+    let m = b.material(Material::plain("ball", [0.8; 3]));
+    b.sphere(m, Vec3::new(0.0, 2.0, 0.0), 1.0, 48, 24);
+    let scene = Scene::new(b.build("ball").unwrap(), 0, 1);
+    let sky = Skybox::load(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/skyboxes/redblue"))).unwrap();
+    let camera = looking(Vec3::new(0.0, 2.0, 0.0), 0.0, 0.0, 5.0);
+    let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
+    let bottom = project(&camera, Vec3::new(0.0, 1.2, 0.6));
+    let blueness = |c: Vec3| c.z - c.x;
+
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { ambient: 0.3, ..settings(Mode::Ssdo) });
+    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "SSDO: top {up}, bottom {down}");
+
+    r.set_mode(&gpu, Mode::Off);
+    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    assert!((up - down).abs().max_element() < 1e-3, "Off has no directional sky: top {up}, bottom {down}");
+}
+
+#[test]
+fn both_is_one_pass_with_the_same_ao_and_do_as_the_separate_modes() {
+    let Some(gpu) = gpu() else { return };
+    let scene = Scene::new(builtin::cornell().unwrap(), 8, 3);
+    let sky = ssdo::scene::load_skybox(None).unwrap();
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    for variant in [Variant::Default, Variant::Classic] {
+        let s = Settings { variant, blur: false, ..settings(Mode::Ssao) };
+        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+        let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
+        r.set_mode(&gpu, Mode::Ssdo);
+        let ssdo = render(&gpu, &mut r, &camera, false);
+        r.set_mode(&gpu, Mode::Both);
+        assert_eq!(r.plan().step_names().iter().filter(|n| ["ssao", "ssdo", "ssao_ssdo"].contains(n)).count(), 1);
+        let both = render(&gpu, &mut r, &camera, false);
+        assert_eq!(both.ao.unwrap(), ao, "{variant}: AO");
+        let rgb = |v: Vec<[f32; 4]>| v.into_iter().map(|p| [p[0], p[1], p[2]]).collect::<Vec<_>>();
+        assert_eq!(rgb(both.directional.unwrap()), rgb(ssdo.directional.unwrap()), "{variant}: DO");
+    }
+}
+
+#[test]
+fn each_mode_plans_exactly_its_passes_and_targets() {
+    let Some(gpu) = gpu() else { return };
+    let sky = Skybox::constant(Vec3::ONE);
+    let lit = Scene::new(builtin::cornell().unwrap(), 4, 1);
+    let mut r = renderer(&gpu, &lit, &sky, (32, 24), settings(Mode::Off));
+    let expect = [
+        (Mode::Off, vec!["gbuffer", "composite", "skybox", "light_cubes", "tonemap"]),
+        (Mode::Ssao, vec!["gbuffer", "ssao", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
+        (Mode::Ssdo, vec!["gbuffer", "lighting", "ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
+        (Mode::Both, vec!["gbuffer", "lighting", "ssao_ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
+    ];
+    let names = |r: &Renderer| r.allocations().into_iter().map(|(n, _)| n).collect::<Vec<_>>();
+    for (mode, steps) in &expect {
+        r.set_mode(&gpu, *mode);
+        assert_eq!(&r.plan().step_names(), steps, "{mode}");
+    }
+    r.set_mode(&gpu, Mode::Off);
+    let off = names(&r);
+    assert!(
+        !off.iter()
+            .any(|n| n.starts_with("ao") || n.starts_with("do_") || n.starts_with("bounce") || n == "occlusion_params"),
+        "{off:?}"
+    );
+    r.set_mode(&gpu, Mode::Ssao);
+    let ssao = names(&r);
+    assert!(
+        ssao.contains(&"ao_raw".into()) && !ssao.iter().any(|n| n.starts_with("do_") || n.starts_with("bounce")),
+        "{ssao:?}"
+    );
+    r.set_mode(&gpu, Mode::Both);
+    let both = names(&r);
+    for wanted in ["do_raw", "do_blurred", "bounce_radiance"] {
+        assert!(both.contains(&wanted.to_string()), "{wanted} in {both:?}");
+    }
+    assert!(!both.iter().any(|n| n.starts_with("ao_")), "Both keeps AO in DO's alpha: {both:?}");
+    assert!(!r.uses_texture_path(), "an untextured model takes no texture path");
+
+    // No lights: no lighting pass and no bounce buffer, no cubes.
+    r.set_lights(&gpu, Vec::new());
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]);
+    assert!(!names(&r).iter().any(|n| n.starts_with("bounce")));
+    // No blur: no blur pass and no blurred targets.
+    r.settings.blur = false;
+    r.apply(&gpu);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "composite", "skybox", "tonemap"]);
+    assert!(!names(&r).iter().any(|n| n.ends_with("blurred")));
+}
+
+#[test]
+fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
+    let Some(gpu) = gpu() else { return };
+    let scene = Scene::new(ssdo::scene::load_model(None).unwrap(), 8, 1);
+    let sky = ssdo::scene::load_skybox(None).unwrap();
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    for variant in [Variant::Default, Variant::Classic] {
+        for mode in Mode::ALL {
+            let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { mode, variant, ..Settings::default() });
+            for blurred in [false, true] {
+                let b = render(&gpu, &mut r, &camera, blurred);
+                let finite = |v: &[[f32; 4]]| v.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0));
+                assert!(finite(&b.hdr), "{mode} {variant}: HDR");
+                if let Some(ao) = &b.ao {
+                    assert!(ao.iter().all(|a| (0.0..=1.0).contains(a)), "{mode} {variant}: AO in [0, 1]");
+                    assert!(ao.iter().any(|a| *a < 0.9), "{mode} {variant}: some occlusion on the default scene");
+                }
+                if let Some(buffer) = &b.directional {
+                    assert!(finite(buffer), "{mode} {variant}: DO finite and >= 0");
+                    assert!(buffer.iter().any(|p| p[0] > 0.0), "{mode} {variant}: DO not all zero");
+                }
+            }
+            let normals = read_rgba16f(&gpu, &r.targets().normal.texture).unwrap();
+            assert!(normals.iter().all(|p| p.iter().all(|c| c.is_finite())));
+        }
+    }
+}
+
+#[test]
+fn blur_does_not_bleed_across_silhouettes() {
+    let Some(gpu) = gpu() else { return };
+    // A box on an open floor: floor pixels right beside the box's silhouette (seen from above at
+    // an angle the box hides floor behind it) keep the open floor's AO when blurred bilaterally.
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let block = b.material(Material::plain("block", [0.8; 3]));
+    b.quad(floor, [v(-50.0, 0.0, 50.0), v(50.0, 0.0, 50.0), v(50.0, 0.0, -50.0), v(-50.0, 0.0, -50.0)]);
+    b.cuboid(block, v(-0.5, 0.0, -0.5), v(0.5, 1.5, 0.5), false);
+    let model: Model = b.build("block").unwrap();
+    let scene = Scene::new(model, 0, 1);
+    let sky = Skybox::constant(Vec3::ONE);
+    let camera = looking(v(0.0, 0.5, 0.0), 0.0, 30.0, 4.0);
+    let mut r =
+        renderer(&gpu, &scene, &sky, (W, H), Settings { radius: Some(0.3), samples: 32, ..settings(Mode::Ssao) });
+    let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
+    // The top face of the block is open: its AO must stay 1 up to the silhouette edge.
+    let top_edge = project(&camera, v(0.0, 1.5, -0.45));
+    assert!(at(&ao, top_edge) > 0.97, "block top near its back edge: {}", at(&ao, top_edge));
+}
+
+#[test]
+fn kernels_stay_inside_the_unit_hemisphere() {
+    use ssdo::render::kernel::{kernel, rotations};
+    for variant in [Variant::Default, Variant::Classic] {
+        for n in [1, 16, 256] {
+            let k = kernel(variant, n);
+            assert_eq!(k.len(), n);
+            assert!(k.iter().all(|s| s.z >= 0.0 && s.length() <= 1.0 + 1e-6 && s.length() > 0.0), "{variant} {n}");
+        }
+        assert!(rotations(variant).iter().all(|r| r[0].is_finite() && r[1].is_finite()));
+    }
+    // Default directions cover the hemisphere evenly: the mean cosine of a uniform hemisphere is 1/2.
+    let k = kernel(Variant::Default, 256);
+    let mean_cos = k.iter().map(|s| s.normalize().z).sum::<f32>() / 256.0;
+    assert!((mean_cos - 0.5).abs() < 0.03, "mean cos {mean_cos}");
+}
