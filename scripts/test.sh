@@ -6,18 +6,33 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 have_vulkan_driver() {
-    ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json /usr/local/share/vulkan/icd.d/*.json >/dev/null 2>&1
+    local icd
+    for icd in /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json /usr/local/share/vulkan/icd.d/*.json; do
+        [ -e "$icd" ] && return 0
+    done
+    return 1
 }
 
-if ! have_vulkan_driver; then
+# What the tests need that a fresh Debian/Ubuntu machine lacks: a Vulkan driver (Mesa's lavapipe
+# when there is no GPU), and Xvfb + xdotool for the viewer test.
+missing=()
+have_vulkan_driver || missing+=(mesa-vulkan-drivers)
+command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)
+command -v xdotool >/dev/null 2>&1 || missing+=(xdotool)
+# The X11 client libraries winit opens at run time for the viewer's window.
+for lib in libX11.so.6:libx11-6 libX11-xcb.so.1:libx11-xcb1 libxkbcommon-x11.so.0:libxkbcommon-x11-0 \
+    libXcursor.so.1:libxcursor1 libXrandr.so.2:libxrandr2 libXi.so.6:libxi6; do
+    ldconfig -p 2>/dev/null | grep -q "${lib%%:*}" || missing+=("${lib##*:}")
+done
+if [ ${#missing[@]} -gt 0 ]; then
     if command -v apt-get >/dev/null 2>&1; then
         sudo=""
         [ "$(id -u)" -eq 0 ] || sudo="sudo"
-        echo "scripts/test.sh: no Vulkan driver found; installing mesa-vulkan-drivers (lavapipe)"
+        echo "scripts/test.sh: installing ${missing[*]}"
         $sudo apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq mesa-vulkan-drivers >/dev/null
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
     else
-        echo "scripts/test.sh: no Vulkan driver found and no apt-get; install Mesa's lavapipe or a GPU driver" >&2
+        echo "scripts/test.sh: missing ${missing[*]} and no apt-get; install them (a Vulkan driver: Mesa's lavapipe or a GPU driver)" >&2
         exit 1
     fi
 fi

@@ -21,6 +21,8 @@ override HAS_DO: bool = false;
 override AO_IN_DO: bool = false;
 // The classic variant adds DO without the receiver's albedo, as the source does.
 override CLASSIC: bool = false;
+// The "lighting only" view: every surface white.
+override WHITE_ALBEDO: bool = false;
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
@@ -29,7 +31,10 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     if depth <= 0.0 {
         return vec4<f32>(0.0);
     }
-    let albedo = textureLoad(g_albedo, pixel, 0);
+    var albedo = textureLoad(g_albedo, pixel, 0);
+    if WHITE_ALBEDO {
+        albedo = vec4<f32>(1.0, 1.0, 1.0, albedo.a);
+    }
     var directional = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if HAS_DO {
         directional = textureLoad(do_map, pixel, 0);

@@ -1,13 +1,26 @@
 // HDR to display: exposure, the ACES filmic curve (Narkowicz's fit), then sRGB. When the target
-// format is an sRGB format the hardware encodes; otherwise the shader does.
+// format is an sRGB format the hardware encodes; otherwise the shader does. The same pass shows
+// the debug views (a G-buffer channel, AO or DO instead of the final image).
+// Pixels are addressed through uv, so the pass can draw into a viewport of a larger target.
 
 #include "common/uniforms.wgsl"
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(0) var hdr: texture_2d<f32>;
+@group(1) @binding(1) var g_albedo: texture_2d<f32>;
+@group(1) @binding(2) var g_normal: texture_2d<f32>;
+@group(1) @binding(3) var g_depth: texture_depth_2d;
+@group(1) @binding(4) var ao_map: texture_2d<f32>;
+@group(1) @binding(5) var do_map: texture_2d<f32>;
 
 // True when the output format does the sRGB encoding itself.
 override OUTPUT_SRGB: bool = true;
+// 0 final image, 1 albedo, 2 view-space normals, 3 depth, 4 AO, 5 DO (tone mapped).
+override VIEW: u32 = 0u;
+override HAS_AO: bool = false;
+override HAS_DO: bool = false;
+// AO travels in the DO buffer's alpha.
+override AO_IN_DO: bool = false;
 
 fn aces(x: vec3<f32>) -> vec3<f32> {
     let y = max(x, vec3<f32>(0.0));
@@ -20,13 +33,58 @@ fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     return select(high, low, c <= vec3<f32>(0.0031308));
 }
 
+fn tone_map(radiance: vec3<f32>) -> vec3<f32> {
+    // A huge value maps to white; the curve's rational form would give inf/inf = NaN.
+    return select(aces(radiance), vec3<f32>(1.0), radiance > vec3<f32>(1e4));
+}
+
+// The displayed colour (linear, before sRGB encoding) of `pixel`.
+fn shade(pixel: vec2<i32>) -> vec3<f32> {
+    switch VIEW {
+        case 1u: {
+            return textureLoad(g_albedo, pixel, 0).rgb;
+        }
+        case 2u: {
+            // Normals as colours, n · 0.5 + 0.5, shown as written (no sRGB curve).
+            return pow(textureLoad(g_normal, pixel, 0).xyz * 0.5 + 0.5, vec3<f32>(2.2));
+        }
+        case 3u: {
+            // Distance from the camera, linear: bright at the camera, black at twice the orbit
+            // distance and on the sky. Reverse-Z depth d maps back to view z = -b / (d + a).
+            let d = textureLoad(g_depth, pixel, 0);
+            if d <= 0.0 {
+                return vec3<f32>(0.0);
+            }
+            let z = frame.view_to_clip[3][2] / max(d + frame.view_to_clip[2][2], 1e-30);
+            return vec3<f32>(pow(clamp(1.0 - z / (2.0 * frame.ambient.w), 0.0, 1.0), 2.2));
+        }
+        case 4u: {
+            var ao = 1.0;
+            if HAS_AO {
+                ao = select(textureLoad(ao_map, pixel, 0).r, textureLoad(do_map, pixel, 0).a, AO_IN_DO);
+            }
+            return vec3<f32>(clamp(ao, 0.0, 1.0));
+        }
+        case 5u: {
+            var light = vec3<f32>(0.0);
+            if HAS_DO {
+                light = textureLoad(do_map, pixel, 0).rgb;
+            }
+            return tone_map(light * frame.camera.z);
+        }
+        default: {
+            return tone_map(textureLoad(hdr, pixel, 0).rgb * frame.camera.z);
+        }
+    }
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
-    let radiance = textureLoad(hdr, vec2<i32>(in.position.xy), 0).rgb * frame.camera.z;
-    // A huge value maps to white; the curve's rational form would give inf/inf = NaN.
-    var mapped = select(aces(radiance), vec3<f32>(1.0), radiance > vec3<f32>(1e4));
+    let size = vec2<f32>(textureDimensions(hdr));
+    let pixel = vec2<i32>(min(in.uv * size, size - 1.0));
+    var color = shade(pixel);
     if !OUTPUT_SRGB {
-        mapped = linear_to_srgb(mapped);
+        color = linear_to_srgb(color);
     }
-    return vec4<f32>(mapped, 1.0);
+    return vec4<f32>(color, 1.0);
 }

@@ -4,6 +4,23 @@
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgba, RgbaImage};
 
+use crate::render::{Mode, Settings};
+
+/// The caption of one mode's panel: the mode and its key, then the settings that shaped it.
+pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Vec<String> {
+    let s = settings;
+    let key = Mode::ALL.iter().position(|m| *m == s.mode).unwrap_or(0) + 1;
+    let mut lines = vec![format!("{}  [{key}]", s.mode.title())];
+    if s.mode == Mode::Off {
+        lines.push("ambient + point lights, no occlusion".into());
+    } else {
+        let blur = if s.blur { "blurred" } else { "no blur" };
+        lines.push(format!("{} variant, {} samples, radius {radius:.3}, {blur}", s.variant, s.samples));
+    }
+    lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
+    lines
+}
+
 /// Writes `text` into `image` with its top-left corner at (`x`, `y`), `size` pixels high.
 pub fn draw_text(image: &mut RgbaImage, x: f32, y: f32, size: f32, color: [u8; 3], text: &str) {
     let font = FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("egui's bundled font parses");

@@ -4,6 +4,7 @@
 //! The binary (`src/main.rs`) is a thin command line over this library; the tests drive the same
 //! library headlessly on a software adapter.
 
+pub mod app;
 pub mod compare;
 pub mod error;
 pub mod gpu;

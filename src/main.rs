@@ -10,19 +10,22 @@ use clap::{Args, Parser, Subcommand};
 
 use ssdo::gpu::Gpu;
 use ssdo::render::capture::{capture, output_texture, CAPTURE_FORMAT};
-use ssdo::render::{Mode, Renderer, Settings, Variant};
+use ssdo::render::{Mode, Renderer, Settings, Variant, View};
 use ssdo::scene::{self, OrbitCamera, Scene};
 use ssdo::{compare, output, Error, Result};
 
 #[derive(Parser)]
 #[command(name = "ssdo", version, about = "Screen-space directional occlusion renderer (wgpu)")]
 struct Cli {
+    /// Without a command, the viewer opens with its defaults.
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Subcommand)]
 enum Command {
+    /// Open the interactive viewer (the default).
+    View(ViewArgs),
     /// Render the scene offscreen and write PNGs: <out>/<mode>.png (and compare.png for all).
     Capture(CaptureArgs),
     /// Render each mode repeatedly and print per-pass GPU times.
@@ -55,6 +58,10 @@ fn parse_mode(s: &str) -> std::result::Result<ModeChoice, String> {
 
 fn parse_variant(s: &str) -> std::result::Result<Variant, String> {
     s.parse::<Variant>().map_err(|e| e.to_string())
+}
+
+fn parse_view(s: &str) -> std::result::Result<View, String> {
+    s.parse::<View>().map_err(|e| e.to_string())
 }
 
 #[derive(Args)]
@@ -120,6 +127,9 @@ struct RenderArgs {
     /// Multiplier on the sky's radiance
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     sky_scale: f32,
+    /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting
+    #[arg(long, default_value = "final", value_parser = parse_view)]
+    view: View,
 }
 
 #[derive(Args)]
@@ -143,6 +153,27 @@ struct CaptureArgs {
 }
 
 #[derive(Args)]
+struct ViewArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    render: RenderArgs,
+    /// Mode to start in: off, ssao, ssdo or both
+    #[arg(long, default_value = "both", value_parser = parse_single_mode)]
+    mode: Mode,
+    /// Window size, WIDTHxHEIGHT (the 3D view is the window less the 300-pixel panel)
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    size: Size,
+    /// Where F12 screenshots and C comparisons are written
+    #[arg(long, default_value = "screenshots")]
+    screenshot_dir: PathBuf,
+}
+
+fn parse_single_mode(s: &str) -> std::result::Result<Mode, String> {
+    s.parse::<Mode>().map_err(|e| e.to_string())
+}
+
+#[derive(Args)]
 struct BenchArgs {
     #[command(flatten)]
     scene: SceneArgs,
@@ -157,6 +188,18 @@ struct BenchArgs {
     /// Print JSON instead of a table
     #[arg(long)]
     json: bool,
+}
+
+impl ViewArgs {
+    /// The viewer's arguments when `ssdo` is run without a command.
+    fn parse_default() -> Self {
+        #[derive(Parser)]
+        struct Only {
+            #[command(flatten)]
+            view: ViewArgs,
+        }
+        Only::parse_from(["ssdo"]).view
+    }
 }
 
 fn non_negative(name: &str, value: f32) -> Result<f32> {
@@ -218,28 +261,9 @@ impl RenderArgs {
             exposure: non_negative("exposure", self.exposure)?,
             ambient: non_negative("ambient", self.ambient.unwrap_or(base.ambient))?,
             sky_scale: non_negative("sky-scale", self.sky_scale)?,
+            view: self.view,
         })
     }
-}
-
-/// The caption of a mode's panel in the comparison image.
-fn caption(renderer: &Renderer, scene: &Scene, sky: &str) -> Vec<String> {
-    let s = &renderer.settings;
-    let mut lines =
-        vec![format!("{}  [{}]", s.mode.title(), Mode::ALL.iter().position(|m| *m == s.mode).unwrap_or(0) + 1)];
-    if s.mode != Mode::Off {
-        lines.push(format!(
-            "{} variant, {} samples, radius {:.3}, {}",
-            s.variant,
-            s.samples,
-            renderer.radius(),
-            if s.blur { "blurred" } else { "no blur" }
-        ));
-    } else {
-        lines.push("ambient + point lights, no occlusion".into());
-    }
-    lines.push(format!("sky {sky}, {} lights, ambient {}", scene.lights.len(), s.ambient));
-    lines
 }
 
 fn run_capture(args: &CaptureArgs) -> Result<()> {
@@ -266,7 +290,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         output::save_png(&path, &image)?;
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
         println!("wrote {}", path.display());
-        panels.push((caption(&renderer, &scene, &sky.name), image));
+        panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
     }
     if panels.len() > 1 {
         let path = args.out.join("compare.png");
@@ -416,14 +440,35 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
+fn run_view(args: ViewArgs) -> Result<()> {
+    let size = (args.size.0, args.size.1);
+    if size.0 == 0 || size.1 == 0 {
+        return Err(Error::Setting(format!("--size {}x{}: both sides must be at least 1", size.0, size.1)));
+    }
+    let settings = args.render.settings(args.mode)?;
+    let ViewArgs { scene, screenshot_dir, .. } = args;
+    ssdo::app::run(ssdo::app::ViewerOptions {
+        model: scene.model.clone(),
+        skybox: scene.skybox.clone(),
+        lights: scene.lights,
+        seed: scene.seed,
+        settings,
+        size,
+        screenshot_dir,
+        camera: Box::new(move |s| scene.camera(s)),
+    })
+}
+
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,ssdo=info"))
         .format_timestamp(None)
         .init();
     let cli = Cli::parse();
-    let result = match &cli.command {
-        Command::Capture(args) => run_capture(args),
-        Command::Bench(args) => run_bench(args),
+    let result = match cli.command {
+        Some(Command::Capture(args)) => run_capture(&args),
+        Some(Command::Bench(args)) => run_bench(&args),
+        Some(Command::View(args)) => run_view(args),
+        None => run_view(ViewArgs::parse_default()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

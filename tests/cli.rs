@@ -155,3 +155,12 @@ fn sampling_settings_are_validated() {
     assert_eq!(result.status.code(), Some(2));
     assert!(stderr(&result).contains("fancy"));
 }
+
+#[test]
+fn viewer_refuses_bad_input_before_opening_a_window() {
+    let result = ssdo(&["view", "--model", "no/such/model.obj"]);
+    assert_eq!(result.status.code(), Some(3), "{}", stderr(&result));
+    assert!(error_line(&result).contains("no/such/model.obj"), "{}", stderr(&result));
+    let result = ssdo(&["view", "--size", "0x100"]);
+    assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
+}

@@ -10,7 +10,7 @@ struct Frame {
     viewport: vec4<f32>,
     // near, far (0 = infinite), exposure, smallest light distance squared
     camera: vec4<f32>,
-    // ambient radiance (rgb), unused
+    // ambient radiance (rgb), orbit distance of the camera (for the depth view)
     ambient: vec4<f32>,
     // sky radiance scale, sky mip count, unused, unused
     sky: vec4<f32>,

@@ -10,30 +10,43 @@ use crate::{Error, Result};
 /// The output format of offscreen captures.
 pub const CAPTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
-/// An offscreen output texture of the renderer's size.
+/// An offscreen output texture of the renderer's size, in the capture format.
 pub fn output_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
+    output_texture_as(gpu, size, CAPTURE_FORMAT)
+}
+
+fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("capture_output"),
         size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: CAPTURE_FORMAT,
+        format,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     })
 }
 
-/// Renders one frame of the current plan and returns it as an sRGB image.
+/// Renders one frame of the current plan and returns it as an sRGB image. Works with any 8-bit
+/// RGBA or BGRA output format (a window's surface format), so the viewer's renderer can capture.
 pub fn capture(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
     let size = renderer.size();
-    let texture = output_texture(gpu, size);
+    let format = renderer.output_format();
+    let texture = output_texture_as(gpu, size, format);
     let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
     let mut encoder =
         gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("capture_encoder") });
     renderer.encode(gpu, &mut encoder, camera, &view);
     gpu.queue.submit([encoder.finish()]);
-    let bytes = read_texture(gpu, &texture)?;
+    let mut bytes = read_texture(gpu, &texture)?;
+    match format {
+        wgpu::TextureFormat::Rgba8UnormSrgb | wgpu::TextureFormat::Rgba8Unorm => {}
+        wgpu::TextureFormat::Bgra8UnormSrgb | wgpu::TextureFormat::Bgra8Unorm => {
+            bytes.chunks_exact_mut(4).for_each(|p| p.swap(0, 2))
+        }
+        other => return Err(Error::Gpu(format!("cannot capture from a {other:?} output"))),
+    }
     image::RgbaImage::from_raw(size.0, size.1, bytes)
         .ok_or_else(|| Error::Gpu("readback returned the wrong number of bytes".into()))
 }

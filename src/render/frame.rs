@@ -113,7 +113,7 @@ impl FrameData {
             view_to_world: mat(world_to_view.inverse()),
             viewport: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
             camera: [camera.near, camera.far.unwrap_or(0.0), inputs.exposure, rig.min_distance.powi(2)],
-            ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, 0.0],
+            ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, camera.distance],
             sky: [inputs.sky_scale, inputs.sky_mips as f32, 0.0, 0.0],
             shading: inputs.shading,
             counts: [lights.len() as u32, self.frame_index, 0, 0],

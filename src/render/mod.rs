@@ -33,6 +33,73 @@ use passes::tonemap::TonemapPass;
 use targets::Targets;
 use timing::GpuTimer;
 
+/// What the window shows: the final image or one of the intermediate buffers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum View {
+    #[default]
+    Final,
+    Albedo,
+    Normals,
+    Depth,
+    Ao,
+    /// SSDO's sky light alone (the bounce's strength set to 0).
+    DoDirect,
+    /// SSDO's one-bounce indirect light alone (the sky's strength set to 0).
+    DoIndirect,
+    /// The final image with every albedo white: light and occlusion without surface colour.
+    LightingOnly,
+}
+
+impl View {
+    pub const ALL: [View; 8] = [
+        View::Final,
+        View::Albedo,
+        View::Normals,
+        View::Depth,
+        View::Ao,
+        View::DoDirect,
+        View::DoIndirect,
+        View::LightingOnly,
+    ];
+
+    /// Name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Final => "final",
+            View::Albedo => "albedo",
+            View::Normals => "normals",
+            View::Depth => "depth",
+            View::Ao => "ao",
+            View::DoDirect => "do-direct",
+            View::DoIndirect => "do-indirect",
+            View::LightingOnly => "lighting",
+        }
+    }
+
+    pub fn title(self) -> &'static str {
+        match self {
+            View::Final => "final image",
+            View::Albedo => "albedo",
+            View::Normals => "normals",
+            View::Depth => "depth",
+            View::Ao => "AO",
+            View::DoDirect => "DO direct (sky)",
+            View::DoIndirect => "DO indirect (bounce)",
+            View::LightingOnly => "lighting only",
+        }
+    }
+}
+
+impl std::str::FromStr for View {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> Result<Self> {
+        View::ALL.into_iter().find(|v| v.name().eq_ignore_ascii_case(s)).ok_or_else(|| {
+            let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
+            crate::Error::Setting(format!("unknown view '{s}' (expected one of {})", names.join(", ")))
+        })
+    }
+}
+
 /// What the user can change without reloading anything. The renderer follows changes on the
 /// next frame, rebuilding only what the change affects (a mode or blur switch re-plans).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,6 +128,8 @@ pub struct Settings {
     pub ambient: f32,
     /// Multiplies the sky's radiance (the background and, in SSDO, the sky light).
     pub sky_scale: f32,
+    /// What is shown.
+    pub view: View,
 }
 
 impl Default for Settings {
@@ -79,6 +148,7 @@ impl Default for Settings {
             exposure: 1.0,
             ambient: 0.25,
             sky_scale: 1.0,
+            view: View::Final,
         }
     }
 }
@@ -93,8 +163,8 @@ impl Settings {
 pub struct Renderer {
     pub settings: Settings,
     plan: Plan,
-    /// The variant the passes were last prepared for.
-    prepared_variant: Variant,
+    /// The variant and view the passes were last prepared for.
+    prepared: (Variant, View),
     lights: Vec<PointLight>,
     rig: LightRig,
     /// Default sampling radius of the current scene.
@@ -115,6 +185,8 @@ pub struct Renderer {
     skybox: SkyboxPass,
     light_cubes: LightCubesPass,
     tonemap: TonemapPass,
+    /// Format of what `encode` draws into.
+    output: wgpu::TextureFormat,
     timer: Option<GpuTimer>,
 }
 
@@ -140,7 +212,7 @@ impl Renderer {
         let unused = targets::Target::new(device, "unused_input", (1, 1), targets::DO_FORMAT).view;
         let mut renderer = Self {
             settings,
-            prepared_variant: settings.variant,
+            prepared: (settings.variant, settings.view),
             lights: scene.lights.clone(),
             rig: scene.rig,
             scene_radius: scene.default_radius(),
@@ -151,7 +223,8 @@ impl Renderer {
             composite: CompositePass::new(device, &frame.layout)?,
             skybox: SkyboxPass::new(device, &frame.layout, &sky_layout)?,
             light_cubes: LightCubesPass::new(device, &frame.layout)?,
-            tonemap: TonemapPass::new(device, &frame.layout, &targets, output)?,
+            tonemap: TonemapPass::new(device, &frame.layout, output)?,
+            output,
             plan,
             frame,
             sky_layout,
@@ -175,6 +248,11 @@ impl Renderer {
         self.targets.size
     }
 
+    /// The format `encode` draws into.
+    pub fn output_format(&self) -> wgpu::TextureFormat {
+        self.output
+    }
+
     pub fn targets(&self) -> &Targets {
         &self.targets
     }
@@ -186,7 +264,7 @@ impl Renderer {
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
-        } else if self.settings.variant != self.prepared_variant {
+        } else if (self.settings.variant, self.settings.view) != self.prepared {
             self.prepare_passes(gpu);
         }
     }
@@ -200,13 +278,14 @@ impl Renderer {
     /// Rebuilds the passes' bind groups for the targets, and their pipelines where the plan or
     /// variant asks for a different one.
     fn prepare_passes(&mut self, gpu: &Gpu) {
-        let (device, t, plan, variant) = (&gpu.device, &self.targets, &self.plan, self.settings.variant);
+        let (device, t, plan) = (&gpu.device, &self.targets, &self.plan);
+        let (variant, view) = (self.settings.variant, self.settings.view);
         self.lighting.resize(device, t);
         self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused);
         self.blur.prepare(device, t, plan, variant, &self.occlusion_data);
-        self.composite.prepare(device, t, plan, variant, &self.unused);
-        self.tonemap.resize(device, t);
-        self.prepared_variant = variant;
+        self.composite.prepare(device, t, plan, variant, view == View::LightingOnly, &self.unused);
+        self.tonemap.prepare(device, t, plan, view, &self.unused);
+        self.prepared = (variant, view);
     }
 
     pub fn set_mode(&mut self, gpu: &Gpu, mode: Mode) {
@@ -288,6 +367,18 @@ impl Renderer {
         camera: &OrbitCamera,
         output: &wgpu::TextureView,
     ) {
+        self.encode_at(gpu, encoder, camera, output, (0, 0));
+    }
+
+    /// Like [`Renderer::encode`], drawing the image at `origin` of a larger `output`.
+    pub fn encode_at(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &OrbitCamera,
+        output: &wgpu::TextureView,
+        origin: (u32, u32),
+    ) {
         self.apply(gpu);
         let s = self.settings;
         let inputs = FrameInputs {
@@ -308,8 +399,8 @@ impl Renderer {
                 radius,
                 bias: s.bias * radius,
                 sky_mip: kernel::sky_mip_level(self.sky.size, samples),
-                sky_strength: s.sky_strength,
-                indirect_strength: s.indirect_strength,
+                sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
+                indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
             };
             self.occlusion_data.update(&gpu.queue, &params);
         }
@@ -333,7 +424,7 @@ impl Renderer {
                 // Lights as emissive cubes.
                 Step::LightCubes => self.light_cubes.encode(encoder, ts, t, frame, self.lights.len() as u32),
                 // HDR to display.
-                Step::Tonemap => self.tonemap.encode(encoder, ts, frame, output),
+                Step::Tonemap => self.tonemap.encode(encoder, ts, t, frame, output, origin),
             }
             encoder.pop_debug_group();
         }

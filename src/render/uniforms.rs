@@ -16,7 +16,7 @@ pub struct FrameUniforms {
     pub viewport: [f32; 4],
     /// near, far (0 = infinite), exposure, smallest light distance squared
     pub camera: [f32; 4],
-    /// ambient radiance rgb, unused
+    /// ambient radiance rgb, orbit distance of the camera (for the depth view)
     pub ambient: [f32; 4],
     /// sky radiance scale, sky mip count, unused, unused
     pub sky: [f32; 4],

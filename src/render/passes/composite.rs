@@ -17,16 +17,18 @@ struct Key {
     ao: bool,
     directional: bool,
     classic: bool,
+    white_albedo: bool,
 }
 
 impl Key {
-    fn of(plan: &Plan, variant: Variant) -> Self {
+    fn of(plan: &Plan, variant: Variant, white_albedo: bool) -> Self {
         Self {
             light_loop: plan.light_loop(),
             additive: plan.has(Step::Lighting),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
             classic: variant == Variant::Classic,
+            white_albedo,
         }
     }
 }
@@ -52,15 +54,17 @@ impl CompositePass {
     }
 
     /// Builds the pipeline the plan needs (if it changed) and the bind group for `targets`.
+    /// `white_albedo` is the "lighting only" view: every surface white.
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
         targets: &Targets,
         plan: &Plan,
         variant: Variant,
+        white_albedo: bool,
         unused: &wgpu::TextureView,
     ) {
-        let key = Key::of(plan, variant);
+        let key = Key::of(plan, variant, white_albedo);
         if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
             let f = |b: bool| b as u8 as f64;
             let blend = key.additive.then_some(wgpu::BlendState {
@@ -90,6 +94,7 @@ impl CompositePass {
                         ("HAS_DO", f(key.directional)),
                         ("AO_IN_DO", f(key.directional)),
                         ("CLASSIC", f(key.classic)),
+                        ("WHITE_ALBEDO", f(key.white_albedo)),
                     ],
                 },
             );

@@ -1,64 +1,119 @@
 //! Tone mapping: linear HDR → exposure → ACES filmic curve → sRGB into the output (the capture
 //! texture or the window's surface). For an sRGB output format the hardware encodes; for a
-//! linear one the shader does (`OUTPUT_SRGB = false`).
+//! linear one the shader does (`OUTPUT_SRGB = false`). The debug views (G-buffer channels, AO, DO)
+//! are variants of this pass, so showing one costs no extra pass.
 
-use super::super::targets::Targets;
-use super::{color_attachment, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc};
+use super::super::modes::Plan;
+use super::super::targets::{view_or, Targets};
+use super::super::View;
+use super::{color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc};
 use crate::{shaders, Result};
 
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Key {
+    view: u32,
+    ao: bool,
+    directional: bool,
+}
+
+impl Key {
+    fn of(plan: &Plan, view: View) -> Self {
+        let code = match view {
+            View::Final | View::LightingOnly => 0,
+            View::Albedo => 1,
+            View::Normals => 2,
+            View::Depth => 3,
+            View::Ao => 4,
+            View::DoDirect | View::DoIndirect => 5,
+        };
+        Self { view: code, ao: plan.decl.ambient_occlusion, directional: plan.decl.directional_occlusion }
+    }
+}
+
 pub struct TonemapPass {
+    module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
+    frame_layout: wgpu::BindGroupLayout,
+    output: wgpu::TextureFormat,
+    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    bind_group: Option<wgpu::BindGroup>,
 }
 
 impl TonemapPass {
     pub fn new(
         device: &wgpu::Device,
         frame_layout: &wgpu::BindGroupLayout,
-        targets: &Targets,
         output: wgpu::TextureFormat,
     ) -> Result<Self> {
         let module = shaders::module(device, "tonemap.wgsl")?;
+        let float = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tonemap_layout"),
-            entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2)],
+            entries: &[float(0), float(1), float(2), depth_entry(3), float(4), float(5)],
         });
-        let pipeline = fullscreen_pipeline(
-            device,
-            &FullscreenDesc {
-                label: "tonemap_pipeline",
-                module: &module,
-                bind_group_layouts: &[Some(frame_layout), Some(&layout)],
-                entry: "fs_main",
-                targets: &[Some(output.into())],
-                depth: None,
-                constants: &[("OUTPUT_SRGB", output.is_srgb() as u8 as f64)],
-            },
-        );
-        let bind_group = Self::bind_group(device, &layout, targets);
-        Ok(Self { layout, pipeline, bind_group })
+        Ok(Self { module, layout, frame_layout: frame_layout.clone(), output, pipeline: None, bind_group: None })
     }
 
-    fn bind_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, targets: &Targets) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
+    /// Builds the pipeline for the plan and view (if it changed) and the bind group for `targets`.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        targets: &Targets,
+        plan: &Plan,
+        view: View,
+        unused: &wgpu::TextureView,
+    ) {
+        let key = Key::of(plan, view);
+        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+            let f = |b: bool| b as u8 as f64;
+            let pipeline = fullscreen_pipeline(
+                device,
+                &FullscreenDesc {
+                    label: "tonemap_pipeline",
+                    module: &self.module,
+                    entry: "fs_main",
+                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    targets: &[Some(self.output.into())],
+                    depth: None,
+                    constants: &[
+                        ("OUTPUT_SRGB", f(self.output.is_srgb())),
+                        ("VIEW", key.view as f64),
+                        ("HAS_AO", f(key.ao)),
+                        ("HAS_DO", f(key.directional)),
+                        ("AO_IN_DO", f(key.directional)),
+                    ],
+                },
+            );
+            self.pipeline = Some((key, pipeline));
+        }
+        let occlusion = targets.occlusion();
+        let views = [
+            &targets.hdr.view,
+            &targets.albedo.view,
+            &targets.normal.view,
+            &targets.depth.view,
+            view_or(&occlusion.ao, unused),
+            view_or(&occlusion.directional, unused),
+        ];
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("tonemap_bind_group"),
-            layout,
-            entries: &view_entries(&[&targets.hdr.view]),
-        })
+            layout: &self.layout,
+            entries: &view_entries(&views),
+        }));
     }
 
-    pub fn resize(&mut self, device: &wgpu::Device, targets: &Targets) {
-        self.bind_group = Self::bind_group(device, &self.layout, targets);
-    }
-
+    /// Draws into `output`, at `origin` (the top-left corner of the 3D view) when the output is
+    /// larger than the targets (a window with a side panel).
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        targets: &Targets,
         frame: &wgpu::BindGroup,
         output: &wgpu::TextureView,
+        origin: (u32, u32),
     ) {
+        let (Some((_, pipeline)), Some(bind_group)) = (&self.pipeline, &self.bind_group) else { return };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("tonemap_pass"),
             color_attachments: &[color_attachment(output, true)],
@@ -67,9 +122,11 @@ impl TonemapPass {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
+        let (w, h) = targets.size;
+        pass.set_viewport(origin.0 as f32, origin.1 as f32, w as f32, h as f32, 0.0, 1.0);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, &self.bind_group, &[]);
+        pass.set_bind_group(1, bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
 }

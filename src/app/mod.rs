@@ -1,0 +1,467 @@
+//! The interactive viewer: a winit window with the renderer on the right and an egui panel on the
+//! left. Keys 1-4 switch modes, F12 writes a screenshot of the 3D view, C a labelled comparison
+//! of the four modes, R resets the camera, Escape quits. Skies and models load off the render
+//! thread; a failed load shows its message and keeps what was on screen.
+
+mod controls;
+mod loader;
+mod ui;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, KeyEvent, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+use crate::gpu::{instance_descriptor, Gpu};
+use crate::render::capture::capture;
+use crate::render::{Mode, Renderer, Settings};
+use crate::scene::{self, OrbitCamera, Scene, Skybox};
+use crate::{compare, output, Error, Result};
+use controls::CameraControls;
+use loader::{Loaded, Loader};
+use ui::{Action, PanelState, PANEL_WIDTH};
+
+/// What the viewer starts with.
+pub struct ViewerOptions {
+    pub model: Option<PathBuf>,
+    pub skybox: Option<PathBuf>,
+    pub lights: usize,
+    pub seed: u64,
+    pub settings: Settings,
+    /// Window size in physical pixels (panel included).
+    pub size: (u32, u32),
+    pub screenshot_dir: PathBuf,
+    /// Applies the command line's camera flags to the framing of the model.
+    pub camera: Box<dyn Fn(&Scene) -> Result<OrbitCamera>>,
+}
+
+/// Opens the window and runs until it is closed.
+pub fn run(options: ViewerOptions) -> Result<()> {
+    // Load before opening the window: a bad file is an error on the command line, not a window.
+    let model = scene::load_model(options.model.as_deref())?;
+    let sky = scene::load_skybox(options.skybox.as_deref())?;
+    let scene = Scene::new(model, options.lights, options.seed);
+    let camera = (options.camera)(&scene)?;
+    let event_loop = EventLoop::new().map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut app = App { options, start: Some((scene, sky, camera)), viewer: None, failure: None };
+    event_loop.run_app(&mut app).map_err(|e| Error::Gpu(format!("window event loop: {e}")))?;
+    app.failure.map_or(Ok(()), Err)
+}
+
+struct App {
+    options: ViewerOptions,
+    start: Option<(Scene, Skybox, OrbitCamera)>,
+    viewer: Option<Viewer>,
+    failure: Option<Error>,
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        let Some((scene, sky, camera)) = self.start.take() else { return };
+        match Viewer::new(event_loop, &self.options, scene, sky, camera) {
+            Ok(viewer) => self.viewer = Some(viewer),
+            Err(e) => {
+                self.failure = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(viewer) = &mut self.viewer else { return };
+        if let Err(e) = viewer.event(event_loop, event) {
+            self.failure = Some(e);
+            event_loop.exit();
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(viewer) = &self.viewer {
+            viewer.window.request_redraw();
+        }
+    }
+}
+
+struct Viewer {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    gpu: Gpu,
+    renderer: Renderer,
+    scene: Scene,
+    camera: OrbitCamera,
+    home: OrbitCamera,
+    controls: CameraControls,
+    loader: Loader,
+    egui: egui_winit::State,
+    egui_renderer: egui_wgpu::Renderer,
+    panel: PanelState,
+    screenshot_dir: PathBuf,
+    /// Cursor position in physical pixels.
+    cursor: (f64, f64),
+    last_frame: Instant,
+}
+
+fn timestamp() -> String {
+    let now = jiff::Timestamp::now();
+    let zoned = now.to_zoned(jiff::tz::TimeZone::UTC);
+    format!("{}-{:03}", zoned.strftime("%Y%m%d-%H%M%S"), zoned.millisecond())
+}
+
+impl Viewer {
+    fn new(
+        event_loop: &ActiveEventLoop,
+        options: &ViewerOptions,
+        scene: Scene,
+        sky: Skybox,
+        camera: OrbitCamera,
+    ) -> Result<Self> {
+        let attributes = Window::default_attributes()
+            .with_title("ssdo — screen-space directional occlusion")
+            .with_inner_size(PhysicalSize::new(options.size.0, options.size.1));
+        let window = Arc::new(
+            event_loop.create_window(attributes).map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?,
+        );
+        let descriptor =
+            wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(event_loop.owned_display_handle()));
+        let instance = wgpu::Instance::new(instance_descriptor(descriptor));
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| Error::Gpu(format!("cannot draw into the window: {e}")))?;
+        let gpu = Gpu::from_instance(instance, Some(&surface))?;
+        let caps = surface.get_capabilities(&gpu.adapter);
+        // egui blends in gamma space and wants a non-sRGB target; the tone-map pass then does the
+        // sRGB encoding itself (OUTPUT_SRGB = false).
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| matches!(f, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm))
+            .or(caps.formats.first().copied())
+            .ok_or_else(|| Error::Gpu("the window offers no surface format".into()))?;
+        let size = window.inner_size();
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            width: size.width.max(1),
+            height: size.height.max(1),
+            present_mode: wgpu::PresentMode::AutoVsync,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            view_formats: vec![],
+            color_space: wgpu::SurfaceColorSpace::Auto,
+        };
+        surface.configure(&gpu.device, &config);
+        let scale = window.scale_factor() as f32;
+        let view = Self::view_size(size, scale);
+        let mut renderer = Renderer::new(&gpu, &scene, &sky, view, format, options.settings)?;
+        let timing = renderer.enable_timing(&gpu);
+
+        let egui_ctx = egui::Context::default();
+        let max_texture = gpu.device.limits().max_texture_dimension_2d as usize;
+        let egui =
+            egui_winit::State::new(egui_ctx, egui::ViewportId::ROOT, &window, Some(scale), None, Some(max_texture));
+        let egui_renderer = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
+        let panel = PanelState {
+            sky_path: String::new(),
+            model_path: String::new(),
+            sky_folders: loader::skybox_folders(),
+            lights: options.lights,
+            seed: options.seed,
+            messages: Vec::new(),
+            timings: Vec::new(),
+            frame_ms: 0.0,
+            timing_source: if timing { "timestamp queries" } else { "not available on this adapter" },
+            adapter: gpu.describe(),
+            model_name: scene.model.name.clone(),
+            sky_name: sky.name.clone(),
+            loading: false,
+        };
+        Ok(Self {
+            window,
+            surface,
+            config,
+            gpu,
+            renderer,
+            scene,
+            home: camera,
+            camera,
+            controls: CameraControls::default(),
+            loader: Loader::default(),
+            egui,
+            egui_renderer,
+            panel,
+            screenshot_dir: options.screenshot_dir.clone(),
+            cursor: (0.0, 0.0),
+            last_frame: Instant::now(),
+        })
+    }
+
+    /// The 3D view's size: the window less the panel, at least one pixel each way.
+    fn view_size(window: PhysicalSize<u32>, scale: f32) -> (u32, u32) {
+        let panel = (PANEL_WIDTH * scale).round() as u32;
+        (window.width.saturating_sub(panel).max(1), window.height.max(1))
+    }
+
+    fn panel_pixels(&self) -> u32 {
+        (PANEL_WIDTH * self.window.scale_factor() as f32).round() as u32
+    }
+
+    fn event(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) -> Result<()> {
+        let response = self.egui.on_window_event(&self.window, &event);
+        let over_view = self.cursor.0 >= self.panel_pixels() as f64;
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => self.resize(size),
+            WindowEvent::ScaleFactorChanged { .. } => self.resize(self.window.inner_size()),
+            WindowEvent::RedrawRequested => self.redraw()?,
+            WindowEvent::DroppedFile(path) => self.drop_file(path),
+            WindowEvent::KeyboardInput {
+                event:
+                    KeyEvent { physical_key: PhysicalKey::Code(key), state: ElementState::Pressed, repeat: false, .. },
+                ..
+            } if !self.egui.egui_ctx().egui_wants_keyboard_input() => self.key(event_loop, key),
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = (position.x, position.y);
+                let height = self.renderer.size().1;
+                self.controls.moved(&mut self.camera, position.x, position.y, height);
+            }
+            WindowEvent::MouseInput { button, state, .. } => {
+                self.controls.button(button, state, over_view && !response.consumed);
+            }
+            WindowEvent::MouseWheel { delta, .. } if over_view && !response.consumed => {
+                self.controls.wheel(&mut self.camera, delta);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
+        let mode = match key {
+            KeyCode::Digit1 | KeyCode::Numpad1 => Some(Mode::Off),
+            KeyCode::Digit2 | KeyCode::Numpad2 => Some(Mode::Ssao),
+            KeyCode::Digit3 | KeyCode::Numpad3 => Some(Mode::Ssdo),
+            KeyCode::Digit4 | KeyCode::Numpad4 => Some(Mode::Both),
+            _ => None,
+        };
+        if let Some(mode) = mode {
+            return self.act(Action::Mode(mode));
+        }
+        match key {
+            KeyCode::F12 => self.act(Action::Screenshot),
+            KeyCode::KeyC => self.act(Action::Compare),
+            KeyCode::KeyR => self.act(Action::ResetCamera),
+            KeyCode::Escape => event_loop.exit(),
+            _ => {}
+        }
+    }
+
+    fn drop_file(&mut self, path: PathBuf) {
+        if path.is_dir() {
+            self.act(Action::LoadSky(path));
+        } else if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+            self.act(Action::LoadModel(path));
+        } else {
+            self.panel.say(format!("{}: drop a skybox folder or an .obj file", path.display()), true);
+        }
+    }
+
+    fn resize(&mut self, size: PhysicalSize<u32>) {
+        // A minimised window is 0x0: keep everything as it is until it comes back.
+        if size.width == 0 || size.height == 0 {
+            return;
+        }
+        self.config.width = size.width;
+        self.config.height = size.height;
+        self.surface.configure(&self.gpu.device, &self.config);
+        let (w, h) = Self::view_size(size, self.window.scale_factor() as f32);
+        if let Err(e) = self.renderer.resize(&self.gpu, w, h) {
+            self.panel.say(e.to_string(), true);
+        }
+    }
+
+    fn act(&mut self, action: Action) {
+        match action {
+            Action::Mode(mode) => {
+                self.renderer.settings.mode = mode;
+                self.window.set_title(&format!("ssdo — {}", mode.title()));
+            }
+            Action::LoadSky(path) => {
+                self.panel.say(format!("loading sky {}", path.display()), false);
+                self.loader.sky(path);
+            }
+            Action::LoadModel(path) => {
+                self.panel.say(format!("loading model {}", path.display()), false);
+                self.loader.model(path);
+            }
+            Action::Relight { lights, seed } => {
+                self.scene.relight(lights, seed);
+                self.renderer.set_lights(&self.gpu, self.scene.lights.clone());
+            }
+            Action::ResetCamera => self.camera = self.home,
+            Action::Screenshot => {
+                let path = self.screenshot_dir.join(format!(
+                    "screenshot-{}-{}.png",
+                    timestamp(),
+                    self.renderer.settings.mode.name()
+                ));
+                let result = capture(&self.gpu, &mut self.renderer, &self.camera)
+                    .and_then(|image| output::save_png(&path, &image));
+                match result {
+                    Ok(()) => self.panel.say(format!("saved {}", path.display()), false),
+                    Err(e) => self.panel.say(format!("screenshot failed: {e}"), true),
+                }
+            }
+            Action::Compare => match self.compare() {
+                Ok(path) => self.panel.say(format!("saved {}", path.display()), false),
+                Err(e) => self.panel.say(format!("comparison failed: {e}"), true),
+            },
+        }
+    }
+
+    /// The four modes of the current view, rendered offscreen at the 3D view's size.
+    fn compare(&mut self) -> Result<PathBuf> {
+        let mode = self.renderer.settings.mode;
+        let mut panels = Vec::new();
+        for m in Mode::ALL {
+            self.renderer.set_mode(&self.gpu, m);
+            let image = capture(&self.gpu, &mut self.renderer, &self.camera);
+            let caption = compare::caption(
+                &self.renderer.settings,
+                self.renderer.radius(),
+                &self.panel.sky_name,
+                self.scene.lights.len(),
+            );
+            match image {
+                Ok(image) => panels.push((caption, image)),
+                Err(e) => {
+                    self.renderer.set_mode(&self.gpu, mode);
+                    return Err(e);
+                }
+            }
+        }
+        self.renderer.set_mode(&self.gpu, mode);
+        let path = self.screenshot_dir.join(format!("compare-{}.png", timestamp()));
+        output::save_png(&path, &compare::grid(&panels))?;
+        Ok(path)
+    }
+
+    /// Applies finished loads: the old sky or model stays unless the new one is complete.
+    fn apply_loads(&mut self) {
+        for loaded in self.loader.finished() {
+            match loaded {
+                Loaded::Sky(path, Ok(sky)) => match self.renderer.set_sky(&self.gpu, &sky) {
+                    Ok(()) => {
+                        self.panel.sky_name = sky.name.clone();
+                        self.panel.say(format!("sky {} loaded", path.display()), false);
+                    }
+                    Err(e) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
+                },
+                Loaded::Model(path, Ok(model)) => {
+                    let warnings = model.warnings.len();
+                    self.scene = Scene::new(model, self.panel.lights, self.panel.seed);
+                    self.renderer.set_scene(&self.gpu, &self.scene);
+                    self.home = OrbitCamera::framing(&self.scene.model.bounds);
+                    self.camera = self.home;
+                    self.panel.model_name = self.scene.model.name.clone();
+                    self.panel
+                        .say(format!("model {} loaded ({warnings} warnings, see the log)", path.display()), false);
+                }
+                Loaded::Sky(_, Err(e)) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
+                Loaded::Model(_, Err(e)) => {
+                    self.panel.say(format!("{e}; keeping model {}", self.panel.model_name), true)
+                }
+            }
+        }
+        self.panel.loading = self.loader.busy();
+    }
+
+    fn redraw(&mut self) -> Result<()> {
+        self.apply_loads();
+        let size = self.window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(());
+        }
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
+            wgpu::CurrentSurfaceTexture::Outdated
+            | wgpu::CurrentSurfaceTexture::Lost
+            | wgpu::CurrentSurfaceTexture::Validation => {
+                self.surface.configure(&self.gpu.device, &self.config);
+                return Ok(());
+            }
+        };
+        let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
+
+        // The panel first: it may change settings for this frame.
+        let input = self.egui.take_egui_input(&self.window);
+        let default_radius = self.scene.default_radius();
+        let ctx = self.egui.egui_ctx().clone();
+        let mut actions = Vec::new();
+        let mut full = ctx
+            .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
+        let mut textures = std::mem::take(&mut full.textures_delta);
+        self.egui.handle_platform_output(&self.window, full.platform_output);
+        for action in actions {
+            self.act(action);
+        }
+
+        let mut encoder =
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer_frame") });
+        self.renderer.encode_at(&self.gpu, &mut encoder, &self.camera, &target, (self.panel_pixels(), 0));
+
+        let pixels_per_point = full.pixels_per_point;
+        let jobs = ctx.tessellate(full.shapes, pixels_per_point);
+        for (id, deltas) in textures.set.drain() {
+            for delta in &deltas {
+                self.egui_renderer.update_texture(&self.gpu.device, &self.gpu.queue, id, delta);
+            }
+        }
+        let screen =
+            egui_wgpu::ScreenDescriptor { size_in_pixels: [self.config.width, self.config.height], pixels_per_point };
+        let extra = self.egui_renderer.update_buffers(&self.gpu.device, &self.gpu.queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui_pass"),
+                color_attachments: &[crate::render::passes::color_attachment(&target, false)],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
+        for id in textures.free.drain() {
+            self.egui_renderer.free_texture(&id);
+        }
+        self.gpu.queue.present(frame);
+
+        if let Some(steps) = self.renderer.read_timings(&self.gpu)? {
+            let names: Vec<(&'static str, f64)> =
+                steps.iter().map(|(step, ms)| (step.name_in(self.renderer.plan().mode), *ms)).collect();
+            self.panel.record_timings(&names);
+        }
+        let elapsed = self.last_frame.elapsed().as_secs_f64() * 1e3;
+        self.last_frame = Instant::now();
+        self.panel.frame_ms = 0.9 * self.panel.frame_ms + 0.1 * elapsed;
+        if let Err(e) = self.gpu.check() {
+            self.panel.say(e.to_string(), true);
+        }
+        Ok(())
+    }
+}
+
+/// Where screenshots go by default.
+pub fn default_screenshot_dir() -> &'static Path {
+    Path::new("screenshots")
+}

@@ -1,0 +1,214 @@
+//! The egui side panel: modes, variant and debug view, sampling parameters, lights, sky and
+//! model, camera, screenshots, per-pass GPU timings and the last messages. Drawing the panel
+//! changes the settings in place and returns the actions that need the application.
+
+use std::path::PathBuf;
+
+use crate::render::{Mode, Settings, Variant, View};
+
+/// Width of the side panel in logical pixels; the 3D view fills the rest of the window.
+pub const PANEL_WIDTH: f32 = 300.0;
+
+/// Something the panel asks the application to do.
+pub enum Action {
+    Mode(Mode),
+    LoadSky(PathBuf),
+    LoadModel(PathBuf),
+    Relight { lights: usize, seed: u64 },
+    ResetCamera,
+    Screenshot,
+    Compare,
+}
+
+/// A line for the user: what happened, or what went wrong.
+pub struct Message {
+    pub text: String,
+    pub error: bool,
+}
+
+/// What the panel keeps between frames.
+pub struct PanelState {
+    pub sky_path: String,
+    pub model_path: String,
+    pub sky_folders: Vec<PathBuf>,
+    pub lights: usize,
+    pub seed: u64,
+    pub messages: Vec<Message>,
+    /// Smoothed GPU milliseconds per pass, and of the whole frame.
+    pub timings: Vec<(&'static str, f64)>,
+    pub frame_ms: f64,
+    pub timing_source: &'static str,
+    /// Facts shown at the top: adapter, model, sky.
+    pub adapter: String,
+    pub model_name: String,
+    pub sky_name: String,
+    pub loading: bool,
+}
+
+impl PanelState {
+    pub fn say(&mut self, text: impl Into<String>, error: bool) {
+        let text = text.into();
+        if error {
+            log::error!("{text}");
+        } else {
+            log::info!("{text}");
+        }
+        self.messages.push(Message { text, error });
+        let excess = self.messages.len().saturating_sub(4);
+        self.messages.drain(..excess);
+    }
+
+    /// Folds one frame's per-pass times into the smoothed ones.
+    pub fn record_timings(&mut self, passes: &[(&'static str, f64)]) {
+        let names_changed =
+            self.timings.len() != passes.len() || self.timings.iter().zip(passes).any(|(a, b)| a.0 != b.0);
+        if names_changed {
+            self.timings = passes.to_vec();
+        } else {
+            for (smooth, (_, ms)) in self.timings.iter_mut().zip(passes) {
+                smooth.1 = 0.9 * smooth.1 + 0.1 * ms;
+            }
+        }
+    }
+}
+
+fn slider(ui: &mut egui::Ui, value: &mut f32, range: std::ops::RangeInclusive<f32>, text: &str) {
+    ui.add(egui::Slider::new(value, range).text(text));
+}
+
+/// Draws the panel; returns what the application has to do.
+pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) -> Vec<Action> {
+    let mut actions = Vec::new();
+    egui::Panel::left("controls").exact_size(PANEL_WIDTH).resizable(false).show(ui, |ui| {
+        egui::ScrollArea::vertical().show(ui, |ui| {
+            ui.heading("ssdo");
+            ui.label(format!("{}\nmodel: {}\nsky: {}", state.adapter, state.model_name, state.sky_name));
+            if state.loading {
+                ui.label("loading…");
+            }
+            for m in &state.messages {
+                let color = if m.error {
+                    egui::Color32::from_rgb(255, 110, 110)
+                } else {
+                    egui::Color32::from_rgb(140, 220, 140)
+                };
+                ui.colored_label(color, &m.text);
+            }
+            ui.separator();
+
+            ui.label("Mode (keys 1-4)");
+            ui.horizontal_wrapped(|ui| {
+                for (i, mode) in Mode::ALL.into_iter().enumerate() {
+                    if ui.selectable_label(settings.mode == mode, format!("{} {}", i + 1, mode.title())).clicked() {
+                        actions.push(Action::Mode(mode));
+                    }
+                }
+            });
+            egui::ComboBox::from_label("variant").selected_text(settings.variant.name()).show_ui(ui, |ui| {
+                for v in [Variant::Default, Variant::Classic] {
+                    ui.selectable_value(&mut settings.variant, v, v.name());
+                }
+            });
+            egui::ComboBox::from_label("view").selected_text(settings.view.title()).show_ui(ui, |ui| {
+                for v in View::ALL {
+                    ui.selectable_value(&mut settings.view, v, v.title());
+                }
+            });
+            ui.separator();
+
+            ui.label("Sampling");
+            ui.add(egui::Slider::new(&mut settings.samples, 1..=256).logarithmic(true).text("samples"));
+            let mut radius = settings.radius.unwrap_or(default_radius);
+            let before = radius;
+            ui.add(egui::Slider::new(&mut radius, 0.0..=default_radius * 5.0).text("radius"));
+            if radius != before {
+                settings.radius = Some(radius);
+            }
+            slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
+            ui.checkbox(&mut settings.blur, "blur");
+            slider(ui, &mut settings.ao_strength, 0.0..=1.0, "AO strength");
+            slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
+            slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
+            slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
+            ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
+            slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
+            ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));
+            ui.separator();
+
+            ui.label("Lights");
+            let (lights, seed) = (state.lights, state.seed);
+            ui.add(egui::Slider::new(&mut state.lights, 0..=64).text("count"));
+            ui.horizontal(|ui| {
+                ui.add(egui::DragValue::new(&mut state.seed).prefix("seed "));
+                if ui.button("reseed").clicked() {
+                    state.seed = state.seed.wrapping_add(1);
+                }
+            });
+            if (lights, seed) != (state.lights, state.seed) {
+                actions.push(Action::Relight { lights: state.lights, seed: state.seed });
+            }
+            ui.separator();
+
+            ui.label("Sky (or drop a folder on the window)");
+            let combo = egui::ComboBox::from_id_salt("skies").selected_text(state.sky_name.clone()).show_ui(ui, |ui| {
+                for folder in &state.sky_folders {
+                    let name = folder.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                    if ui.selectable_label(name == state.sky_name, name).clicked() {
+                        actions.push(Action::LoadSky(folder.clone()));
+                    }
+                }
+            });
+            if combo.response.clicked() {
+                state.sky_folders = super::loader::skybox_folders();
+            }
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::TextEdit::singleline(&mut state.sky_path)
+                        .hint_text("sky folder")
+                        .desired_width(PANEL_WIDTH - 80.0),
+                );
+                if ui.button("load").clicked() && !state.sky_path.trim().is_empty() {
+                    actions.push(Action::LoadSky(PathBuf::from(state.sky_path.trim())));
+                }
+            });
+            ui.label("Model (.obj, or drop one on the window)");
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::TextEdit::singleline(&mut state.model_path)
+                        .hint_text("path/to/model.obj")
+                        .desired_width(PANEL_WIDTH - 80.0),
+                );
+                if ui.button("load").clicked() && !state.model_path.trim().is_empty() {
+                    actions.push(Action::LoadModel(PathBuf::from(state.model_path.trim())));
+                }
+            });
+            ui.separator();
+
+            ui.horizontal_wrapped(|ui| {
+                if ui.button("reset camera (R)").clicked() {
+                    actions.push(Action::ResetCamera);
+                }
+                if ui.button("screenshot (F12)").clicked() {
+                    actions.push(Action::Screenshot);
+                }
+                if ui.button("compare modes (C)").clicked() {
+                    actions.push(Action::Compare);
+                }
+            });
+            ui.separator();
+
+            ui.label(format!("GPU time per pass ({})", state.timing_source));
+            egui::Grid::new("timings").num_columns(2).show(ui, |ui| {
+                for (name, ms) in &state.timings {
+                    ui.label(*name);
+                    ui.label(format!("{ms:.2} ms"));
+                    ui.end_row();
+                }
+                ui.label("frame");
+                ui.label(format!("{:.2} ms", state.frame_ms));
+                ui.end_row();
+            });
+        });
+    });
+    actions
+}

@@ -1,0 +1,161 @@
+//! The viewer as a person uses it: a real window under Xvfb on the software driver, keys sent with
+//! xdotool (1-4 with F12 after each, then C, then Escape). The screenshots must exist, differ by
+//! mode, and match a headless `ssdo capture` of the same view: mean absolute difference at most
+//! 0.5 of 255 and no channel off by more than 6 (the window encodes sRGB in the shader, the
+//! capture in the texture format, so single levels differ).
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Window size: the 3D view is this less the 300-pixel panel.
+const WINDOW: (u32, u32) = (620, 300);
+const VIEW: (u32, u32) = (WINDOW.0 - 300, WINDOW.1);
+
+fn have(tool: &str) -> bool {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {tool}"))
+        .stdout(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// Kills the child when dropped, so a failing test leaves no Xvfb or viewer behind.
+struct Guard(Child);
+
+impl Drop for Guard {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn xdotool(display: &str, args: &[&str]) -> String {
+    let out = Command::new("xdotool").args(args).env("DISPLAY", display).output().expect("xdotool runs");
+    String::from_utf8_lossy(&out.stdout).trim().to_owned()
+}
+
+fn wait_for(what: &str, timeout: Duration, mut done: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !done() {
+        assert!(start.elapsed() < timeout, "timed out waiting for {what}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+fn pngs(dir: &Path, prefix: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|e| {
+            e.flatten()
+                .map(|e| e.path())
+                .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(prefix)))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+}
+
+fn ssdo() -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_ssdo"));
+    command
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()));
+    command
+}
+
+#[test]
+fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
+    if !have("Xvfb") || !have("xdotool") {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI needs Xvfb and xdotool (scripts/test.sh installs them)"
+        );
+        eprintln!("skipping: Xvfb or xdotool not installed");
+        return;
+    }
+    if ssdo::gpu::Gpu::headless().is_err() {
+        assert!(std::env::var("CI").map_or(true, |v| v != "true"), "{}", ssdo::gpu::NO_ADAPTER_HELP);
+        return;
+    }
+    let display = format!(":{}", 70 + std::process::id() % 200);
+    let socket = format!("/tmp/.X11-unix/X{}", &display[1..]);
+    let _xvfb = Guard(
+        Command::new("Xvfb")
+            .args([display.as_str(), "-screen", "0", "800x600x24", "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb starts"),
+    );
+    wait_for("Xvfb", Duration::from_secs(10), || Path::new(&socket).exists());
+
+    let shots = tempfile::tempdir().unwrap();
+    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
+    let mut viewer = Guard(
+        ssdo()
+            .args(["view", "--size", &size, "--mode", "off", "--screenshot-dir", shots.path().to_str().unwrap()])
+            .env("DISPLAY", &display)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("the viewer starts"),
+    );
+    let mut window = String::new();
+    wait_for("the viewer's window", Duration::from_secs(60), || {
+        window = xdotool(&display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
+        !window.is_empty()
+    });
+    xdotool(&display, &["windowfocus", "--sync", &window]);
+
+    let modes = ["off", "ssao", "ssdo", "both"];
+    for (i, mode) in modes.iter().enumerate() {
+        xdotool(&display, &["key", "--clearmodifiers", &(i + 1).to_string()]);
+        xdotool(&display, &["key", "--clearmodifiers", "F12"]);
+        wait_for(&format!("the {mode} screenshot"), Duration::from_secs(60), || {
+            pngs(shots.path(), "screenshot-").iter().any(|p| p.to_string_lossy().ends_with(&format!("-{mode}.png")))
+        });
+    }
+    xdotool(&display, &["key", "--clearmodifiers", "c"]);
+    wait_for("the comparison", Duration::from_secs(120), || !pngs(shots.path(), "compare-").is_empty());
+    xdotool(&display, &["key", "--clearmodifiers", "Escape"]);
+    wait_for("the viewer to quit", Duration::from_secs(30), || viewer.0.try_wait().ok().flatten().is_some());
+    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "Escape quits cleanly");
+
+    let screenshots = pngs(shots.path(), "screenshot-");
+    for mode in modes {
+        assert!(
+            screenshots.iter().any(|p| p.to_string_lossy().ends_with(&format!("-{mode}.png"))),
+            "{mode}: {screenshots:?}"
+        );
+    }
+    let compare = image::open(&pngs(shots.path(), "compare-")[0]).unwrap();
+    assert!(compare.width() > 2 * VIEW.0 && compare.height() > 2 * VIEW.1);
+
+    let captured = tempfile::tempdir().unwrap();
+    let view_size = format!("{}x{}", VIEW.0, VIEW.1);
+    let status = ssdo()
+        .args(["capture", "--mode", "all", "--size", &view_size, "--out", captured.path().to_str().unwrap()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+
+    let mut images = Vec::new();
+    for mode in modes {
+        let shot = screenshots.iter().find(|p| p.to_string_lossy().ends_with(&format!("-{mode}.png"))).unwrap();
+        let shot = image::open(shot).unwrap().to_rgb8();
+        let headless = image::open(captured.path().join(format!("{mode}.png"))).unwrap().to_rgb8();
+        assert_eq!(shot.dimensions(), VIEW, "{mode}: the screenshot is the 3D view without the panel");
+        let diffs: Vec<u8> = shot.as_raw().iter().zip(headless.as_raw()).map(|(a, b)| a.abs_diff(*b)).collect();
+        let mean = diffs.iter().map(|d| *d as f64).sum::<f64>() / diffs.len() as f64;
+        let max = diffs.iter().copied().max().unwrap_or(0);
+        assert!(mean <= 0.5 && max <= 6, "{mode}: screenshot vs capture mean {mean:.3}, max {max}");
+        images.push(shot);
+    }
+    for i in 0..images.len() {
+        for j in i + 1..images.len() {
+            assert_ne!(images[i], images[j], "{} and {} look the same", modes[i], modes[j]);
+        }
+    }
+}
