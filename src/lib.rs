@@ -9,7 +9,9 @@ pub mod compare;
 pub mod error;
 pub mod gpu;
 pub mod output;
+pub mod reference;
 pub mod render;
+pub mod report;
 pub mod scene;
 pub mod shaders;
 

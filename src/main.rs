@@ -30,6 +30,8 @@ enum Command {
     Capture(CaptureArgs),
     /// Render each mode repeatedly and print per-pass GPU times.
     Bench(BenchArgs),
+    /// Error of every mode and setting against a CPU ray-traced reference, against GPU time.
+    Report(ReportArgs),
 }
 
 /// A size written as WIDTHxHEIGHT.
@@ -167,6 +169,85 @@ struct ViewArgs {
     /// Where F12 screenshots and C comparisons are written
     #[arg(long, default_value = "screenshots")]
     screenshot_dir: PathBuf,
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    /// Scene: cornell (the default scene), crevices (thin features, deep slots) or open (redblue sky)
+    #[arg(long, default_value = "cornell")]
+    scene: String,
+    /// An OBJ model instead of a named scene
+    #[arg(long)]
+    model: Option<PathBuf>,
+    /// Skybox folder [default: the scene's own sky]
+    #[arg(long)]
+    skybox: Option<PathBuf>,
+    /// Image size, WIDTHxHEIGHT
+    #[arg(long, default_value = "320x240", value_parser = parse_size)]
+    size: Size,
+    /// Sample counts to sweep, comma-separated
+    #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
+    samples: Vec<usize>,
+    /// Reference rays per pixel
+    #[arg(long, default_value_t = 256)]
+    spp: u32,
+    /// Frames timed per configuration (after two warm-up frames)
+    #[arg(long, default_value_t = 20)]
+    frames: usize,
+    /// Number of random point lights
+    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS)]
+    lights: usize,
+    /// Seed of the lights and of the reference's rays
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Output folder for report.csv, report.md, report.png and the error maps
+    #[arg(long, default_value = "report")]
+    out: PathBuf,
+}
+
+fn run_report(args: &ReportArgs) -> Result<()> {
+    if let Some(&bad) = args.samples.iter().find(|s| !(1..=256).contains(*s)) {
+        return Err(Error::Setting(format!("--samples {bad}: each count must be between 1 and 256")));
+    }
+    if args.frames == 0 || args.spp == 0 || args.samples.is_empty() {
+        return Err(Error::Setting("--frames, --spp and --samples must be at least 1".into()));
+    }
+    let options = ssdo::report::ReportOptions {
+        scene: args.scene.clone(),
+        model: args.model.clone(),
+        skybox: args.skybox.clone(),
+        size: (args.size.0, args.size.1),
+        samples: args.samples.clone(),
+        samples_per_pixel: args.spp,
+        frames: args.frames,
+        lights: args.lights,
+        seed: args.seed,
+        out: args.out.clone(),
+    };
+    let gpu = Gpu::headless()?;
+    let started = Instant::now();
+    let rows = args.size.1 as u64;
+    let bar = indicatif::ProgressBar::new(rows + 2 * 3 * 2 * args.samples.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
+            .expect("valid template"),
+    );
+    let progress = |message: &str| {
+        bar.inc(1);
+        if message != "reference row" {
+            bar.set_message(message.to_owned());
+        }
+    };
+    let report = ssdo::report::run(&gpu, &options, &progress)?;
+    bar.finish_and_clear();
+    report.write(&options)?;
+    println!("{}", report.markdown(&options));
+    println!(
+        "wrote {0}/report.csv, {0}/report.md, {0}/report.png in {1:.0} s",
+        args.out.display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
 }
 
 fn parse_single_mode(s: &str) -> std::result::Result<Mode, String> {
@@ -468,6 +549,7 @@ fn main() -> ExitCode {
         Some(Command::Capture(args)) => run_capture(&args),
         Some(Command::Bench(args)) => run_bench(&args),
         Some(Command::View(args)) => run_view(args),
+        Some(Command::Report(args)) => run_report(&args),
         None => run_view(ViewArgs::parse_default()),
     };
     match result {

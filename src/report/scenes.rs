@@ -1,0 +1,58 @@
+//! Named scenes for the report: the default scene, and two that stress the screen-space methods.
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+
+use crate::scene::builtin::{self, MeshBuilder};
+use crate::scene::{self, Material, Model};
+use crate::{Error, Result};
+
+pub const NAMES: [&str; 3] = ["cornell", "crevices", "open"];
+
+/// A scene by name, with the sky folder it is meant to be seen under.
+pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
+    match name {
+        "cornell" => Ok((scene::load_model(None)?, None)),
+        "crevices" => Ok((crevices()?, None)),
+        "open" => Ok((open()?, Some(PathBuf::from("skyboxes/redblue")))),
+        other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
+    }
+}
+
+/// Thin features and deep crevices: a comb of thin fins with narrow slots between them, a deep
+/// slot cut into a block, and thin poles — what a depth buffer sees least of.
+pub fn crevices() -> Result<Model> {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", builtin::WHITE));
+    let fins = b.material(Material::plain("fins", [0.8, 0.55, 0.3]));
+    let block = b.material(Material::plain("block", [0.3, 0.6, 0.8]));
+    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    for k in 0..8 {
+        let x = -1.6 + 0.2 * k as f32;
+        b.cuboid(fins, v(x, 0.0, -1.2), v(x + 0.04, 1.0, 0.2), false);
+    }
+    // A block with a deep, narrow slot from the top.
+    b.cuboid(block, v(0.3, 0.0, -1.2), v(0.8, 1.2, 0.2), false);
+    b.cuboid(block, v(0.88, 0.0, -1.2), v(1.4, 1.2, 0.2), false);
+    b.cuboid(block, v(0.3, 0.0, -1.2), v(1.4, 0.2, 0.2), false);
+    for (x, z) in [(-1.2, 1.0), (-0.6, 1.2), (0.0, 0.9), (0.6, 1.3), (1.2, 1.0)] {
+        b.cuboid(fins, v(x, 0.0, z), v(x + 0.03, 1.4, z + 0.03), false);
+    }
+    b.build("crevices")
+}
+
+/// An open scene: spheres and a low box on a wide floor, nothing overhead — sky light dominates.
+pub fn open() -> Result<Model> {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", builtin::WHITE));
+    let balls = b.material(Material::plain("balls", [0.8, 0.8, 0.75]));
+    b.quad(floor, [v(-4.0, 0.0, 4.0), v(4.0, 0.0, 4.0), v(4.0, 0.0, -4.0), v(-4.0, 0.0, -4.0)]);
+    b.sphere(balls, v(-1.0, 0.6, 0.0), 0.6, 32, 16);
+    b.sphere(balls, v(0.6, 0.35, 0.8), 0.35, 24, 12);
+    b.sphere(balls, v(1.0, 0.9, -1.0), 0.9, 32, 16);
+    b.cuboid(balls, v(-2.5, 0.0, -2.0), v(-1.5, 0.4, -1.0), false);
+    b.build("open")
+}
