@@ -14,11 +14,13 @@ have_vulkan_driver() {
 }
 
 # What the tests need that a fresh Debian/Ubuntu machine lacks: a Vulkan driver (Mesa's lavapipe
-# when there is no GPU), and Xvfb + xdotool for the viewer test.
+# when there is no GPU), Xvfb + xdotool for the viewer test, assimp's test models.
 missing=()
 have_vulkan_driver || missing+=(mesa-vulkan-drivers)
 command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)
 command -v xdotool >/dev/null 2>&1 || missing+=(xdotool)
+# Real-world OBJ files, valid and broken, for the bad-input test.
+[ -d /usr/share/assimp/models/OBJ ] || missing+=(assimp-testmodels)
 # The X11 client libraries winit opens at run time for the viewer's window.
 for lib in libX11.so.6:libx11-6 libX11-xcb.so.1:libx11-xcb1 libxkbcommon-x11.so.0:libxkbcommon-x11-0 \
     libXcursor.so.1:libxcursor1 libXrandr.so.2:libxrandr2 libXi.so.6:libxi6; do

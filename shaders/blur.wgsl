@@ -35,7 +35,8 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     let n = textureLoad(g_normal, pixel, 0).xyz;
     let p = view_position(position, depth);
     let size = vec2<i32>(frame.viewport.xy);
-    let tolerance = 0.25 * occ.params.x;
+    // Never 0: a radius of 0 still blurs flat surfaces.
+    let tolerance = max(0.25 * occ.params.x, 1e-30);
 
     var sum = vec4<f32>(0.0);
     var total = 0.0;

@@ -44,7 +44,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, AO_IN_DO), 0.0, 1.0);
         ao = mix(1.0, pow(raw, frame.shading.y), frame.shading.x);
     }
-    var color = frame.ambient.rgb * albedo.rgb * ao;
+    var color = frame.sky.z * frame.ambient.rgb * albedo.rgb * ao;
     if HAS_DO {
         color += select(albedo.rgb * directional.rgb, directional.rgb, CLASSIC);
     }

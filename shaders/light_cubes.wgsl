@@ -17,7 +17,7 @@ fn vs_main(@location(0) corner: vec3<f32>, @builtin(instance_index) index: u32) 
     let world = light.world_position.xyz + corner * light.color.w;
     var out: CubeOut;
     out.clip = frame.view_to_clip * (frame.world_to_view * vec4<f32>(world, 1.0));
-    out.color = light.color.rgb * CUBE_EMISSION;
+    out.color = light.color.rgb * (CUBE_EMISSION * frame.sky.z);
     return out;
 }
 

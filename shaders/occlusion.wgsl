@@ -114,8 +114,9 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
         let s = view_position(texel_f + 0.5, max(sample_depth, 1e-30));
         let dir = safe_normalize(offset, n);
         let cos_r = max(dot(n, dir), 0.0);
-        // Range check: a surface far in front of the receiver does not occlude it.
-        let range = smoothstep(0.0, 1.0, radius / max(abs(p.z - s.z), radius * 1e-4));
+        // Range check: a surface far in front of the receiver does not occlude it. The divisor
+        // never reaches 0, also with a radius of 0 (where every sample is at the receiver).
+        let range = smoothstep(0.0, 1.0, radius / max(abs(p.z - s.z), max(radius * 1e-4, 1e-30)));
 
         if CLASSIC {
             let behind_ao = select(0.0, 1.0, has_surface && s.z >= q.z + bias);
@@ -125,7 +126,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                     if INDIRECT {
                         let n_s = textureLoad(g_normal, texel, 0).xyz;
                         let albedo_s = textureLoad(g_albedo, texel, 0).rgb;
-                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s;
+                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s * frame.sky.z;
                     }
                 } else {
                     let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;

@@ -89,6 +89,22 @@ struct SceneArgs {
     /// Camera distance from the model's centre [default: frames the model]
     #[arg(long, allow_negative_numbers = true)]
     distance: Option<f32>,
+    /// Near plane distance [default: a thousandth of the camera distance]
+    #[arg(long, allow_negative_numbers = true)]
+    near: Option<f32>,
+    /// Far plane distance, or inf [default: inf]
+    #[arg(long, value_parser = parse_far)]
+    far: Option<f32>,
+    /// Scale the model by this factor (defaults scale with it)
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    scale: f32,
+}
+
+fn parse_far(s: &str) -> std::result::Result<f32, String> {
+    if s.eq_ignore_ascii_case("inf") {
+        return Ok(f32::INFINITY);
+    }
+    s.parse::<f32>().map_err(|_| format!("'{s}' is not a number or inf"))
 }
 
 #[derive(Args)]
@@ -152,6 +168,15 @@ struct CaptureArgs {
     /// Print each mode's passes, in order, and the bytes each target uses
     #[arg(long)]
     print_plan: bool,
+    /// Print min, max, mean and non-finite count of each linear buffer (AO, DO, HDR)
+    #[arg(long)]
+    stats: bool,
+    /// With --stats: print JSON
+    #[arg(long)]
+    json: bool,
+    /// Also write the linear HDR image as <out>/<mode>.exr
+    #[arg(long)]
+    raw: bool,
 }
 
 #[derive(Args)]
@@ -293,7 +318,10 @@ fn non_negative(name: &str, value: f32) -> Result<f32> {
 
 impl SceneArgs {
     fn load(&self) -> Result<(Scene, scene::Skybox)> {
-        let model = scene::load_model(self.model.as_deref())?;
+        if !(self.scale.is_finite() && self.scale > 0.0) {
+            return Err(Error::Setting(format!("--scale {}: must be a finite number > 0", self.scale)));
+        }
+        let model = scene::load_model(self.model.as_deref())?.scaled(self.scale);
         let sky = scene::load_skybox(self.skybox.as_deref())?;
         Ok((Scene::new(model, self.lights, self.seed), sky))
     }
@@ -312,6 +340,18 @@ impl SceneArgs {
             }
             camera.distance = distance;
             camera.near = camera.near.min(distance * 1e-3);
+        }
+        if let Some(near) = self.near {
+            if !(near.is_finite() && near > 0.0) {
+                return Err(Error::Setting(format!("--near {near}: must be a finite number > 0")));
+            }
+            camera.near = near;
+        }
+        if let Some(far) = self.far {
+            if !(far > camera.near) {
+                return Err(Error::Setting(format!("--far {far}: must be beyond the near plane ({})", camera.near)));
+            }
+            camera.far = far.is_finite().then_some(far);
         }
         Ok(camera)
     }
@@ -360,23 +400,49 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     gpu.check_size(size.0, size.1)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     let mut panels = Vec::new();
+    let mut stats_json = serde_json::Map::new();
+    // With --json, standard output is the JSON document alone.
+    let say = |line: String| if args.json { log::info!("{line}") } else { println!("{line}") };
     for mode in modes {
         renderer.set_mode(&gpu, mode);
         if args.print_plan {
             print_plan(&renderer);
         }
+        if args.stats {
+            let stats = ssdo::render::stats::frame_stats(&gpu, &mut renderer, &camera)?;
+            if args.json {
+                let buffers: serde_json::Map<String, serde_json::Value> =
+                    stats.iter().map(|s| (s.name.to_string(), s.json())).collect();
+                stats_json.insert(mode.name().to_string(), serde_json::Value::Object(buffers));
+            } else {
+                for s in &stats {
+                    println!(
+                        "{mode:>5} {:<12} min {:>12.5e} max {:>12.5e} mean {:>12.5e} non_finite {}",
+                        s.name, s.min, s.max, s.mean, s.non_finite
+                    );
+                }
+            }
+        }
         let started = Instant::now();
         let image = capture(&gpu, &mut renderer, &camera)?;
         let path = args.out.join(format!("{}.png", mode.name()));
         output::save_png(&path, &image)?;
+        if args.raw {
+            let exr = args.out.join(format!("{}.exr", mode.name()));
+            output::save_exr(&exr, &ssdo::render::stats::hdr_image(&gpu, &renderer)?)?;
+            say(format!("wrote {}", exr.display()));
+        }
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
-        println!("wrote {}", path.display());
+        say(format!("wrote {}", path.display()));
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
+    }
+    if args.stats && args.json {
+        println!("{}", serde_json::to_string_pretty(&serde_json::Value::Object(stats_json)).expect("JSON of numbers"));
     }
     if panels.len() > 1 {
         let path = args.out.join("compare.png");
         output::save_png(&path, &compare::grid(&panels))?;
-        println!("wrote {}", path.display());
+        say(format!("wrote {}", path.display()));
     }
     Ok(())
 }
@@ -533,6 +599,7 @@ fn run_view(args: ViewArgs) -> Result<()> {
         skybox: scene.skybox.clone(),
         lights: scene.lights,
         seed: scene.seed,
+        scale: scene.scale,
         settings,
         size,
         screenshot_dir,

@@ -32,3 +32,12 @@ pub fn save_png(path: &Path, image: &image::RgbaImage) -> Result<()> {
         .map_err(|e| Error::output(path, format!("PNG encoding failed: {e}")))?;
     write_atomic(path, &bytes)
 }
+
+/// Encodes a linear float image as OpenEXR and writes it atomically.
+pub fn save_exr(path: &Path, image: &image::Rgba32FImage) -> Result<()> {
+    let mut bytes = Vec::new();
+    image::DynamicImage::ImageRgba32F(image.clone())
+        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::OpenExr)
+        .map_err(|e| Error::output(path, format!("EXR encoding failed: {e}")))?;
+    write_atomic(path, &bytes)
+}

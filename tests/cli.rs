@@ -164,3 +164,49 @@ fn viewer_refuses_bad_input_before_opening_a_window() {
     let result = ssdo(&["view", "--size", "0x100"]);
     assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
 }
+
+#[test]
+fn stats_json_reports_every_linear_buffer_and_raw_writes_exr() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let result = ssdo(&[
+        "capture",
+        "--mode",
+        "both",
+        "--size",
+        "48x36",
+        "--stats",
+        "--json",
+        "--raw",
+        "--out",
+        out.path().to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", stderr(&result));
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).expect("stdout is only JSON");
+    for buffer in ["ao", "do_direct", "do_indirect", "hdr"] {
+        let b = &json["both"][buffer];
+        assert_eq!(b["non_finite"], 0, "{buffer}: {b}");
+        assert!(b["max"].as_f64().unwrap() >= b["min"].as_f64().unwrap(), "{buffer}: {b}");
+    }
+    let exr = image::open(out.path().join("both.exr")).expect("a readable EXR").to_rgba32f();
+    assert_eq!(exr.dimensions(), (48, 36));
+    assert!(exr.pixels().all(|p| p.0.iter().all(|c| c.is_finite())));
+    let hdr_max = json["both"]["hdr"]["max"].as_f64().unwrap() as f32;
+    let exr_max = exr.pixels().flat_map(|p| p.0[..3].to_vec()).fold(0.0f32, f32::max);
+    assert!((exr_max - hdr_max).abs() <= 1e-3 * hdr_max, "EXR holds the same radiance: {exr_max} vs {hdr_max}");
+}
+
+#[test]
+fn stability_flags_are_validated() {
+    for (args, needle) in [
+        (vec!["capture", "--near", "0"], "--near"),
+        (vec!["capture", "--scale", "-2"], "--scale"),
+        (vec!["capture", "--near", "5", "--far", "1"], "--far"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+}

@@ -19,7 +19,7 @@ fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, 
         let d2 = dot(to_light, to_light);
         let l = safe_normalize(to_light, n);
         let n_dot_l = max(dot(n, l), 0.0);
-        let irradiance = light.color.rgb * (light.world_position.w / max(d2, min_d2)) * n_dot_l;
+        let irradiance = light.color.rgb * (frame.sky.z * light.world_position.w / max(d2, min_d2)) * n_dot_l;
         let h = safe_normalize(l + to_eye, n);
         out.diffuse += irradiance * albedo / PI;
         out.specular += irradiance * (specular * spec_norm * pow(max(dot(n, h), 0.0), shininess));

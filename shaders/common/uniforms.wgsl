@@ -8,11 +8,11 @@ struct Frame {
     view_to_world: mat4x4<f32>,
     // width, height, 1/width, 1/height
     viewport: vec4<f32>,
-    // near, far (0 = infinite), exposure, smallest light distance squared
+    // near, far (0 = infinite), exposure / pre-exposure, smallest light distance squared
     camera: vec4<f32>,
     // ambient radiance (rgb), orbit distance of the camera (for the depth view)
     ambient: vec4<f32>,
-    // sky radiance scale, sky mip count, unused, unused
+    // sky radiance scale (pre-exposed), sky mip count, pre-exposure, unused
     sky: vec4<f32>,
     // AO strength, AO power, unused, unused
     shading: vec4<f32>,
@@ -29,6 +29,9 @@ struct Light {
     color: vec4<f32>,
 }
 
+// Pre-exposure: every radiance written to a half-float buffer (HDR, bounce, DO) is radiance ×
+// frame.sky.z, chosen on the CPU so the brightest radiance of the frame stays far below 65504;
+// the tone-map pass divides it back out (camera.z is exposure / pre-exposure).
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;
 

@@ -33,6 +33,8 @@ pub struct ViewerOptions {
     pub skybox: Option<PathBuf>,
     pub lights: usize,
     pub seed: u64,
+    /// Scales the model (the stability cases' `--scale`).
+    pub scale: f32,
     pub settings: Settings,
     /// Window size in physical pixels (panel included).
     pub size: (u32, u32),
@@ -44,7 +46,7 @@ pub struct ViewerOptions {
 /// Opens the window and runs until it is closed.
 pub fn run(options: ViewerOptions) -> Result<()> {
     // Load before opening the window: a bad file is an error on the command line, not a window.
-    let model = scene::load_model(options.model.as_deref())?;
+    let model = scene::load_model(options.model.as_deref())?.scaled(options.scale);
     let sky = scene::load_skybox(options.skybox.as_deref())?;
     let scene = Scene::new(model, options.lights, options.seed);
     let camera = (options.camera)(&scene)?;

@@ -13,6 +13,8 @@ pub struct FrameInputs {
     pub ambient: Vec3,
     pub sky_scale: f32,
     pub sky_mips: u32,
+    /// Radiance in the half-float buffers is radiance × this (see `Renderer::pre_exposure`).
+    pub pre_exposure: f32,
     /// AO strength, AO power, unused, unused
     pub shading: [f32; 4],
 }
@@ -112,9 +114,14 @@ impl FrameData {
             clip_to_view: mat(view_to_clip.inverse()),
             view_to_world: mat(world_to_view.inverse()),
             viewport: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
-            camera: [camera.near, camera.far.unwrap_or(0.0), inputs.exposure, rig.min_distance.powi(2)],
+            camera: [
+                camera.near,
+                camera.far.unwrap_or(0.0),
+                inputs.exposure / inputs.pre_exposure,
+                rig.min_distance.powi(2),
+            ],
             ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, camera.distance],
-            sky: [inputs.sky_scale, inputs.sky_mips as f32, 0.0, 0.0],
+            sky: [inputs.sky_scale * inputs.pre_exposure, inputs.sky_mips as f32, inputs.pre_exposure, 0.0],
             shading: inputs.shading,
             counts: [lights.len() as u32, self.frame_index, 0, 0],
         };

@@ -10,6 +10,7 @@ pub mod kernel;
 pub mod modes;
 pub mod passes;
 pub mod readback;
+pub mod stats;
 pub mod targets;
 pub mod timing;
 pub mod uniforms;
@@ -311,6 +312,25 @@ impl Renderer {
         self.scene.textured
     }
 
+    /// The factor between radiance and what the half-float buffers (HDR, bounce, DO) hold.
+    ///
+    /// Half floats end at 65504; a sky of 1e5 or a thousand lights would overflow them. Each
+    /// frame scales radiance by `min(1, 4096 / peak)`, where `peak` bounds the frame's brightest
+    /// radiance (the sky's peak, the ambient, and every light's irradiance at its clamp
+    /// distance), and the tone mapper divides it back out. Readers of those buffers divide too.
+    pub fn pre_exposure(&self) -> f32 {
+        let s = &self.settings;
+        let sky = self.sky.peak * s.sky_scale * s.sky_strength.max(1.0);
+        let min_d2 = (self.rig.min_distance * self.rig.min_distance).max(f32::MIN_POSITIVE);
+        let lights: f32 = self.lights.iter().map(|l| l.intensity * l.color.max_element() / min_d2).sum();
+        let peak = sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0));
+        if peak.is_finite() && peak > 4096.0 {
+            4096.0 / peak
+        } else {
+            1.0
+        }
+    }
+
     /// The sampling radius in use, in model units.
     pub fn radius(&self) -> f32 {
         self.settings.radius.unwrap_or(self.scene_radius)
@@ -387,6 +407,7 @@ impl Renderer {
             ambient: Vec3::splat(s.ambient),
             sky_scale: s.sky_scale * self.sky.encode_scale,
             sky_mips: self.sky.mip_levels,
+            pre_exposure: self.pre_exposure(),
             shading: [s.ao_strength, s.ao_power, 0.0, 0.0],
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);

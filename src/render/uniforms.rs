@@ -14,11 +14,11 @@ pub struct FrameUniforms {
     pub view_to_world: [[f32; 4]; 4],
     /// width, height, 1/width, 1/height
     pub viewport: [f32; 4],
-    /// near, far (0 = infinite), exposure, smallest light distance squared
+    /// near, far (0 = infinite), exposure / pre-exposure, smallest light distance squared
     pub camera: [f32; 4],
     /// ambient radiance rgb, orbit distance of the camera (for the depth view)
     pub ambient: [f32; 4],
-    /// sky radiance scale, sky mip count, unused, unused
+    /// sky radiance scale (pre-exposed), sky mip count, pre-exposure, unused
     pub sky: [f32; 4],
     /// AO strength, AO power, unused, unused
     pub shading: [f32; 4],

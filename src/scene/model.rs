@@ -159,22 +159,71 @@ pub fn decode_text(bytes: &[u8]) -> String {
 }
 
 /// Pads colour statements that give one value (`Kd 0.5`, allowed by the format) to three, which
-/// is what they mean and what tobj can parse.
-fn sanitize_mtl(text: &str) -> String {
+/// is what they mean, and drops colour statements tobj 4.0.5 would panic on (no value, two
+/// values, or words that are not numbers). Returns the text and the number of lines dropped.
+fn sanitize_mtl(text: &str) -> (String, usize) {
     let mut out = String::with_capacity(text.len() + 64);
+    let mut dropped = 0;
     for line in text.lines() {
         let mut words = line.split_whitespace();
         let keyword = words.next().unwrap_or("");
         let values: Vec<&str> = words.collect();
-        if matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Tf") && values.len() == 1 && values[0].parse::<f32>().is_ok()
-        {
-            out.push_str(&format!("{keyword} {0} {0} {0}\n", values[0]));
+        if matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Tf") {
+            let numeric = values.iter().take(3).all(|v| v.parse::<f32>().is_ok());
+            match values.len() {
+                1 if numeric => out.push_str(&format!("{keyword} {0} {0} {0}\n", values[0])),
+                n if n >= 3 && numeric => {
+                    out.push_str(line);
+                    out.push('\n');
+                }
+                _ => dropped += 1,
+            }
         } else {
             out.push_str(line);
             out.push('\n');
         }
     }
-    out
+    (out, dropped)
+}
+
+/// Drops face statements tobj would mishandle: a vertex reference of 0, one beyond the elements
+/// defined so far (negative references count back from the last one), or a face whose vertices
+/// disagree on which attributes they carry (`1/1 2//1`). tobj 4.0.5 overflows on some of these
+/// and silently misreads others. Returns the text to parse and how many faces were dropped.
+fn sanitize_obj(text: &str) -> (String, usize) {
+    let mut counts = [0i64; 3];
+    let mut dropped = 0;
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        let keyword = words.next().unwrap_or("");
+        match keyword {
+            "v" => counts[0] += 1,
+            "vt" => counts[1] += 1,
+            "vn" => counts[2] += 1,
+            "f" => {
+                let mut shape = None;
+                let valid = words.all(|vertex| {
+                    let parts: Vec<&str> = vertex.split('/').collect();
+                    let form: Vec<bool> = parts.iter().map(|p| !p.is_empty()).collect();
+                    let consistent = *shape.get_or_insert_with(|| form.clone()) == form;
+                    let in_range = parts.iter().zip(counts).all(|(p, count)| {
+                        p.is_empty()
+                            || p.parse::<i64>().is_ok_and(|i| i != 0 && (if i > 0 { i <= count } else { -i <= count }))
+                    });
+                    consistent && parts.len() <= 3 && !parts[0].is_empty() && in_range
+                });
+                if !valid {
+                    dropped += 1;
+                    continue;
+                }
+            }
+            _ => {}
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    (out, dropped)
 }
 
 /// Splits a texture statement's argument into the file name, dropping the options exporters put
@@ -282,7 +331,7 @@ pub fn load_obj(path: &Path) -> Result<Model> {
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(Error::input(path, "the file is empty"));
     }
-    let text = decode_text(&bytes);
+    let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let warnings = RefCell::new(Vec::new());
 
@@ -297,7 +346,13 @@ pub fn load_obj(path: &Path) -> Result<Model> {
         let mtl_path = dir.join(mtl.to_string_lossy().replace('\\', "/"));
         match std::fs::read(&mtl_path) {
             Ok(bytes) => {
-                let text = sanitize_mtl(&decode_text(&bytes));
+                let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
+                if dropped > 0 {
+                    warnings.borrow_mut().push(format!(
+                        "{}: ignored {dropped} colour line(s) without one or three numbers",
+                        mtl_path.display()
+                    ));
+                }
                 tobj::load_mtl_buf(&mut text.as_bytes())
             }
             Err(e) => {
@@ -308,7 +363,8 @@ pub fn load_obj(path: &Path) -> Result<Model> {
             }
         }
     };
-    // tobj has panicked on malformed input before; a panic in a parser is still a bad file.
+    // A panic inside the parser is still a bad file, not a crash (the known ones are avoided by
+    // `sanitize_obj`; this is the net under it).
     let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
     }))
@@ -316,6 +372,11 @@ pub fn load_obj(path: &Path) -> Result<Model> {
     let (models, materials) = parsed.map_err(|e| Error::input(path, format!("malformed OBJ: {e}")))?;
 
     let mut warnings = warnings.into_inner();
+    if bad_faces > 0 {
+        warnings.push(format!(
+            "dropped {bad_faces} face(s) with a vertex reference of 0, out of range, or in mixed formats"
+        ));
+    }
     let tobj_materials = materials.unwrap_or_else(|e| {
         if e != tobj::LoadError::OpenFileFailed {
             warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));

@@ -22,6 +22,8 @@ pub struct SkyGpu {
     pub size: u32,
     pub bytes: u64,
     pub mean: glam::Vec3,
+    /// Largest radiance on the sky (before any user scale).
+    pub peak: f32,
 }
 
 pub fn sky_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -101,7 +103,15 @@ impl SkyGpu {
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
             ],
         });
-        Ok(Self { bind_group, encode_scale, mip_levels: levels.len() as u32, size: sky.size, bytes, mean: sky.mean() })
+        Ok(Self {
+            bind_group,
+            encode_scale,
+            mip_levels: levels.len() as u32,
+            size: sky.size,
+            bytes,
+            mean: sky.mean(),
+            peak,
+        })
     }
 }
 

@@ -1,0 +1,195 @@
+//! The stability suite: extreme cases in every mode and both variants. Each must render without a
+//! panic with every value finite, AO in [0, 1] and DO ≥ 0. The table of results is printed
+//! (`cargo test --test stability -- --nocapture`); every case is reachable from the command line
+//! (the `cli` column).
+
+mod common;
+
+use glam::Vec3;
+use ssdo::gpu::Gpu;
+use ssdo::render::capture::CAPTURE_FORMAT;
+use ssdo::render::stats::frame_stats;
+use ssdo::render::{Mode, Renderer, Settings, Variant};
+use ssdo::scene::{builtin, model::load_obj, OrbitCamera, PointLight, Scene, Skybox};
+
+const SIZE: (u32, u32) = (48, 36);
+
+struct Case {
+    name: &'static str,
+    cli: &'static str,
+    scene: Scene,
+    sky: Skybox,
+    camera: OrbitCamera,
+    size: (u32, u32),
+    settings: Settings,
+}
+
+fn base(name: &'static str, cli: &'static str) -> Case {
+    let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    Case {
+        name,
+        cli,
+        scene,
+        sky: Skybox::from_fn("day", 16, builtin::day_sky),
+        camera,
+        size: SIZE,
+        settings: Settings::default(),
+    }
+}
+
+fn with_model(name: &'static str, cli: &'static str, model: ssdo::scene::Model) -> Case {
+    let scene = Scene::new(model, 8, 1);
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    Case { scene, camera, ..base(name, cli) }
+}
+
+/// The default scene written as OBJ with extra zero-area and NaN-vertex faces, and without normals.
+fn messy_obj(dir: &std::path::Path, normals: bool) -> ssdo::scene::Model {
+    let model = builtin::cornell().unwrap();
+    let mut obj = String::new();
+    for v in &model.vertices {
+        obj += &format!("v {} {} {}\n", v.position[0], v.position[1], v.position[2]);
+        if normals {
+            obj += &format!("vn {} {} {}\n", v.normal[0], v.normal[1], v.normal[2]);
+        }
+    }
+    for tri in model.indices.chunks_exact(3) {
+        let f: Vec<String> =
+            tri.iter().map(|i| if normals { format!("{0}//{0}", i + 1) } else { format!("{}", i + 1) }).collect();
+        obj += &format!("f {}\n", f.join(" "));
+    }
+    let n = model.vertices.len();
+    obj += "v 0.5 0.5 0.5\nv 0.5 0.5 0.5\nv 1 1 1\nv nan 0 0\nv 0 inf 0\n";
+    obj += &format!("f {} {} {}\nf {} {} {}\nf {} {} {}\n", n + 1, n + 2, n + 3, n + 3, n + 4, n + 5, 1, 2, n + 4);
+    let name = if normals { "degenerate.obj" } else { "no_normals.obj" };
+    std::fs::write(dir.join(name), obj).unwrap();
+    load_obj(&dir.join(name)).unwrap()
+}
+
+fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
+    let mut list = Vec::new();
+    let mut c = base("near 1e-6, far inf", "--near 1e-6 --far inf");
+    c.camera.near = 1e-6;
+    list.push(c);
+    list.push(with_model("model × 1e-3", "--scale 1e-3", builtin::cornell().unwrap().scaled(1e-3)));
+    list.push(with_model("model × 1e4", "--scale 1e4", builtin::cornell().unwrap().scaled(1e4)));
+    let mut c = base("grazing the floor at 0.5°", "--pitch 0.5 --distance 3");
+    c.camera.target = Vec3::new(0.0, 0.02, 0.0);
+    c.camera.pitch_deg = 0.5;
+    c.camera.distance = 3.0;
+    list.push(c);
+    let mut c = base("camera inside the model", "--yaw 0 --pitch 0 --distance 0.05 (target in the sphere)");
+    c.camera.target = Vec3::new(-0.95, 0.38, 0.95);
+    c.camera.distance = 0.05;
+    c.camera.near = 1e-4;
+    list.push(c);
+    list.push(with_model("zero-area and NaN-vertex faces", "--model degenerate.obj", messy_obj(dir, true)));
+    list.push(with_model("missing normals", "--model no_normals.obj", messy_obj(dir, false)));
+    let mut c = base("radius 0", "--radius 0");
+    c.settings.radius = Some(0.0);
+    list.push(c);
+    let mut c = base("radius 1e6", "--radius 1e6");
+    c.settings.radius = Some(1e6);
+    list.push(c);
+    let mut c = base("1 sample", "--samples 1");
+    c.settings.samples = 1;
+    list.push(c);
+    let mut c = base("256 samples", "--samples 256");
+    c.settings.samples = 256;
+    list.push(c);
+    let mut c = base("1x1 target", "--size 1x1");
+    c.size = (1, 1);
+    list.push(c);
+    let mut c = base("3x2 target", "--size 3x2");
+    c.size = (3, 2);
+    list.push(c);
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let mut c = base("largest 2D size (width)", "--size <max>x2");
+    c.size = (max, 2);
+    list.push(c);
+    let mut c = base("0 lights", "--lights 0");
+    c.scene.relight(0, 1);
+    list.push(c);
+    let mut c = base("1024 lights", "--lights 1024");
+    c.scene.relight(1024, 1);
+    list.push(c);
+    let mut c = base("light exactly on a surface", "(a light at the floor's and a wall's surface)");
+    c.scene.lights = vec![
+        PointLight { position: Vec3::new(0.5, 0.0, 0.5), color: Vec3::ONE, intensity: 1.0 },
+        PointLight { position: Vec3::new(-2.0, 1.0, 0.0), color: Vec3::X, intensity: 1.0 },
+    ];
+    list.push(c);
+    let mut c = base("sky of 0", "--sky-scale 0");
+    c.sky = Skybox::constant(Vec3::ZERO);
+    list.push(c);
+    let mut c = base("sky of 1e5 (beyond half float)", "--sky-scale 1e5");
+    c.sky = Skybox::constant(Vec3::splat(1e5));
+    list.push(c);
+    list
+}
+
+#[test]
+fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
+    let Some(gpu) = common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    println!("| case | cli | mode | variant | AO min..max | DO min..max | HDR min..max | non-finite |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for case in cases(&gpu, dir.path()) {
+        let mut renderer =
+            Renderer::new(&gpu, &case.scene, &case.sky, case.size, CAPTURE_FORMAT, case.settings).unwrap();
+        for variant in [Variant::Default, Variant::Classic] {
+            for mode in Mode::ALL {
+                renderer.settings = Settings { mode, variant, ..case.settings };
+                let stats =
+                    frame_stats(&gpu, &mut renderer, &case.camera).unwrap_or_else(|e| panic!("{}: {e}", case.name));
+                let find = |n: &str| stats.iter().find(|s| s.name == n);
+                let range = |n: &str| find(n).map_or("—".to_string(), |s| format!("{:.3e}..{:.3e}", s.min, s.max));
+                let non_finite: usize = stats.iter().map(|s| s.non_finite).sum();
+                let do_min =
+                    ["do_direct", "do_indirect"].iter().filter_map(|n| find(n)).map(|s| s.min).fold(0.0f32, f32::min);
+                let (ao_min, ao_max) = find("ao").map_or((0.0, 1.0), |s| (s.min, s.max));
+                let ok = non_finite == 0 && ao_min >= 0.0 && ao_max <= 1.0 && do_min >= 0.0;
+                let do_range = match (find("do_direct"), find("do_indirect")) {
+                    (Some(d), Some(i)) => format!("{:.3e}..{:.3e}", d.min.min(i.min), d.max.max(i.max)),
+                    _ => "—".into(),
+                };
+                println!(
+                    "| {} | `{}` | {} | {} | {} | {} | {} | {} |",
+                    case.name,
+                    case.cli,
+                    mode,
+                    variant,
+                    range("ao"),
+                    do_range,
+                    range("hdr"),
+                    non_finite
+                );
+                if !ok {
+                    failures.push(format!("{} / {mode} / {variant}: {stats:?}", case.name));
+                }
+            }
+        }
+        gpu.check().unwrap_or_else(|e| panic!("{}: {e}", case.name));
+    }
+    assert!(failures.is_empty(), "unstable cases:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn sizes_beyond_the_adapter_are_a_clear_error() {
+    let Some(gpu) = common::gpu() else { return };
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
+    let error =
+        Renderer::new(&gpu, &scene, &Skybox::constant(Vec3::ONE), (max + 1, 2), CAPTURE_FORMAT, Settings::default())
+            .err()
+            .expect("too large");
+    assert!(error.to_string().contains("exceeds") && error.exit_code() == 2, "{error}");
+    let mut renderer =
+        Renderer::new(&gpu, &scene, &Skybox::constant(Vec3::ONE), (8, 8), CAPTURE_FORMAT, Settings::default()).unwrap();
+    assert!(renderer.resize(&gpu, max + 1, 8).is_err());
+    assert_eq!(renderer.size(), (8, 8), "a refused resize keeps the old size");
+    renderer.resize(&gpu, 0, 0).unwrap();
+    assert_eq!(renderer.size(), (8, 8), "0x0 (minimised) is ignored");
+}
