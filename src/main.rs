@@ -460,23 +460,6 @@ fn print_plan(renderer: &Renderer) {
     println!("  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>());
 }
 
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    match values.len() {
-        0 => 0.0,
-        n if n % 2 == 1 => values[n / 2],
-        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
-    }
-}
-
-/// One mode's medians: frame time and each pass.
-struct ModeTiming {
-    mode: Mode,
-    frame_ms: f64,
-    wall_ms: f64,
-    passes: Vec<(&'static str, f64)>,
-}
-
 fn run_bench(args: &BenchArgs) -> Result<()> {
     if args.frames == 0 {
         return Err(Error::Setting("--frames 0: measure at least one frame".into()));
@@ -494,40 +477,9 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     let mut results = Vec::new();
     for mode in Mode::ALL {
         renderer.set_mode(&gpu, mode);
-        let mut frames = Vec::new();
-        let mut walls = Vec::new();
-        let mut per_pass: Vec<(&'static str, Vec<f64>)> =
-            renderer.plan().step_names().into_iter().map(|n| (n, Vec::new())).collect();
-        // Two warm-up frames: the first compiles shaders on a software driver.
-        for frame in 0..args.frames + 2 {
-            let started = Instant::now();
-            let mut encoder =
-                gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench_encoder") });
-            renderer.encode(&gpu, &mut encoder, &camera, &view);
-            gpu.queue.submit([encoder.finish()]);
-            gpu.wait()?;
-            let wall = started.elapsed().as_secs_f64() * 1e3;
-            let timings = renderer.read_timings(&gpu)?;
-            if frame < 2 {
-                continue;
-            }
-            walls.push(wall);
-            match timings {
-                Some(steps) => {
-                    frames.push(steps.iter().map(|(_, ms)| ms).sum());
-                    for ((_, ms), (_, list)) in steps.iter().zip(per_pass.iter_mut()) {
-                        list.push(*ms);
-                    }
-                }
-                None => frames.push(wall),
-            }
-        }
-        gpu.check()?;
-        let passes =
-            if timestamps { per_pass.into_iter().map(|(n, mut v)| (n, median(&mut v))).collect() } else { Vec::new() };
-        results.push(ModeTiming { mode, frame_ms: median(&mut frames), wall_ms: median(&mut walls), passes });
+        results.push((mode, ssdo::render::timing::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
     }
-    let frame = |m: Mode| results.iter().find(|r| r.mode == m).map_or(f64::NAN, |r| r.frame_ms);
+    let frame = |m: Mode| results.iter().find(|(mode, _)| *mode == m).map_or(f64::NAN, |(_, r)| r.frame_ms);
     let ratio_ssdo_ssao = frame(Mode::Ssdo) / frame(Mode::Ssao);
     let ratio_both_ssdo = frame(Mode::Both) / frame(Mode::Ssdo);
     let method = if timestamps {
@@ -539,11 +491,11 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     if args.json {
         let modes: serde_json::Map<String, serde_json::Value> = results
             .iter()
-            .map(|r| {
+            .map(|(mode, r)| {
                 let passes: serde_json::Map<String, serde_json::Value> =
                     r.passes.iter().map(|(n, ms)| (n.to_string(), serde_json::json!(ms))).collect();
                 (
-                    r.mode.name().to_string(),
+                    mode.name().to_string(),
                     serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes }),
                 )
             })
@@ -572,11 +524,11 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
             s.samples,
             if s.blur { "on" } else { "off" }
         );
-        for r in &results {
+        for (mode, r) in &results {
             let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
             println!(
                 "{:>5}: frame {:8.2} ms (wall {:8.2} ms)  {}",
-                r.mode.name(),
+                mode.name(),
                 r.frame_ms,
                 r.wall_ms,
                 passes.join(", ")

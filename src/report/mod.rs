@@ -67,15 +67,6 @@ pub struct Report {
     pub reference: reference::Reference,
 }
 
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    if values.is_empty() {
-        0.0
-    } else {
-        values[values.len() / 2]
-    }
-}
-
 /// The reference's linear radiance for `settings`' lighting model at pixel `i`.
 fn reference_radiance(r: &reference::Reference, i: usize, s: &Settings) -> Vec3 {
     let decl = s.mode.declaration();
@@ -85,31 +76,6 @@ fn reference_radiance(r: &reference::Reference, i: usize, s: &Settings) -> Vec3 
         color += r.albedo[i] * (r.sky[i] * s.sky_strength + r.bounce[i] * s.indirect_strength);
     }
     color
-}
-
-/// Times `frames` frames (after two warm-up frames) and returns the median GPU frame time.
-fn time_frames(
-    gpu: &Gpu,
-    renderer: &mut Renderer,
-    camera: &OrbitCamera,
-    view: &wgpu::TextureView,
-    frames: usize,
-) -> Result<f64> {
-    let mut times = Vec::with_capacity(frames);
-    for frame in 0..frames + 2 {
-        let started = Instant::now();
-        let mut encoder =
-            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("report_encoder") });
-        renderer.encode(gpu, &mut encoder, camera, view);
-        gpu.queue.submit([encoder.finish()]);
-        gpu.wait()?;
-        let wall = started.elapsed().as_secs_f64() * 1e3;
-        let gpu_ms = renderer.read_timings(gpu)?.map(|steps| steps.iter().map(|(_, ms)| ms).sum::<f64>());
-        if frame >= 2 {
-            times.push(gpu_ms.unwrap_or(wall));
-        }
-    }
-    Ok(median(&mut times))
 }
 
 /// Runs the sweep. `progress` is told about each finished row of the reference, and each row.
@@ -156,7 +122,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 for blur in [true, false] {
                     let base = if variant == Variant::Classic { Settings::classic() } else { Settings::default() };
                     renderer.settings = Settings { mode, samples, blur, ..base };
-                    let ms = time_frames(gpu, &mut renderer, &camera, &view, options.frames)?;
+                    let ms =
+                        crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
                     let image = capture(gpu, &mut renderer, &camera)?;
                     let s = renderer.settings;
                     let targets = renderer.targets().occlusion();

@@ -5,7 +5,10 @@ use super::super::kernel::Variant;
 use super::super::modes::Plan;
 use super::super::targets::Targets;
 use super::occlusion::{OcclusionData, Outputs};
-use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
+use super::{
+    color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
+    FullscreenPass, KeyedPipeline,
+};
 use crate::{shaders, Result};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,7 +21,7 @@ pub struct BlurPass {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     frame_layout: wgpu::BindGroupLayout,
-    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    pipeline: KeyedPipeline<Key>,
     bind_group: Option<wgpu::BindGroup>,
 }
 
@@ -30,7 +33,13 @@ impl BlurPass {
             label: Some("blur_layout"),
             entries: &[a, n, d, uniform_entry(3), texture_entry(4, false, wgpu::TextureViewDimension::D2)],
         });
-        Ok(Self { module, layout, frame_layout: frame_layout.clone(), pipeline: None, bind_group: None })
+        Ok(Self {
+            module,
+            layout,
+            frame_layout: frame_layout.clone(),
+            pipeline: KeyedPipeline::new(),
+            bind_group: None,
+        })
     }
 
     /// Builds what the plan needs (nothing when it does not blur).
@@ -43,27 +52,27 @@ impl BlurPass {
         data: &OcclusionData,
     ) {
         let Some(input) = targets.raw.output().filter(|_| plan.blur) else {
-            self.pipeline = None;
+            self.pipeline.clear();
             self.bind_group = None;
             return;
         };
         let key = Key { outputs: Outputs::of(plan), bilateral: variant == Variant::Default };
-        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
+        self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;
-            let pipeline = fullscreen_pipeline(
+            fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
                     label: "blur_pipeline",
-                    module: &self.module,
+                    module,
                     entry: "fs_main",
-                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
                     targets: &[Some(key.outputs.format().into())],
                     depth: None,
                     constants: &[("BILATERAL", f(key.bilateral)), ("AO_ONLY", f(!key.outputs.directional))],
                 },
-            );
-            self.pipeline = Some((key, pipeline));
-        }
+            )
+        });
         let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
         let mut entries: Vec<wgpu::BindGroupEntry> = super::view_entries(&views);
         entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
@@ -83,20 +92,19 @@ impl BlurPass {
         frame: &wgpu::BindGroup,
     ) {
         let output = targets.blurred.as_ref().and_then(|b| b.output());
-        let (Some((_, pipeline)), Some(bind_group), Some(output)) = (&self.pipeline, &self.bind_group, output) else {
+        let (Some((_, pipeline)), Some(bind_group), Some(output)) = (self.pipeline.get(), &self.bind_group, output)
+        else {
             return;
         };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("blur_pass"),
-            color_attachments: &[color_attachment(&output.view, true)],
-            depth_stencil_attachment: None,
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        FullscreenPass {
+            label: "blur_pass",
+            attachments: &[color_attachment(&output.view, true)],
+            depth: None,
+            timestamps,
+            pipeline,
+            bind_groups: &[(0, frame), (1, bind_group)],
+            viewport: None,
+        }
+        .record(encoder);
     }
 }

@@ -6,7 +6,10 @@
 use super::super::kernel::Variant;
 use super::super::modes::{Plan, Step};
 use super::super::targets::{view_or, Targets, HDR_FORMAT};
-use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc};
+use super::{
+    color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc, FullscreenPass,
+    KeyedPipeline,
+};
 use crate::{shaders, Result};
 
 /// The shader variant a plan needs.
@@ -37,7 +40,7 @@ pub struct CompositePass {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     frame_layout: wgpu::BindGroupLayout,
-    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    pipeline: KeyedPipeline<Key>,
     bind_group: Option<wgpu::BindGroup>,
 }
 
@@ -50,7 +53,13 @@ impl CompositePass {
             label: Some("composite_layout"),
             entries: &[a, n, d, input(3), input(4)],
         });
-        Ok(Self { module, layout, frame_layout: frame_layout.clone(), pipeline: None, bind_group: None })
+        Ok(Self {
+            module,
+            layout,
+            frame_layout: frame_layout.clone(),
+            pipeline: KeyedPipeline::new(),
+            bind_group: None,
+        })
     }
 
     /// Builds the pipeline the plan needs (if it changed) and the bind group for `targets`.
@@ -65,7 +74,8 @@ impl CompositePass {
         unused: &wgpu::TextureView,
     ) {
         let key = Key::of(plan, variant, white_albedo);
-        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
+        self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;
             let blend = key.additive.then_some(wgpu::BlendState {
                 color: wgpu::BlendComponent {
@@ -75,13 +85,13 @@ impl CompositePass {
                 },
                 alpha: wgpu::BlendComponent::REPLACE,
             });
-            let pipeline = fullscreen_pipeline(
+            fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
                     label: "composite_pipeline",
-                    module: &self.module,
+                    module,
                     entry: "fs_main",
-                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
                     targets: &[Some(wgpu::ColorTargetState {
                         format: HDR_FORMAT,
                         blend,
@@ -97,9 +107,8 @@ impl CompositePass {
                         ("WHITE_ALBEDO", f(key.white_albedo)),
                     ],
                 },
-            );
-            self.pipeline = Some((key, pipeline));
-        }
+            )
+        });
         let occlusion = targets.occlusion();
         let views = [
             &targets.albedo.view,
@@ -122,18 +131,16 @@ impl CompositePass {
         targets: &Targets,
         frame: &wgpu::BindGroup,
     ) {
-        let (Some((key, pipeline)), Some(bind_group)) = (&self.pipeline, &self.bind_group) else { return };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("composite_pass"),
-            color_attachments: &[color_attachment(&targets.hdr.view, !key.additive)],
-            depth_stencil_attachment: None,
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else { return };
+        FullscreenPass {
+            label: "composite_pass",
+            attachments: &[color_attachment(&targets.hdr.view, !key.additive)],
+            depth: None,
+            timestamps,
+            pipeline,
+            bind_groups: &[(0, frame), (1, bind_group)],
+            viewport: None,
+        }
+        .record(encoder);
     }
 }

@@ -2,7 +2,7 @@
 //! displayed direct light into HDR and the diffuse radiance SSDO bounces into `bounce`.
 
 use super::super::targets::{Targets, BOUNCE_FORMAT, HDR_FORMAT};
-use super::{cleared_attachments, fullscreen_pipeline, gbuffer_entries, view_entries, FullscreenDesc};
+use super::{cleared_attachments, fullscreen_pipeline, gbuffer_entries, view_entries, FullscreenDesc, FullscreenPass};
 use crate::{shaders, Result};
 
 pub struct LightingPass {
@@ -54,17 +54,15 @@ impl LightingPass {
         frame: &wgpu::BindGroup,
     ) {
         let bounce = targets.bounce.as_ref().map(|t| &t.view);
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("lighting_pass"),
-            color_attachments: &cleared_attachments(&[Some(&targets.hdr.view), bounce]),
-            depth_stencil_attachment: None,
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        FullscreenPass {
+            label: "lighting_pass",
+            attachments: &cleared_attachments(&[Some(&targets.hdr.view), bounce]),
+            depth: None,
+            timestamps,
+            pipeline: &self.pipeline,
+            bind_groups: &[(0, frame), (1, &self.bind_group)],
+            viewport: None,
+        }
+        .record(encoder);
     }
 }

@@ -152,3 +152,68 @@ pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> 
         cache: None,
     })
 }
+
+/// Records one full-screen pass: `attachments` as colour targets, an optional read-only depth
+/// attachment (for the depth test of the skybox), the pipeline with its bind groups by index, and
+/// the triangle of `common/fullscreen.wgsl` drawn into `viewport` (the whole target when `None`).
+pub struct FullscreenPass<'a> {
+    pub label: &'a str,
+    pub attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
+    pub depth: Option<&'a wgpu::TextureView>,
+    pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
+    pub pipeline: &'a wgpu::RenderPipeline,
+    pub bind_groups: &'a [(u32, &'a wgpu::BindGroup)],
+    pub viewport: Option<[f32; 4]>,
+}
+
+impl FullscreenPass<'_> {
+    pub fn record(self, encoder: &mut wgpu::CommandEncoder) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(self.label),
+            color_attachments: self.attachments,
+            depth_stencil_attachment: self.depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+                view,
+                depth_ops: None,
+                stencil_ops: None,
+            }),
+            timestamp_writes: self.timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let Some([x, y, w, h]) = self.viewport {
+            pass.set_viewport(x, y, w, h, 0.0, 1.0);
+        }
+        pass.set_pipeline(self.pipeline);
+        for (index, group) in self.bind_groups {
+            pass.set_bind_group(*index, *group, &[]);
+        }
+        pass.draw(0..3, 0..1);
+    }
+}
+
+/// A pipeline built for one key (a plan's variant), rebuilt only when the key changes.
+pub struct KeyedPipeline<K> {
+    built: Option<(K, wgpu::RenderPipeline)>,
+}
+
+impl<K: PartialEq + Copy> KeyedPipeline<K> {
+    pub fn new() -> Self {
+        Self { built: None }
+    }
+
+    /// The pipeline for `key`, built by `build` if the current one is for another key.
+    pub fn ensure(&mut self, key: K, build: impl FnOnce(K) -> wgpu::RenderPipeline) -> &wgpu::RenderPipeline {
+        if self.built.as_ref().map(|(k, _)| *k) != Some(key) {
+            self.built = Some((key, build(key)));
+        }
+        &self.built.as_ref().expect("built above").1
+    }
+
+    pub fn get(&self) -> Option<(&K, &wgpu::RenderPipeline)> {
+        self.built.as_ref().map(|(k, p)| (k, p))
+    }
+
+    pub fn clear(&mut self) {
+        self.built = None;
+    }
+}

@@ -7,7 +7,10 @@ use super::super::kernel::{self, Variant};
 use super::super::modes::Plan;
 use super::super::targets::{Targets, AO_FORMAT, DO_FORMAT};
 use super::super::uniforms::{OcclusionUniforms, MAX_SAMPLES};
-use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
+use super::{
+    color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
+    FullscreenPass, KeyedPipeline,
+};
 use crate::{shaders, Result};
 
 /// Sampling parameters for one frame.
@@ -109,7 +112,7 @@ pub struct OcclusionPass {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     pipeline_layouts: [wgpu::BindGroupLayout; 2],
-    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    pipeline: KeyedPipeline<Key>,
     bind_group: Option<wgpu::BindGroup>,
 }
 
@@ -129,7 +132,7 @@ impl OcclusionPass {
             module,
             layout,
             pipeline_layouts: [frame_layout.clone(), sky_layout.clone()],
-            pipeline: None,
+            pipeline: KeyedPipeline::new(),
             bind_group: None,
         })
     }
@@ -145,15 +148,15 @@ impl OcclusionPass {
         unused: &wgpu::TextureView,
     ) {
         if !plan.decl.samples() {
-            self.pipeline = None;
+            self.pipeline.clear();
             self.bind_group = None;
             return;
         }
         let key = Key { outputs: Outputs::of(plan), classic: variant == Variant::Classic };
-        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+        self.pipeline.ensure(key, |key| {
             let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
             let [frame, sky] = &self.pipeline_layouts;
-            let pipeline = fullscreen_pipeline(
+            fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
                     label: "occlusion_pipeline",
@@ -164,9 +167,8 @@ impl OcclusionPass {
                     depth: None,
                     constants: &key.constants(),
                 },
-            );
-            self.pipeline = Some((key, pipeline));
-        }
+            )
+        });
         let bounce = targets.bounce.as_ref().map_or(unused, |t| &t.view);
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("occlusion_bind_group"),
@@ -190,22 +192,19 @@ impl OcclusionPass {
         sky: &wgpu::BindGroup,
     ) {
         let (Some((_, pipeline)), Some(bind_group), Some(output)) =
-            (&self.pipeline, &self.bind_group, targets.raw.output())
+            (self.pipeline.get(), &self.bind_group, targets.raw.output())
         else {
             return;
         };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("occlusion_pass"),
-            color_attachments: &[color_attachment(&output.view, true)],
-            depth_stencil_attachment: None,
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, bind_group, &[]);
-        pass.set_bind_group(2, sky, &[]);
-        pass.draw(0..3, 0..1);
+        FullscreenPass {
+            label: "occlusion_pass",
+            attachments: &[color_attachment(&output.view, true)],
+            depth: None,
+            timestamps,
+            pipeline,
+            bind_groups: &[(0, frame), (1, bind_group), (2, sky)],
+            viewport: None,
+        }
+        .record(encoder);
     }
 }

@@ -4,7 +4,7 @@
 //! scale that the shaders multiply back in f32.
 
 use super::super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
-use super::{color_attachment, fullscreen_pipeline, sampler_entry, texture_entry, FullscreenDesc};
+use super::{color_attachment, fullscreen_pipeline, sampler_entry, texture_entry, FullscreenDesc, FullscreenPass};
 use crate::gpu::Gpu;
 use crate::scene::Skybox;
 use crate::{shaders, Result};
@@ -155,21 +155,15 @@ impl SkyboxPass {
         frame: &wgpu::BindGroup,
         sky: &SkyGpu,
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("skybox_pass"),
-            color_attachments: &[color_attachment(&targets.hdr.view, false)],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth.view,
-                depth_ops: None,
-                stencil_ops: None,
-            }),
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(2, &sky.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        FullscreenPass {
+            label: "skybox_pass",
+            attachments: &[color_attachment(&targets.hdr.view, false)],
+            depth: Some(&targets.depth.view),
+            timestamps,
+            pipeline: &self.pipeline,
+            bind_groups: &[(0, frame), (2, &sky.bind_group)],
+            viewport: None,
+        }
+        .record(encoder);
     }
 }

@@ -6,7 +6,10 @@
 use super::super::modes::Plan;
 use super::super::targets::{view_or, Targets};
 use super::super::View;
-use super::{color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc};
+use super::{
+    color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc, FullscreenPass,
+    KeyedPipeline,
+};
 use crate::{shaders, Result};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,7 +38,7 @@ pub struct TonemapPass {
     layout: wgpu::BindGroupLayout,
     frame_layout: wgpu::BindGroupLayout,
     output: wgpu::TextureFormat,
-    pipeline: Option<(Key, wgpu::RenderPipeline)>,
+    pipeline: KeyedPipeline<Key>,
     bind_group: Option<wgpu::BindGroup>,
 }
 
@@ -51,7 +54,14 @@ impl TonemapPass {
             label: Some("tonemap_layout"),
             entries: &[float(0), float(1), float(2), depth_entry(3), float(4), float(5)],
         });
-        Ok(Self { module, layout, frame_layout: frame_layout.clone(), output, pipeline: None, bind_group: None })
+        Ok(Self {
+            module,
+            layout,
+            frame_layout: frame_layout.clone(),
+            output,
+            pipeline: KeyedPipeline::new(),
+            bind_group: None,
+        })
     }
 
     /// Builds the pipeline for the plan and view (if it changed) and the bind group for `targets`.
@@ -64,15 +74,16 @@ impl TonemapPass {
         unused: &wgpu::TextureView,
     ) {
         let key = Key::of(plan, view);
-        if self.pipeline.as_ref().map(|(k, _)| *k) != Some(key) {
+        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
+        self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;
-            let pipeline = fullscreen_pipeline(
+            fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
                     label: "tonemap_pipeline",
-                    module: &self.module,
+                    module,
                     entry: "fs_main",
-                    bind_group_layouts: &[Some(&self.frame_layout), Some(&self.layout)],
+                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
                     targets: &[Some(self.output.into())],
                     depth: None,
                     constants: &[
@@ -83,9 +94,8 @@ impl TonemapPass {
                         ("AO_IN_DO", f(key.directional)),
                     ],
                 },
-            );
-            self.pipeline = Some((key, pipeline));
-        }
+            )
+        });
         let occlusion = targets.occlusion();
         let views = [
             &targets.hdr.view,
@@ -113,20 +123,17 @@ impl TonemapPass {
         output: &wgpu::TextureView,
         origin: (u32, u32),
     ) {
-        let (Some((_, pipeline)), Some(bind_group)) = (&self.pipeline, &self.bind_group) else { return };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("tonemap_pass"),
-            color_attachments: &[color_attachment(output, true)],
-            depth_stencil_attachment: None,
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let (Some((_, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else { return };
         let (w, h) = targets.size;
-        pass.set_viewport(origin.0 as f32, origin.1 as f32, w as f32, h as f32, 0.0, 1.0);
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        FullscreenPass {
+            label: "tonemap_pass",
+            attachments: &[color_attachment(output, true)],
+            depth: None,
+            timestamps,
+            pipeline,
+            bind_groups: &[(0, frame), (1, bind_group)],
+            viewport: Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32]),
+        }
+        .record(encoder);
     }
 }
