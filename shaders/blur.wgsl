@@ -27,7 +27,7 @@ fn finite4(v: vec4<f32>) -> bool {
 
 fn blur(position: vec2<f32>) -> vec4<f32> {
     let pixel = vec2<i32>(position);
-    let depth = textureLoad(g_depth, pixel, 0);
+    let depth = load_depth(pixel);
     if depth <= 0.0 {
         // A sky pixel: no occlusion, no DO.
         return select(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(1.0, 0.0, 0.0, 1.0), AO_ONLY);
@@ -43,7 +43,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     for (var y = -2; y < 2; y += 1) {
         for (var x = -2; x < 2; x += 1) {
             let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), size - 1);
-            let d = textureLoad(g_depth, t, 0);
+            let d = load_depth(t);
             if d <= 0.0 {
                 continue;
             }

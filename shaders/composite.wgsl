@@ -27,7 +27,7 @@ override WHITE_ALBEDO: bool = false;
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     let pixel = vec2<i32>(in.position.xy);
-    let depth = textureLoad(g_depth, pixel, 0);
+    let depth = load_depth(pixel);
     if depth <= 0.0 {
         return vec4<f32>(0.0);
     }

@@ -18,7 +18,7 @@ struct LightingOut {
 fn fs_main(in: FullscreenOut) -> LightingOut {
     var out: LightingOut;
     let pixel = vec2<i32>(in.position.xy);
-    let depth = textureLoad(g_depth, pixel, 0);
+    let depth = load_depth(pixel);
     if depth <= 0.0 {
         return out;
     }

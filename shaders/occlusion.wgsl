@@ -77,7 +77,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     var out: Occlusion;
     out.ao = 1.0;
     let pixel = vec2<i32>(position);
-    let depth = textureLoad(g_depth, pixel, 0);
+    let depth = load_depth(pixel);
     if depth <= 0.0 {
         return out;
     }
@@ -108,7 +108,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
         }
         let texel = vec2<i32>(texel_f);
         valid += 1u;
-        let sample_depth = textureLoad(g_depth, texel, 0);
+        let sample_depth = load_depth(texel);
         // The surface seen at the sample's pixel (none where the sky is).
         let has_surface = sample_depth > 0.0;
         let s = view_position(texel_f + 0.5, max(sample_depth, 1e-30));

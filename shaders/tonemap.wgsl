@@ -9,7 +9,7 @@
 @group(1) @binding(0) var hdr: texture_2d<f32>;
 @group(1) @binding(1) var g_albedo: texture_2d<f32>;
 @group(1) @binding(2) var g_normal: texture_2d<f32>;
-@group(1) @binding(3) var g_depth: texture_depth_2d;
+@group(1) @binding(3) var g_depth: texture_2d<f32>;  // depth32float as unfilterable float (GL-safe)
 @group(1) @binding(4) var ao_map: texture_2d<f32>;
 @group(1) @binding(5) var do_map: texture_2d<f32>;
 
@@ -51,7 +51,7 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
         case 3u: {
             // Distance from the camera, linear: bright at the camera, black at twice the orbit
             // distance and on the sky. Reverse-Z depth d maps back to view z = -b / (d + a).
-            let d = textureLoad(g_depth, pixel, 0);
+            let d = textureLoad(g_depth, pixel, 0).r;
             if d <= 0.0 {
                 return vec3<f32>(0.0);
             }

@@ -22,6 +22,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("skybox.wgsl", include_str!("../shaders/skybox.wgsl")),
     ("light_cubes.wgsl", include_str!("../shaders/light_cubes.wgsl")),
     ("tonemap.wgsl", include_str!("../shaders/tonemap.wgsl")),
+    ("depth_copy.wgsl", include_str!("../shaders/depth_copy.wgsl")),
 ];
 
 /// The shaders that are compiled as modules (the rest are only included).

@@ -155,6 +155,8 @@ fn crafted_models_load_with_fallbacks_or_fail_cleanly() {
         ("texcoord_negative.obj", format!("{TRI}f 1/-9 2/-9 3/-9\n").into_bytes(), false),
         ("mixed_face_formats.obj", format!("{TRI}f 1/1 2/2 3/3\nf 1//1 2//1 3//1\n").into_bytes(), false),
         ("index_out_of_range.obj", format!("{TRI}f 1 2 99\nf 1 2 3\n").into_bytes(), true),
+        // Wound against its normals (the winding is repaired with a warning).
+        ("winding_against_normals.obj", format!("{TRI}f 1//1 3//1 2//1\nf 1//1 2//1 3//1\n").into_bytes(), true),
         ("latin1.obj", [b"# caf\xe9 \xfc\n".as_slice(), TRI.as_bytes(), b"f 1 2 3\n"].concat(), true),
         (
             "utf16.obj",

@@ -57,7 +57,7 @@ fn textures_resolve_through_backslashes_options_and_case() {
         "m.mtl",
         b"newmtl a\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 64\nmap_Kd -bm 0.5 -s 1 1 1 .\\tex\\bricks.png\nmap_Ks spec.png\n",
     );
-    write(dir.path(), "m.obj", format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1/1/1 2/2/1 3/3/1 4/4/1\n").as_bytes());
+    write(dir.path(), "m.obj", format!("mtllib m.mtl\n{QUAD}usemtl a\nf 1/1/1 4/4/1 3/3/1 2/2/1\n").as_bytes());
     let model = load_obj(&dir.path().join("m.obj")).unwrap();
     assert!(model.warnings.is_empty(), "{:?}", model.warnings);
     let material = &model.materials[model.parts[0].material];

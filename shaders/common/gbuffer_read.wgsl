@@ -3,7 +3,14 @@
 
 @group(1) @binding(0) var g_albedo: texture_2d<f32>;
 @group(1) @binding(1) var g_normal: texture_2d<f32>;
-@group(1) @binding(2) var g_depth: texture_depth_2d;
+// Depth is bound as an unfilterable float texture rather than `texture_depth_2d`: WebGPU allows it
+// for depth32float, and wgpu's GL backend cannot translate `textureLoad` from a depth texture.
+@group(1) @binding(2) var g_depth: texture_2d<f32>;
+
+// Reverse-Z depth at `pixel`: 0 where nothing was drawn (the sky), larger nearer the camera.
+fn load_depth(pixel: vec2<i32>) -> f32 {
+    return textureLoad(g_depth, pixel, 0).r;
+}
 
 // View-space position of the surface at `pixel` with depth `depth` (> 0). With
 // z_clip = a·z + b and w = -z, depth = -a - b / z, so z = -b / (depth + a).

@@ -17,6 +17,11 @@ pub struct CameraControls {
 }
 
 impl CameraControls {
+    /// Whether a drag is moving the camera.
+    pub fn dragging(&self) -> bool {
+        self.orbiting || self.panning
+    }
+
     pub fn button(&mut self, button: MouseButton, state: ElementState, over_view: bool) {
         let pressed = state == ElementState::Pressed && over_view;
         match button {

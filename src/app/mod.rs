@@ -9,7 +9,7 @@ mod ui;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -51,7 +51,8 @@ pub fn run(options: ViewerOptions) -> Result<()> {
     let scene = Scene::new(model, options.lights, options.seed);
     let camera = (options.camera)(&scene)?;
     let event_loop = EventLoop::new().map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
+    // Sleep until something happens: an idle viewer draws nothing (see `Viewer::schedule`).
+    event_loop.set_control_flow(ControlFlow::Wait);
     let mut app = App { options, start: Some((scene, sky, camera)), viewer: None, failure: None };
     event_loop.run_app(&mut app).map_err(|e| Error::Gpu(format!("window event loop: {e}")))?;
     app.failure.map_or(Ok(()), Err)
@@ -84,9 +85,9 @@ impl ApplicationHandler for App {
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(viewer) = &self.viewer {
-            viewer.window.request_redraw();
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(viewer) = &mut self.viewer {
+            event_loop.set_control_flow(viewer.schedule());
         }
     }
 }
@@ -108,8 +109,19 @@ struct Viewer {
     screenshot_dir: PathBuf,
     /// Cursor position in physical pixels.
     cursor: (f64, f64),
-    last_frame: Instant,
+    /// When egui asked to be drawn again (an animation, a tooltip's delay).
+    egui_repaint: Option<Instant>,
+    /// When to draw once more to show the timings of the last frames, which arrive a frame or
+    /// two late; a frame drawn for that reason schedules no further one.
+    timing_refresh: Option<Instant>,
+    /// The frame being drawn was asked for by `timing_refresh` alone.
+    refreshing: bool,
 }
+
+/// How often the viewer looks for finished loads while one runs.
+const LOAD_POLL: Duration = Duration::from_millis(100);
+/// How long after the last frame the timings are shown settled.
+const TIMING_REFRESH: Duration = Duration::from_millis(250);
 
 fn timestamp() -> String {
     let now = jiff::Timestamp::now();
@@ -202,7 +214,9 @@ impl Viewer {
             panel,
             screenshot_dir: options.screenshot_dir.clone(),
             cursor: (0.0, 0.0),
-            last_frame: Instant::now(),
+            egui_repaint: None,
+            timing_refresh: None,
+            refreshing: false,
         })
     }
 
@@ -216,9 +230,54 @@ impl Viewer {
         (PANEL_WIDTH * self.window.scale_factor() as f32).round() as u32
     }
 
+    /// What the event loop does next. The viewer draws only when something changed: input (see
+    /// `event`), a finished load, egui's own repaint request, or the one late timing refresh.
+    fn schedule(&mut self) -> ControlFlow {
+        let now = Instant::now();
+        let mut wake: Option<Instant> = None;
+        if self.loader.busy() {
+            if self.apply_loads() {
+                self.window.request_redraw();
+            }
+            wake = Some(now + LOAD_POLL);
+        }
+        let mut earliest = |t: Instant| wake = Some(wake.map_or(t, |w: Instant| w.min(t)));
+        match self.egui_repaint {
+            Some(t) if t <= now => {
+                self.egui_repaint = None;
+                self.refreshing = false;
+                self.window.request_redraw();
+            }
+            Some(t) => earliest(t),
+            None => {}
+        }
+        match self.timing_refresh {
+            Some(t) if t <= now => {
+                self.timing_refresh = None;
+                self.refreshing = true;
+                self.window.request_redraw();
+            }
+            Some(t) => earliest(t),
+            None => {}
+        }
+        wake.map_or(ControlFlow::Wait, ControlFlow::WaitUntil)
+    }
+
     fn event(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) -> Result<()> {
         let response = self.egui.on_window_event(&self.window, &event);
-        let over_view = self.cursor.0 >= self.panel_pixels() as f64;
+        let panel = self.panel_pixels() as f64;
+        let over_view = self.cursor.0 >= panel;
+        // Input is what makes a frame: anything but a bare cursor move over the 3D view (the
+        // panel needs its hover highlights; the view changes only while dragging).
+        let redraw = match &event {
+            WindowEvent::RedrawRequested => false,
+            WindowEvent::CursorMoved { position, .. } => self.controls.dragging() || position.x < panel || !over_view,
+            _ => true,
+        };
+        if redraw {
+            self.refreshing = false;
+            self.window.request_redraw();
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => self.resize(size),
@@ -229,7 +288,7 @@ impl Viewer {
                 event:
                     KeyEvent { physical_key: PhysicalKey::Code(key), state: ElementState::Pressed, repeat: false, .. },
                 ..
-            } if !self.egui.egui_ctx().egui_wants_keyboard_input() => self.key(event_loop, key),
+            } if !self.egui.egui_ctx().text_edit_focused() => self.key(event_loop, key),
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x, position.y);
                 let height = self.renderer.size().1;
@@ -357,8 +416,11 @@ impl Viewer {
     }
 
     /// Applies finished loads: the old sky or model stays unless the new one is complete.
-    fn apply_loads(&mut self) {
-        for loaded in self.loader.finished() {
+    /// Returns whether anything arrived.
+    fn apply_loads(&mut self) -> bool {
+        let finished = self.loader.finished();
+        let arrived = !finished.is_empty();
+        for loaded in finished {
             match loaded {
                 Loaded::Sky(path, Ok(sky)) => match self.renderer.set_sky(&self.gpu, &sky) {
                     Ok(()) => {
@@ -384,9 +446,11 @@ impl Viewer {
             }
         }
         self.panel.loading = self.loader.busy();
+        arrived
     }
 
     fn redraw(&mut self) -> Result<()> {
+        let started = Instant::now();
         self.apply_loads();
         let size = self.window.inner_size();
         if size.width == 0 || size.height == 0 {
@@ -412,6 +476,8 @@ impl Viewer {
         let mut full = ctx
             .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
         let mut textures = std::mem::take(&mut full.textures_delta);
+        let delay = full.viewport_output.get(&egui::ViewportId::ROOT).map_or(Duration::MAX, |v| v.repaint_delay);
+        self.egui_repaint = Instant::now().checked_add(delay);
         self.egui.handle_platform_output(&self.window, full.platform_output);
         for action in actions {
             self.act(action);
@@ -443,19 +509,25 @@ impl Viewer {
             self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
         }
         self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
+        self.renderer.timings_submitted();
         for id in textures.free.drain() {
             self.egui_renderer.free_texture(&id);
         }
         self.gpu.queue.present(frame);
 
-        if let Some(steps) = self.renderer.read_timings(&self.gpu)? {
+        // Timestamps of a frame or two ago, never waited for.
+        if let Some(steps) = self.renderer.poll_timings(&self.gpu)? {
             let names: Vec<(&'static str, f64)> =
                 steps.iter().map(|(step, ms)| (step.name_in(self.renderer.plan().mode), *ms)).collect();
             self.panel.record_timings(&names);
         }
-        let elapsed = self.last_frame.elapsed().as_secs_f64() * 1e3;
-        self.last_frame = Instant::now();
-        self.panel.frame_ms = 0.9 * self.panel.frame_ms + 0.1 * elapsed;
+        if !self.refreshing {
+            self.timing_refresh = Some(Instant::now() + TIMING_REFRESH);
+        }
+        self.refreshing = false;
+        let elapsed = started.elapsed().as_secs_f64() * 1e3;
+        self.panel.frame_ms =
+            if self.panel.frame_ms == 0.0 { elapsed } else { 0.8 * self.panel.frame_ms + 0.2 * elapsed };
         if let Err(e) = self.gpu.check() {
             self.panel.say(e.to_string(), true);
         }

@@ -36,6 +36,7 @@ pub struct PanelState {
     pub messages: Vec<Message>,
     /// Smoothed GPU milliseconds per pass, and of the whole frame.
     pub timings: Vec<(&'static str, f64)>,
+    /// Smoothed CPU milliseconds of one frame, from encoding to presenting.
     pub frame_ms: f64,
     pub timing_source: &'static str,
     /// Facts shown at the top: adapter, model, sky.
@@ -204,7 +205,14 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                     ui.label(format!("{ms:.2} ms"));
                     ui.end_row();
                 }
-                ui.label("frame");
+                if !state.timings.is_empty() {
+                    ui.label("all passes");
+                    ui.label(format!("{:.2} ms", state.timings.iter().map(|(_, ms)| ms).sum::<f64>()));
+                    ui.end_row();
+                }
+                // Frames are drawn only when something changes, so this is the cost of one
+                // frame on the CPU (encode, submit, present), not a frame rate.
+                ui.label("frame (CPU)");
                 ui.label(format!("{:.2} ms", state.frame_ms));
                 ui.end_row();
             });

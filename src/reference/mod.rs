@@ -115,10 +115,15 @@ impl ReferenceScene {
         };
         let weights = [1.0 - v - w, v, w];
         let n = self.normals[index];
-        let geometric = e1.cross(e2).try_normalize().unwrap_or(Vec3::Y);
+        // The side of the triangle the ray arrives on, whatever its winding; the shading normal
+        // is turned to that side, as the G-buffer does (shaders/gbuffer.wgsl, `camera_side`).
+        let mut geometric = e1.cross(e2).try_normalize().unwrap_or(-direction);
+        if geometric.dot(direction) > 0.0 {
+            geometric = -geometric;
+        }
         let mut normal =
             (n[0] * weights[0] + n[1] * weights[1] + n[2] * weights[2]).try_normalize().unwrap_or(geometric);
-        if normal.dot(direction) > 0.0 {
+        if normal.dot(geometric) < 0.0 {
             normal = -normal;
         }
         let m = &self.materials[self.material[index]];

@@ -361,9 +361,25 @@ impl Renderer {
         self.timer.is_some()
     }
 
-    /// Per-step GPU milliseconds of the last frame submitted and waited for.
-    pub fn read_timings(&self, gpu: &Gpu) -> Result<Option<Vec<(Step, f64)>>> {
-        self.timer.as_ref().map(|t| t.read(gpu, &self.plan)).transpose()
+    /// Starts reading back the timestamps of the frame just submitted (call after
+    /// `queue.submit` of an encoder given to [`Renderer::encode`]; without it no timings arrive).
+    pub fn timings_submitted(&mut self) {
+        if let Some(timer) = &mut self.timer {
+            timer.submitted();
+        }
+    }
+
+    /// Per-step GPU milliseconds of the newest submitted frame, waiting for the GPU.
+    pub fn read_timings(&mut self, gpu: &Gpu) -> Result<Option<Vec<(Step, f64)>>> {
+        let plan = &self.plan;
+        self.timer.as_mut().map(|t| t.wait(gpu, plan)).transpose().map(Option::flatten)
+    }
+
+    /// Per-step GPU milliseconds of the newest frame whose timestamps have arrived since the last
+    /// call, without waiting (the viewer's readback, a frame or two behind).
+    pub fn poll_timings(&mut self, gpu: &Gpu) -> Result<Option<Vec<(Step, f64)>>> {
+        let plan = &self.plan;
+        self.timer.as_mut().map(|t| t.poll(gpu, plan)).transpose().map(Option::flatten)
     }
 
     /// Bytes allocated on the GPU, by name: screen targets first, then scene, sky and frame data.
@@ -449,7 +465,7 @@ impl Renderer {
             }
             encoder.pop_debug_group();
         }
-        if let Some(timer) = &self.timer {
+        if let Some(timer) = &mut self.timer {
             timer.resolve(encoder);
         }
     }

@@ -67,8 +67,65 @@ pub fn read_r16f(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
     Ok(bytemuck::cast_slice::<u8, half::f16>(&bytes).iter().map(|h| h.to_f32()).collect())
 }
 
-/// A depth texture as f32.
+/// A depth texture as f32. Where the device cannot copy depth to a buffer (wgpu's GL backend),
+/// a full-screen pass first writes its bits into an `R32Uint` target.
 pub fn read_depth(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
-    let bytes = read_texture(gpu, texture)?;
+    let copyable =
+        gpu.adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES);
+    let bytes = if copyable { read_texture(gpu, texture)? } else { read_texture(gpu, &depth_to_bits(gpu, texture)?)? };
     Ok(bytemuck::cast_slice(&bytes).to_vec())
+}
+
+fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
+    use crate::render::passes::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
+    let device = &gpu.device;
+    let format = wgpu::TextureFormat::R32Uint;
+    let target = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("depth_bits"),
+        size: depth.size(),
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("depth_copy_layout"),
+        entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2)],
+    });
+    let module = crate::shaders::module(device, "depth_copy.wgsl")?;
+    let pipeline = fullscreen_pipeline(
+        device,
+        &FullscreenDesc {
+            label: "depth_copy",
+            module: &module,
+            entry: "fs_main",
+            bind_group_layouts: &[Some(&layout)],
+            targets: &[Some(format.into())],
+            depth: None,
+            constants: &[],
+        },
+    );
+    let source = depth
+        .create_view(&wgpu::TextureViewDescriptor { aspect: wgpu::TextureAspect::DepthOnly, ..Default::default() });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("depth_copy_group"),
+        layout: &layout,
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) }],
+    });
+    let view = target.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("depth_copy") });
+    FullscreenPass {
+        label: "depth_copy",
+        attachments: &[color_attachment(&view, true)],
+        depth: None,
+        timestamps: None,
+        pipeline: &pipeline,
+        bind_groups: &[(0, &group)],
+        viewport: None,
+    }
+    .record(&mut encoder);
+    gpu.queue.submit([encoder.finish()]);
+    Ok(target)
 }

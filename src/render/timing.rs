@@ -47,6 +47,7 @@ pub fn measure(
             gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("measure_encoder") });
         renderer.encode(gpu, &mut encoder, camera, output);
         gpu.queue.submit([encoder.finish()]);
+        renderer.timings_submitted();
         gpu.wait()?;
         let wall = started.elapsed().as_secs_f64() * 1e3;
         let steps = renderer.read_timings(gpu)?;
@@ -73,12 +74,40 @@ pub fn measure(
     Ok(Measurement { frame_ms: median(&mut totals), wall_ms: median(&mut walls), passes })
 }
 
+/// Readback buffers in flight: a frame's timestamps are read back two frames later at the latest,
+/// and a frame that finds every buffer still busy records none (its timings are simply skipped).
+const RING: usize = 3;
+
+/// Where one readback buffer is in its cycle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SlotState {
+    /// Free to receive the next frame's timestamps.
+    Free,
+    /// Holds a copy recorded into an encoder that has not been submitted yet.
+    Recorded,
+    /// Submitted; `map_async` asked for it, the callback has not run.
+    Mapping,
+}
+
+struct Slot {
+    buffer: wgpu::Buffer,
+    state: SlotState,
+    /// Set by the map callback: `Some(true)` mapped, `Some(false)` failed.
+    mapped: std::sync::Arc<std::sync::Mutex<Option<bool>>>,
+    /// Frame number of the timestamps it holds (newer wins when several arrive at once).
+    frame: u64,
+}
+
+/// Per-step GPU times from timestamp queries, read back through a small ring of buffers so the
+/// viewer never waits on the GPU inside a frame ([`GpuTimer::poll`]); the bench and the report,
+/// which wait for each frame anyway, read the newest frame with [`GpuTimer::wait`].
 pub struct GpuTimer {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
+    slots: Vec<Slot>,
     count: u32,
     period_ns: f64,
+    frames: u64,
 }
 
 impl GpuTimer {
@@ -96,13 +125,20 @@ impl GpuTimer {
             usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("timing_readback"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        Self { queries, resolve, readback, count, period_ns: gpu.queue.get_timestamp_period() as f64 }
+        let slots = (0..RING)
+            .map(|_| Slot {
+                buffer: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("timing_readback"),
+                    size: bytes,
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                state: SlotState::Free,
+                mapped: Default::default(),
+                frame: 0,
+            })
+            .collect();
+        Self { queries, resolve, slots, count, period_ns: gpu.queue.get_timestamp_period() as f64, frames: 0 }
     }
 
     /// Timestamp writes for the render pass of step `index`.
@@ -114,29 +150,78 @@ impl GpuTimer {
         }
     }
 
-    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Resolves this frame's timestamps into a free readback buffer (none free: skipped).
+    pub fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        self.frames += 1;
         encoder.resolve_query_set(&self.queries, 0..self.count, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, self.resolve.size());
+        // A buffer recorded but never submitted (an encoder dropped) is reused.
+        let free = self.slots.iter_mut().find(|s| matches!(s.state, SlotState::Free | SlotState::Recorded));
+        if let Some(slot) = free {
+            encoder.copy_buffer_to_buffer(&self.resolve, 0, &slot.buffer, 0, self.resolve.size());
+            slot.state = SlotState::Recorded;
+            slot.frame = self.frames;
+        }
     }
 
-    /// Milliseconds per step of the last resolved frame (waits for the GPU).
-    pub fn read(&self, gpu: &Gpu, plan: &Plan) -> Result<Vec<(Step, f64)>> {
-        let slice = self.readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
+    /// Call after submitting the encoder given to [`GpuTimer::resolve`]: starts the readback.
+    pub fn submitted(&mut self) {
+        for slot in self.slots.iter_mut().filter(|s| s.state == SlotState::Recorded) {
+            let mapped = slot.mapped.clone();
+            if let Ok(mut m) = mapped.lock() {
+                *m = None;
+            }
+            slot.buffer.slice(..).map_async(wgpu::MapMode::Read, move |result| {
+                if let Ok(mut m) = mapped.lock() {
+                    *m = Some(result.is_ok());
+                }
+            });
+            slot.state = SlotState::Mapping;
+        }
+    }
+
+    /// Milliseconds per step of the newest frame whose timestamps have arrived, without waiting
+    /// for the GPU; `None` when none arrived since the last call.
+    pub fn poll(&mut self, gpu: &Gpu, plan: &Plan) -> Result<Option<Vec<(Step, f64)>>> {
+        let _ = gpu.device.poll(wgpu::PollType::Poll);
+        self.collect(plan)
+    }
+
+    /// Like [`GpuTimer::poll`], but waits for every submitted frame first.
+    pub fn wait(&mut self, gpu: &Gpu, plan: &Plan) -> Result<Option<Vec<(Step, f64)>>> {
         gpu.wait()?;
-        let ticks: Vec<u64> = {
-            let view = slice.get_mapped_range().map_err(|e| Error::Gpu(format!("reading timestamps: {e}")))?;
-            bytemuck::cast_slice(&view).to_vec()
-        };
-        self.readback.unmap();
-        Ok(plan
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(i, step)| {
-                let (begin, end) = (ticks[2 * i], ticks[2 * i + 1]);
-                (*step, end.saturating_sub(begin) as f64 * self.period_ns * 1e-6)
-            })
-            .collect())
+        self.collect(plan)
+    }
+
+    fn collect(&mut self, plan: &Plan) -> Result<Option<Vec<(Step, f64)>>> {
+        let mut newest: Option<(u64, Vec<u64>)> = None;
+        for slot in self.slots.iter_mut().filter(|s| s.state == SlotState::Mapping) {
+            let done = slot.mapped.lock().map_err(|_| Error::Gpu("timing readback poisoned".into()))?.take();
+            let Some(ok) = done else { continue };
+            if ok {
+                let ticks: Vec<u64> = {
+                    let view = slot
+                        .buffer
+                        .slice(..)
+                        .get_mapped_range()
+                        .map_err(|e| Error::Gpu(format!("reading timestamps: {e}")))?;
+                    bytemuck::cast_slice(&view).to_vec()
+                };
+                slot.buffer.unmap();
+                if newest.as_ref().is_none_or(|(frame, _)| slot.frame > *frame) {
+                    newest = Some((slot.frame, ticks));
+                }
+            }
+            slot.state = SlotState::Free;
+        }
+        Ok(newest.map(|(_, ticks)| {
+            plan.steps
+                .iter()
+                .enumerate()
+                .map(|(i, step)| {
+                    let (begin, end) = (ticks[2 * i], ticks[2 * i + 1]);
+                    (*step, end.saturating_sub(begin) as f64 * self.period_ns * 1e-6)
+                })
+                .collect()
+        }))
     }
 }

@@ -390,6 +390,7 @@ pub fn load_obj(path: &Path) -> Result<Model> {
 
     let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); materials.len()];
     let mut dropped = 0usize;
+    let mut flipped = 0usize;
     for model in &models {
         let mesh = &model.mesh;
         let count = mesh.positions.len() / 3;
@@ -424,8 +425,24 @@ pub fn load_obj(path: &Path) -> Result<Model> {
                 dropped += 1;
                 continue;
             }
-            let face_normal = (pos[1] - pos[0]).cross(pos[2] - pos[0]).try_normalize().unwrap_or(Vec3::Y);
-            for (k, &i) in idx.iter().enumerate() {
+            let (e1, e2) = (pos[1] - pos[0], pos[2] - pos[0]);
+            let cross = e1.cross(e2);
+            let mut face_normal = cross.try_normalize().unwrap_or(Vec3::Y);
+            // A sliver (a sphere's pole) has no trustworthy winding: it is left as it is.
+            let well_shaped = cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared());
+            // The supplied normals say which side is out; the winding is often an accident
+            // (left-handed exporters, mirrored objects). Where they disagree, the winding yields.
+            let mut order = [0, 1, 2];
+            if has_normals {
+                let supplied: Vec3 = idx.iter().map(|&i| Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3])).sum();
+                if well_shaped && supplied.is_finite() && face_normal.dot(supplied) < 0.0 {
+                    order = [0, 2, 1];
+                    face_normal = -face_normal;
+                    flipped += 1;
+                }
+            }
+            for k in order {
+                let i = idx[k];
                 let normal = if has_normals {
                     Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3]).try_normalize().unwrap_or(face_normal)
                 } else {
@@ -440,6 +457,9 @@ pub fn load_obj(path: &Path) -> Result<Model> {
     }
     if dropped > 0 {
         warnings.push(format!("dropped {dropped} triangle(s) with out-of-range indices or non-finite positions"));
+    }
+    if flipped > 0 {
+        warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));
     }
     if groups.iter().all(Vec::is_empty) {
         return Err(Error::input(path, "no triangles to draw (no faces, or only points and lines)"));

@@ -29,18 +29,12 @@ pub fn texture_entry(
     }
 }
 
-/// A bind-group-layout entry for the depth buffer read with `textureLoad`.
+/// A bind-group-layout entry for the depth buffer read with `textureLoad`. It is bound as an
+/// unfilterable float texture (`texture_2d<f32>` in WGSL), which WebGPU allows for `depth32float`:
+/// wgpu's GL backend cannot translate `textureLoad` from a `texture_depth_2d`, and on Vulkan the
+/// two compile to the same image read.
 pub fn depth_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Depth,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
+    texture_entry(binding, false, wgpu::TextureViewDimension::D2)
 }
 
 pub fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
