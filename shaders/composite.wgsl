@@ -1,7 +1,15 @@
-// Composite: ambient·albedo·AO + DO + direct point lighting, in linear HDR.
-// Which terms exist is decided when the pipeline is built (override constants), so a mode or a
-// scene that lacks a term pays nothing for it. After a lighting pass the composite is blended
-// additively onto the direct light that pass wrote; otherwise it runs the light loop itself.
+// Composite: the sky and ambient light each mode sees, plus direct point lighting, in linear HDR.
+// Every mode is lit by the same sky, so switching modes shows occlusion, not a different light.
+// With ρ the albedo, A the constant ambient radiance, E(n)/π the sky's unoccluded irradiance
+// (spherical harmonics, precomputed per sky), AO and DO the sampling pass's outputs:
+//   Off        ρ·(E(n)/π + A)
+//   SSAO       ρ·(E(n)/π + A)·AO
+//   SSDO       ρ·(DO + A)          DO = the visible sky per direction + one bounce
+//   SSAO+SSDO  ρ·(DO + A·AO)       AO darkens only the constant ambient SSDO does not see
+// The classic variant keeps the source chapters' composite: A·ρ·AO + DO (DO without ρ), no
+// sky irradiance. Which terms exist is decided when the pipeline is built (override constants),
+// so a mode or a scene that lacks a term pays nothing for it. After a lighting pass the composite
+// is blended additively onto the direct light that pass wrote; otherwise it runs the light loop.
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
@@ -19,10 +27,24 @@ override HAS_AO: bool = false;
 override HAS_DO: bool = false;
 // AO travels in the DO buffer's alpha (SSAO+SSDO) rather than in its own buffer.
 override AO_IN_DO: bool = false;
-// The classic variant adds DO without the receiver's albedo, as the source does.
+// The classic variant adds DO without the receiver's albedo, as the source does, and has no
+// sky irradiance.
 override CLASSIC: bool = false;
 // The "lighting only" view: every surface white.
 override WHITE_ALBEDO: bool = false;
+
+// E(n)/π of the sky for world-space unit normal `n` (pre-exposed), from the 9 coefficients in
+// the order of `sh_basis` (src/scene/skybox.rs). Three bands can ring below 0 opposite a bright
+// sun: clamped.
+fn sky_irradiance(n: vec3<f32>) -> vec3<f32> {
+    let c = frame.sky_sh;
+    let e = c[0].rgb * 0.282095
+        + (c[1].rgb * n.y + c[2].rgb * n.z + c[3].rgb * n.x) * 0.488603
+        + (c[4].rgb * (n.x * n.y) + c[5].rgb * (n.y * n.z) + c[7].rgb * (n.x * n.z)) * 1.092548
+        + c[6].rgb * (0.315392 * (3.0 * n.z * n.z - 1.0))
+        + c[8].rgb * (0.546274 * (n.x * n.x - n.y * n.y));
+    return max(e, vec3<f32>(0.0));
+}
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
@@ -44,12 +66,24 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, AO_IN_DO), 0.0, 1.0);
         ao = mix(1.0, pow(raw, frame.shading.y), frame.shading.x);
     }
-    var color = frame.sky.z * frame.ambient.rgb * albedo.rgb * ao;
-    if HAS_DO {
-        color += select(albedo.rgb * directional.rgb, directional.rgb, CLASSIC);
+    let ambient = frame.sky.z * frame.ambient.rgb;
+    var color: vec3<f32>;
+    var normal = vec4<f32>(0.0);
+    if LIGHT_LOOP || (!CLASSIC && !HAS_DO) {
+        normal = textureLoad(g_normal, pixel, 0);
+    }
+    if CLASSIC {
+        color = ambient * albedo.rgb * ao;
+        if HAS_DO {
+            color += directional.rgb;
+        }
+    } else if HAS_DO {
+        color = albedo.rgb * (directional.rgb + ambient * ao);
+    } else {
+        let world_normal = (frame.view_to_world * vec4<f32>(normal.xyz, 0.0)).xyz;
+        color = albedo.rgb * (sky_irradiance(world_normal) + ambient) * ao;
     }
     if LIGHT_LOOP {
-        let normal = textureLoad(g_normal, pixel, 0);
         let p = view_position(in.position.xy, depth);
         let direct = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
         color += direct.diffuse + direct.specular;

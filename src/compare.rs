@@ -12,7 +12,8 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
     let key = Mode::ALL.iter().position(|m| *m == s.mode).unwrap_or(0) + 1;
     let mut lines = vec![format!("{}  [{key}]", s.mode.title())];
     if s.mode == Mode::Off {
-        lines.push("ambient + point lights, no occlusion".into());
+        let light = if s.variant == crate::render::Variant::Classic { "ambient" } else { "sky + ambient" };
+        lines.push(format!("{light} + point lights, no occlusion"));
     } else {
         let blur = if s.blur { "blurred" } else { "no blur" };
         lines.push(format!("{} variant, {} samples, radius {radius:.3}, {blur}", s.variant, s.samples));

@@ -38,9 +38,9 @@ fn preference(info: &wgpu::AdapterInfo) -> (u8, u8) {
 }
 
 /// The message to show when no adapter exists at all.
-pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (not even a software one). \
-On Debian/Ubuntu install the software Vulkan driver: `sudo apt-get install mesa-vulkan-drivers` \
-(scripts/test.sh does this for you)";
+pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (not even a software one); \
+on Debian/Ubuntu install Mesa's software drivers: `sudo apt-get install mesa-vulkan-drivers` (Vulkan) \
+or `sudo apt-get install libegl-mesa0 libgl1-mesa-dri` (OpenGL)";
 
 /// wgpu's flags from the environment, without debug labels unless `WGPU_DEBUG=1` asks for them:
 /// Mesa 22.3's lavapipe (Debian bookworm's software Vulkan) crashes in
@@ -58,6 +58,13 @@ impl Gpu {
         let instance =
             wgpu::Instance::new(instance_descriptor(wgpu::InstanceDescriptor::new_without_display_handle_from_env()));
         Self::from_instance(instance, None)
+    }
+
+    /// A headless device on the given backends only (the backend comparison test).
+    pub fn headless_on(backends: wgpu::Backends) -> Result<Self> {
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        descriptor.backends = backends;
+        Self::from_instance(wgpu::Instance::new(instance_descriptor(descriptor)), None)
     }
 
     /// Picks the best adapter that can present to `surface` (or any, when `None`) and opens a
@@ -79,6 +86,18 @@ impl Gpu {
         let wanted = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
         let features = adapter.features() & wanted;
         let timestamps = features.contains(wanted);
+        // What this backend lacks degrades, each with one line: no per-pass GPU times (wall time
+        // instead), depth read back through a copy pass.
+        if !timestamps {
+            log::info!(
+                "{:?} on {} has no timestamp queries: timings are synchronised wall time",
+                info.backend,
+                info.name
+            );
+        }
+        if !adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES) {
+            log::debug!("{:?} cannot copy depth to a buffer: depth is read back through a copy pass", info.backend);
+        }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("ssdo_device"),
             required_features: features,

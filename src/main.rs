@@ -139,7 +139,7 @@ struct RenderArgs {
     /// Exposure applied before tone mapping
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     exposure: f32,
-    /// Constant ambient radiance [default: 0.25; classic 0.5]
+    /// Constant ambient radiance, on top of the sky [default: 0.1; classic 0.5]
     #[arg(long, allow_negative_numbers = true)]
     ambient: Option<f32>,
     /// Multiplier on the sky's radiance
@@ -198,7 +198,8 @@ struct ViewArgs {
 
 #[derive(Args)]
 struct ReportArgs {
-    /// Scene: cornell (the default scene), crevices (thin features, deep slots) or open (redblue sky)
+    /// Scene: cornell (the default scene), crevices (thin features, deep slots), open (redblue
+    /// sky) or stairs (stairs under an overhang, a scene nobody tuned on)
     #[arg(long, default_value = "cornell")]
     scene: String,
     /// An OBJ model instead of a named scene
@@ -213,7 +214,11 @@ struct ReportArgs {
     /// Sample counts to sweep, comma-separated
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     samples: Vec<usize>,
-    /// Reference rays per pixel
+    /// Sampling radii to sweep, comma-separated: multiples of the scene's default (2x) or lengths
+    /// in model units (0.3)
+    #[arg(long, default_value = "1x", value_delimiter = ',')]
+    radius: Vec<ssdo::report::RadiusChoice>,
+    /// Reference rays per pixel, in each of the two independent traces (at least 2)
     #[arg(long, default_value_t = 256)]
     spp: u32,
     /// Frames timed per configuration (after two warm-up frames)
@@ -234,8 +239,8 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     if let Some(&bad) = args.samples.iter().find(|s| !(1..=256).contains(*s)) {
         return Err(Error::Setting(format!("--samples {bad}: each count must be between 1 and 256")));
     }
-    if args.frames == 0 || args.spp == 0 || args.samples.is_empty() {
-        return Err(Error::Setting("--frames, --spp and --samples must be at least 1".into()));
+    if args.frames == 0 || args.samples.is_empty() || args.radius.is_empty() {
+        return Err(Error::Setting("--frames, --samples and --radius must each give at least one".into()));
     }
     let options = ssdo::report::ReportOptions {
         scene: args.scene.clone(),
@@ -243,6 +248,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         skybox: args.skybox.clone(),
         size: (args.size.0, args.size.1),
         samples: args.samples.clone(),
+        radii: args.radius.clone(),
         samples_per_pixel: args.spp,
         frames: args.frames,
         lights: args.lights,
@@ -252,7 +258,9 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let gpu = Gpu::headless()?;
     let started = Instant::now();
     let rows = args.size.1 as u64;
-    let bar = indicatif::ProgressBar::new(rows + 2 * 3 * 2 * args.samples.len() as u64);
+    let radii = args.radius.len() as u64;
+    let configs = 2 + radii * 2 * 3 * 2 * args.samples.len() as u64;
+    let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
             .expect("valid template"),
@@ -559,7 +567,18 @@ fn run_view(args: ViewArgs) -> Result<()> {
     })
 }
 
+/// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` (installed with its drivers) only
+/// reorders the adapters, which we rank ourselves (`ssdo::gpu`); with no Wayland session it prints
+/// `error: XDG_RUNTIME_DIR is invalid or not set` twice, on every successful run. Turned off unless
+/// the user set its switch, here before any other thread exists.
+fn quiet_mesa_device_select() {
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        std::env::set_var("NODEVICE_SELECT", "1");
+    }
+}
+
 fn main() -> ExitCode {
+    quiet_mesa_device_select();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,ssdo=info"))
         .format_timestamp(None)
         .init();

@@ -98,6 +98,20 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
             }
         }
     }
+    // Every mode is lit by the same sky: Off (the sky's irradiance), SSAO (× AO = 1) and Both
+    // give ρ·L as well, with and without a constant ambient A on top (ρ·(L + A)).
+    for ambient in [0.0, 0.2] {
+        for mode in Mode::ALL {
+            let s = Settings { radius: Some(0.5), ambient, ..settings(mode) };
+            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+            let hdr = render(&gpu, &mut r, &camera, true).hdr;
+            let want = albedo * (sky_radiance + Vec3::splat(ambient));
+            for p in [(80, 60), (20, 100), (140, 100)] {
+                let got = rgb(at(&hdr, p));
+                assert!((got / want - 1.0).abs().max_element() < 0.01, "{mode}, A {ambient}: {got} vs ρ·(L+A) {want}");
+            }
+        }
+    }
 }
 
 #[test]
@@ -179,15 +193,20 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     assert!(ratio(ssdo_near) > ratio(ssdo_far) + 0.05, "bleeding fades with distance: {ssdo_near} vs {ssdo_far}");
 }
 
-#[test]
-fn redblue_sky_lights_tops_blue_and_bottoms_red_in_ssdo_only() {
-    let Some(gpu) = gpu() else { return };
+/// A lone sphere under the blue-above, red-below sky, and a camera level with it.
+fn redblue_ball() -> (Scene, Skybox, OrbitCamera) {
     let mut b = MeshBuilder::default();
     let m = b.material(Material::plain("ball", [0.8; 3]));
     b.sphere(m, Vec3::new(0.0, 2.0, 0.0), 1.0, 48, 24);
     let scene = Scene::new(b.build("ball").unwrap(), 0, 1);
     let sky = Skybox::load(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/skyboxes/redblue"))).unwrap();
-    let camera = looking(Vec3::new(0.0, 2.0, 0.0), 0.0, 0.0, 5.0);
+    (scene, sky, looking(Vec3::new(0.0, 2.0, 0.0), 0.0, 0.0, 5.0))
+}
+
+#[test]
+fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = redblue_ball();
     let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
     let bottom = project(&camera, Vec3::new(0.0, 1.2, 0.6));
     let blueness = |c: Vec3| c.z - c.x;
@@ -197,10 +216,32 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_ssdo_only() {
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "SSDO: top {up}, bottom {down}");
 
+    // Off sees the same sky, unoccluded (its irradiance per normal): also blue on top.
     r.set_mode(&gpu, Mode::Off);
     let hdr = render(&gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
-    assert!((up - down).abs().max_element() < 1e-3, "Off has no directional sky: top {up}, bottom {down}");
+    assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
+
+    // The classic variant keeps the source chapters' constant grey ambient in Off: no sky.
+    r.settings = Settings { variant: Variant::Classic, ..r.settings };
+    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    assert!((up - down).abs().max_element() < 1e-3, "classic Off has no directional sky: top {up}, bottom {down}");
+}
+
+#[test]
+fn ssao_and_ssdo_differ_only_where_the_sky_is_occluded() {
+    // A lone sphere: nothing occludes its top, so SSAO (the sky's irradiance × AO) and SSDO (the
+    // visible sky per direction) must agree there: the difference between them is occlusion alone.
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = redblue_ball();
+    let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
+    let s = Settings { samples: 64, ..settings(Mode::Ssao) };
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+    let ssao = mean_rgb(&render(&gpu, &mut r, &camera, true).hdr, top, 1);
+    r.set_mode(&gpu, Mode::Ssdo);
+    let ssdo = mean_rgb(&render(&gpu, &mut r, &camera, true).hdr, top, 1);
+    assert!((ssao - ssdo).abs().max_element() < 0.05 * ssao.max_element(), "open top: SSAO {ssao}, SSDO {ssdo}");
 }
 
 #[test]

@@ -6,7 +6,7 @@ use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::reference::{ReferenceScene, TraceSettings};
 use ssdo::render::{Mode, Variant};
-use ssdo::report::{self, ReportOptions};
+use ssdo::report::{self, RadiusChoice, ReportOptions};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{LightRig, Material, PointLight, Scene, Skybox};
 
@@ -38,6 +38,8 @@ fn open_plane_has_no_occlusion_and_passes_the_white_furnace() {
     assert!((e.sky - Vec3::new(0.3, 0.6, 0.9)).abs().max_element() < 1e-5, "white furnace: {}", e.sky);
     assert!(e.sky_error < 1e-5, "every ray sees the same sky: {}", e.sky_error);
     assert_eq!(e.bounce, Vec3::ZERO);
+    assert_eq!(e.open, 1.0, "every ray escapes");
+    assert_eq!(e.sky_near, e.sky, "nothing beyond the radius either");
 }
 
 #[test]
@@ -61,6 +63,25 @@ fn floor_at_the_foot_of_a_large_wall_has_ao_one_half() {
     assert!((e.ao - 0.5).abs() <= 3.0 * e.ao_error, "AO {} vs 0.5 ± 3σ (σ = {})", e.ao, e.ao_error);
     // Half the cosine-weighted hemisphere sees the sky.
     assert!((e.sky.x - 0.5).abs() <= 3.0 * e.sky_error + 1e-3, "sky {} ± {}", e.sky.x, e.sky_error);
+    assert!((e.open - 0.5).abs() <= 3.0 * e.ao_error, "openness {}", e.open);
+
+    // A receiver 3 units from the wall, with a radius of 1: the truth still sees the wall (any
+    // distance), the within-R diagnostic does not.
+    let far = floor_point(&scene, v(3.0, 0.0, 0.0));
+    let e = scene.estimate(
+        &far,
+        &[],
+        &rig(),
+        &Skybox::constant(Vec3::ONE),
+        &settings(1.0, 4096),
+        &mut StdRng::seed_from_u64(4),
+    );
+    // The form factor from a floor point at distance d to an infinitely long wall of height h
+    // (Hottel's crossed strings): (1 − d/√(d² + h²))/2; d = 3, h = 100 hides 0.485 of the sky.
+    let hidden = 0.5 * (1.0 - 3.0 / (9.0f32 + 100.0 * 100.0).sqrt());
+    assert!((e.sky.x - (1.0 - hidden)).abs() < 0.02, "sky beyond R sees the wall: {} vs {}", e.sky.x, 1.0 - hidden);
+    assert_eq!(e.sky_near, Vec3::ONE, "within R = 1 nothing is in the way");
+    assert_eq!(e.ao, 1.0);
 }
 
 #[test]
@@ -97,6 +118,7 @@ fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
         skybox: None,
         size: (160, 120),
         samples: vec![8, 64],
+        radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 64,
         frames: 1,
         lights: 8,
@@ -125,9 +147,19 @@ fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
     // The report files are complete.
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
-    assert!(csv.starts_with("mode,variant,samples,blur,ms,ao_rmse,ao_psnr,do_rmse,do_psnr,hdr_rmse,hdr_psnr,flip"));
-    assert_eq!(csv.lines().count(), 1 + 2 * 3 * 2 * 2);
+    assert!(csv.starts_with("mode,variant,samples,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,hdr_rmse"));
+    assert_eq!(csv.lines().count(), 1 + 2 + 2 * 3 * 2 * 2, "Off once per variant, the rest swept");
     assert!(std::fs::read_to_string(out.path().join("report.md")).unwrap().contains("| both | default | 64 |"));
+    assert!(result.rows.iter().any(|r| r.pareto), "a Pareto front is marked");
+    // The truth's own noise is measured (not 0) and well below what Off, with no occlusion at
+    // all, gets wrong.
+    let off = result.rows.iter().find(|r| r.mode == Mode::Off && r.variant == Variant::Default).unwrap();
+    assert!(
+        result.noise.hdr > 0.0 && result.noise.hdr < 0.5 * off.hdr_rmse,
+        "noise {} vs Off {}",
+        result.noise.hdr,
+        off.hdr_rmse
+    );
     assert!(image::open(out.path().join("report.png")).is_ok());
     // Default beats classic on the displayed image at every sample count.
     for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
@@ -154,4 +186,53 @@ fn report_scenes_build_and_unknown_names_are_errors() {
     let e = report::scenes::by_name("nowhere").unwrap_err();
     assert!(e.to_string().contains("nowhere") && e.exit_code() == 2);
     let _ = Scene::new(report::scenes::crevices().unwrap(), 1, 1);
+}
+
+#[test]
+fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
+    // An open plane under a constant sky: no occlusion and no bounce, so every mode's image is
+    // right up to rounding and SSAO's error must not change with the number of lights. The GPU's
+    // buffers hold radiance × pre-exposure, which falls below 1 as lights are added; a report that
+    // forgot to divide it out would see a growing error.
+    let Some(gpu) = common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let model = builtin::plane(3.0, [0.6; 3]).unwrap();
+    builtin::write_obj(&model, &dir.path().join("plane.obj")).unwrap();
+    let sky_dir = dir.path().join("sky");
+    std::fs::create_dir(&sky_dir).unwrap();
+    builtin::write_skybox(&Skybox::constant(Vec3::new(0.4, 0.5, 0.6)), &sky_dir, true).unwrap();
+    let error = |lights: usize| {
+        let options = ReportOptions {
+            scene: "cornell".into(),
+            model: Some(dir.path().join("plane.obj")),
+            skybox: Some(sky_dir.clone()),
+            size: (96, 72),
+            samples: vec![16],
+            radii: vec![RadiusChoice::Times(1.0)],
+            samples_per_pixel: 8,
+            frames: 1,
+            lights,
+            seed: 1,
+            out: dir.path().join("out"),
+        };
+        let report = report::run(&gpu, &options, &|_| {}).unwrap();
+        let row = report
+            .rows
+            .iter()
+            .find(|r| r.mode == Mode::Ssao && r.variant == Variant::Default && r.blur)
+            .unwrap()
+            .clone();
+        row.hdr_rmse
+    };
+    // The test means something only if the brighter scenes are pre-exposed.
+    let scene = Scene::new(model.clone(), 32, 1);
+    let sky = Skybox::constant(Vec3::new(0.4, 0.5, 0.6));
+    let r = common::renderer(&gpu, &scene, &sky, (96, 72), ssdo::render::Settings::default());
+    assert!(r.pre_exposure() < 0.5, "32 lights are pre-exposed: {}", r.pre_exposure());
+    let base = error(8);
+    for lights in [16, 32] {
+        let e = error(lights);
+        eprintln!("SSAO HDR RMSE: {base:.5} with 8 lights, {e:.5} with {lights}");
+        assert!((e - base).abs() <= 0.1 * base, "{lights} lights: SSAO HDR RMSE {e} vs {base} with 8");
+    }
 }

@@ -241,26 +241,25 @@ impl Viewer {
             }
             wake = Some(now + LOAD_POLL);
         }
-        let mut earliest = |t: Instant| wake = Some(wake.map_or(t, |w: Instant| w.min(t)));
-        match self.egui_repaint {
-            Some(t) if t <= now => {
-                self.egui_repaint = None;
-                self.refreshing = false;
-                self.window.request_redraw();
-            }
-            Some(t) => earliest(t),
-            None => {}
+        // Each deadline that has come asks for a frame; the others say when to wake.
+        let egui_due = self.egui_repaint.is_some_and(|t| t <= now);
+        let timing_due = self.timing_refresh.is_some_and(|t| t <= now);
+        if egui_due || timing_due {
+            // A frame asked for by the timing refresh alone schedules no further refresh.
+            self.refreshing = !egui_due;
+            self.window.request_redraw();
         }
-        match self.timing_refresh {
-            Some(t) if t <= now => {
-                self.timing_refresh = None;
-                self.refreshing = true;
-                self.window.request_redraw();
-            }
-            Some(t) => earliest(t),
-            None => {}
+        if egui_due {
+            self.egui_repaint = None;
         }
-        wake.map_or(ControlFlow::Wait, ControlFlow::WaitUntil)
+        if timing_due {
+            self.timing_refresh = None;
+        }
+        let later = [self.egui_repaint, self.timing_refresh].into_iter().flatten();
+        match later.chain(wake).min() {
+            Some(t) => ControlFlow::WaitUntil(t),
+            None => ControlFlow::Wait,
+        }
     }
 
     fn event(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) -> Result<()> {

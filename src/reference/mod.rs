@@ -1,20 +1,28 @@
-//! CPU ray-traced ground truth for the screen-space passes: the same triangles, camera and pixels,
-//! and the same definitions, with exact visibility.
+//! CPU ray-traced ground truth: one physical image for every mode. The same triangles, camera and
+//! pixels as the GPU, with exact visibility at any distance.
 //!
 //! For each pixel the primary ray finds the visible surface (checked against the GPU's depth; a
 //! pixel where the two disagree, on a silhouette, is left out). From it, `spp` cosine-distributed
-//! rays each answer three questions at once:
+//! rays (pdf cos/π, so a mean over rays is E/π) each answer, at once:
 //!
-//! * **AO** (radius R): the ray hits something within R. AO = 1 − the hit fraction, the cosine-
-//!   weighted AO that the default variant estimates.
-//! * **Sky light**, full visibility: the ray hits nothing at all, and brings the sky's radiance in
-//!   its direction (the same cube map). Sky = E/π = mean of L over the visible rays (pdf cos/π).
-//! * **One bounce** within R: the ray hits a surface within R, which sends its diffuse radiance under
-//!   the point lights — unshadowed, exactly what the GPU's `bounce` buffer holds — so the error
-//!   measures the screen-space approximation, not missing shadows.
+//! * **Sky light**: the ray hits nothing at all and brings the sky's radiance in its direction
+//!   (the same cube map).
+//! * **One bounce**: the ray hits a surface, at any distance, which sends its diffuse radiance
+//!   under the point lights — unshadowed, exactly what the GPU's `bounce` buffer holds. Senders
+//!   are lit by the point lights only, not by the sky (a sky-lit bounce would need a second ray
+//!   per hit).
+//! * **Openness**: the share of rays that escape, which occludes the constant ambient (a uniform
+//!   environment of radiance A).
 //!
-//! Sample variances give each estimate's own Monte Carlo standard error. Deterministic: each pixel
-//! draws from a generator seeded by the seed and the pixel index, and pixels run in parallel.
+//! The truth at a pixel is ρ·(sky + bounce + A·openness) + direct point light, the same for every
+//! mode and variant. Beside it, **within-R diagnostics** with the sampling radius R: occluders
+//! and senders beyond R ignored (AO = 1 − share of rays hitting within R; sky where no hit within
+//! R; bounce from hits within R). The gap between a mode's error against the truth and against
+//! the within-R image is what its reach costs.
+//!
+//! Deterministic: each pixel draws from a generator seeded by the seed and the pixel index, and
+//! pixels run in parallel. [`trace_pair`] traces twice with independent seeds, for the truth (their
+//! mean) and its noise floor (their difference).
 
 use glam::{Vec3, Vec3A, Vec4Swizzles};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
@@ -156,13 +164,20 @@ pub struct Estimate {
     pub sky: Vec3,
     /// Standard error of the sky light's luminance.
     pub sky_error: f32,
-    /// One bounce within the radius, E/π.
+    /// One bounce from a sender at any distance, E/π.
     pub bounce: Vec3,
     pub bounce_error: f32,
+    /// Share of the cosine-weighted rays that escape (occludes the constant ambient).
+    pub open: f32,
+    /// Sky light where no occluder lies within the radius (occluders beyond R ignored), E/π.
+    pub sky_near: Vec3,
+    /// One bounce from senders within the radius, E/π.
+    pub bounce_near: Vec3,
 }
 
 impl ReferenceScene {
-    /// AO, sky light and one bounce at `surface` from `spp` cosine-distributed rays.
+    /// Sky light, one bounce and openness at `surface` with exact visibility, and the within-R
+    /// AO, sky and bounce, from `spp` cosine-distributed rays.
     pub fn estimate(
         &self,
         surface: &Surface,
@@ -177,6 +192,7 @@ impl ReferenceScene {
         let (mut ao_sum, mut ao_sq) = (0.0f32, 0.0f32);
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
+        let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
         for _ in 0..n {
             let dir = cosine_direction(surface.normal, rng.random(), rng.random());
             match self.trace(origin, dir, f32::INFINITY) {
@@ -184,15 +200,21 @@ impl ReferenceScene {
                     let l = sky.sample(dir) * settings.sky_scale;
                     sky_sum += l;
                     sky_sq += luminance(l).powi(2);
+                    sky_near += l;
+                    open += 1.0;
                 }
-                Some(sender) if sender.distance < settings.radius => {
-                    ao_sum += 1.0;
-                    ao_sq += 1.0;
+                Some(sender) => {
                     let (diffuse, _) = point_lighting(&sender, -dir, lights, rig);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
+                    if sender.distance < settings.radius {
+                        ao_sum += 1.0;
+                        ao_sq += 1.0;
+                        bounce_near += diffuse;
+                    } else {
+                        sky_near += sky.sample(dir) * settings.sky_scale;
+                    }
                 }
-                Some(_) => {}
             }
         }
         let nf = n as f32;
@@ -204,6 +226,9 @@ impl ReferenceScene {
             sky_error: standard_error(luminance(sky_sum), sky_sq),
             bounce: bounce_sum / nf,
             bounce_error: standard_error(luminance(bounce_sum), bounce_sq),
+            open: open / nf,
+            sky_near: sky_near / nf,
+            bounce_near: bounce_near / nf,
         }
     }
 }
@@ -234,11 +259,17 @@ pub struct Reference {
     /// A surface is visible and the GPU's depth agrees with the traced one.
     pub valid: Vec<bool>,
     pub albedo: Vec<Vec3>,
+    /// AO within the radius (a diagnostic: what AO estimates by definition).
     pub ao: Vec<f32>,
     /// Sky light with full visibility, E/π.
     pub sky: Vec<Vec3>,
-    /// One bounce within the radius, E/π.
+    /// One bounce from any distance, E/π.
     pub bounce: Vec<Vec3>,
+    /// Share of rays that escape: the constant ambient's visibility.
+    pub open: Vec<f32>,
+    /// Within-R sky and bounce (diagnostics), E/π.
+    pub sky_near: Vec<Vec3>,
+    pub bounce_near: Vec<Vec3>,
     /// Direct point lighting (diffuse + specular), as displayed.
     pub direct: Vec<Vec3>,
     /// Mean Monte Carlo standard errors over the valid pixels.
@@ -247,6 +278,8 @@ pub struct Reference {
     pub bounce_error: f64,
     /// Pixels left out: a surface on one side only, or at a different depth (silhouettes).
     pub mismatched: usize,
+    /// Pixels left out because a light's emissive cube covers the surface.
+    pub covered: usize,
 }
 
 /// Parameters of a reference render.
@@ -270,10 +303,15 @@ fn cosine_direction(n: Vec3, u1: f32, u2: f32) -> Vec3 {
 
 struct PixelResult {
     valid: bool,
+    /// A light's cube is in front of the surface.
+    covered: bool,
     albedo: Vec3,
     ao: (f32, f32),
     sky: (Vec3, f32),
     bounce: (Vec3, f32),
+    open: f32,
+    sky_near: Vec3,
+    bounce_near: Vec3,
     direct: Vec3,
 }
 
@@ -307,10 +345,14 @@ pub fn trace(
                     let direction = (view_to_world * view_dir.extend(0.0)).xyz().normalize();
                     let empty = PixelResult {
                         valid: false,
+                        covered: false,
                         albedo: Vec3::ZERO,
                         ao: (1.0, 0.0),
                         sky: (Vec3::ZERO, 0.0),
                         bounce: (Vec3::ZERO, 0.0),
+                        open: 1.0,
+                        sky_near: Vec3::ZERO,
+                        bounce_near: Vec3::ZERO,
                         direct: Vec3::ZERO,
                     };
                     let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
@@ -322,16 +364,28 @@ pub fn trace(
                     if !((view_z - gpu_z).abs() <= 1e-3 * view_z) {
                         return empty;
                     }
+                    // The lights' emissive cubes cover the surface here on the GPU's image; the
+                    // reference has no such cubes, so the pixel measures nothing.
+                    let cube = lights.iter().any(|l| {
+                        ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance)
+                    });
+                    if cube {
+                        return PixelResult { covered: true, ..empty };
+                    }
                     let mut rng =
                         StdRng::seed_from_u64(settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
                     let e = scene.estimate(&surface, lights, rig, sky, settings, &mut rng);
                     let (diffuse, specular) = point_lighting(&surface, -direction, lights, rig);
                     PixelResult {
                         valid: true,
+                        covered: false,
                         albedo: surface.albedo,
                         ao: (e.ao, e.ao_error),
                         sky: (e.sky, e.sky_error),
                         bounce: (e.bounce, e.bounce_error),
+                        open: e.open,
+                        sky_near: e.sky_near,
+                        bounce_near: e.bounce_near,
                         direct: diffuse + specular,
                     }
                 })
@@ -352,14 +406,75 @@ pub fn trace(
         ao_error: mean_error(&|p| p.ao.1),
         sky_error: mean_error(&|p| p.sky.1),
         bounce_error: mean_error(&|p| p.bounce.1),
-        mismatched: surfaces.saturating_sub(pixels.iter().filter(|p| p.valid).count()),
+        covered: pixels.iter().filter(|p| p.covered).count(),
+        mismatched: surfaces.saturating_sub(pixels.iter().filter(|p| p.valid || p.covered).count()),
         valid: pixels.iter().map(|p| p.valid).collect(),
         albedo: pixels.iter().map(|p| p.albedo).collect(),
         ao: pixels.iter().map(|p| p.ao.0).collect(),
         sky: pixels.iter().map(|p| p.sky.0).collect(),
         bounce: pixels.iter().map(|p| p.bounce.0).collect(),
+        open: pixels.iter().map(|p| p.open).collect(),
+        sky_near: pixels.iter().map(|p| p.sky_near).collect(),
+        bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
         direct: pixels.iter().map(|p| p.direct).collect(),
     }
+}
+
+impl Reference {
+    /// The truth at pixel `i`: linear radiance with exact visibility under the sky, one bounce,
+    /// the constant ambient `ambient` and the point lights — the same image for every mode.
+    pub fn radiance(&self, i: usize, ambient: f32) -> Vec3 {
+        self.albedo[i] * (self.sky[i] + self.bounce[i] + Vec3::splat(ambient * self.open[i])) + self.direct[i]
+    }
+
+    /// The within-R diagnostic image at pixel `i`: the same lighting with every occluder and
+    /// sender beyond the radius removed.
+    pub fn radiance_near(&self, i: usize, ambient: f32) -> Vec3 {
+        self.albedo[i] * (self.sky_near[i] + self.bounce_near[i] + Vec3::splat(ambient * self.ao[i])) + self.direct[i]
+    }
+
+    /// DO's truth at pixel `i` (sky light + bounce, before albedo), and its within-R diagnostic.
+    pub fn directional(&self, i: usize) -> Vec3 {
+        self.sky[i] + self.bounce[i]
+    }
+
+    pub fn directional_near(&self, i: usize) -> Vec3 {
+        self.sky_near[i] + self.bounce_near[i]
+    }
+
+    /// The mean of two independent traces of the same view (the truth with half the noise).
+    pub fn mean(a: &Reference, b: &Reference) -> Reference {
+        let avg3 = |x: &[Vec3], y: &[Vec3]| x.iter().zip(y).map(|(p, q)| 0.5 * (*p + *q)).collect();
+        let avg1 = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| 0.5 * (p + q)).collect();
+        Reference {
+            width: a.width,
+            height: a.height,
+            valid: a.valid.iter().zip(&b.valid).map(|(p, q)| *p && *q).collect(),
+            albedo: a.albedo.clone(),
+            ao: avg1(&a.ao, &b.ao),
+            sky: avg3(&a.sky, &b.sky),
+            bounce: avg3(&a.bounce, &b.bounce),
+            open: avg1(&a.open, &b.open),
+            sky_near: avg3(&a.sky_near, &b.sky_near),
+            bounce_near: avg3(&a.bounce_near, &b.bounce_near),
+            direct: a.direct.clone(),
+            ao_error: 0.5 * (a.ao_error + b.ao_error) / std::f64::consts::SQRT_2,
+            sky_error: 0.5 * (a.sky_error + b.sky_error) / std::f64::consts::SQRT_2,
+            bounce_error: 0.5 * (a.bounce_error + b.bounce_error) / std::f64::consts::SQRT_2,
+            mismatched: a.mismatched.max(b.mismatched),
+            covered: a.covered,
+        }
+    }
+}
+
+/// Distance along the ray (unit `direction`) to an axis-aligned cube of half edge `half` around
+/// `center`, if it is hit in front of `origin`.
+fn ray_box(origin: Vec3, direction: Vec3, center: Vec3, half: f32) -> Option<f32> {
+    let inv = direction.recip();
+    let t0 = (center - Vec3::splat(half) - origin) * inv;
+    let t1 = (center + Vec3::splat(half) - origin) * inv;
+    let (near, far) = (t0.min(t1).max_element(), t0.max(t1).min_element());
+    (near <= far && far > 0.0).then_some(near.max(0.0))
 }
 
 /// Rec. 709 luminance.

@@ -147,7 +147,7 @@ impl Default for Settings {
             indirect_strength: 1.0,
             blur: true,
             exposure: 1.0,
-            ambient: 0.25,
+            ambient: 0.1,
             sky_scale: 1.0,
             view: View::Final,
         }
@@ -170,6 +170,8 @@ pub struct Renderer {
     rig: LightRig,
     /// Default sampling radius of the current scene.
     scene_radius: f32,
+    /// The sky's E(n)/π as spherical harmonics (`Skybox::irradiance_sh`), in its own radiance.
+    sky_sh: [Vec3; 9],
     frame: FrameData,
     occlusion_data: OcclusionData,
     sky_layout: wgpu::BindGroupLayout,
@@ -217,6 +219,7 @@ impl Renderer {
             lights: scene.lights.clone(),
             rig: scene.rig,
             scene_radius: scene.default_radius(),
+            sky_sh: sky.irradiance_sh(),
             occlusion_data: OcclusionData::new(device),
             lighting: LightingPass::new(device, &frame.layout, &targets)?,
             occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
@@ -339,6 +342,7 @@ impl Renderer {
     /// Replaces the sky; on error the old sky stays.
     pub fn set_sky(&mut self, gpu: &Gpu, sky: &Skybox) -> Result<()> {
         self.sky = SkyGpu::upload(gpu, &self.sky_layout, sky)?;
+        self.sky_sh = sky.irradiance_sh();
         Ok(())
     }
 
@@ -425,6 +429,7 @@ impl Renderer {
             sky_mips: self.sky.mip_levels,
             pre_exposure: self.pre_exposure(),
             shading: [s.ao_strength, s.ao_power, 0.0, 0.0],
+            sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.samples() {

@@ -41,14 +41,21 @@ pub fn display(radiance: Vec3, exposure: f32) -> [u8; 3] {
     radiance.to_array().map(|c| (srgb(aces(c)) * 255.0 + 0.5).clamp(0.0, 255.0) as u8)
 }
 
-/// FLIP between two sRGB images of the same size: the mean error and the error map (magma).
-pub fn flip(reference: &image::RgbImage, test: &image::RgbImage) -> (f64, image::RgbImage) {
+/// FLIP between two sRGB images of the same size: the mean error over the pixels `mask` keeps
+/// (the surfaces both renderers see; the rest would add zeros) and the error map (magma).
+pub fn flip(reference: &image::RgbImage, test: &image::RgbImage, mask: &[bool]) -> (f64, image::RgbImage) {
     let (w, h) = reference.dimensions();
     let reference = nv_flip::FlipImageRgb8::with_data(w, h, reference.as_raw());
     let test = nv_flip::FlipImageRgb8::with_data(w, h, test.as_raw());
     // 67 pixels per degree: a 0.7 m viewing distance from a 0.3 mm-pixel monitor, FLIP's default.
     let error = nv_flip::flip(reference, test, 67.0);
-    let mean = nv_flip::FlipPool::from_image(&error).mean() as f64;
+    let values = error.to_vec();
+    let (sum, count) = values
+        .iter()
+        .zip(mask)
+        .filter(|(_, keep)| **keep)
+        .fold((0.0f64, 0usize), |(s, n), (v, _)| (s + *v as f64, n + 1));
+    let mean = if count == 0 { 0.0 } else { sum / count as f64 };
     let map = error.apply_color_lut(&nv_flip::magma_lut());
     (mean, image::RgbImage::from_raw(w, h, map.to_vec()).expect("FLIP map has the image's size"))
 }

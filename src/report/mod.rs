@@ -1,11 +1,18 @@
-//! The error-versus-run-time report: every mode × variant × sample count × blur setting, timed on
-//! the GPU and compared with the CPU reference (`crate::reference`), written as CSV, a Markdown
-//! table and a log-log plot of error against milliseconds.
+//! The error-versus-run-time report: every mode × variant × sample count × blur × radius, timed
+//! on the GPU and compared with one CPU-traced truth (`crate::reference`), written as CSV, a
+//! Markdown table sorted by time and a log-log plot of error against milliseconds with the
+//! Pareto front marked.
 //!
-//! Each row is compared with a reference of its own lighting model (its mode, ambient and
-//! strengths) with exact visibility, so the error is the screen-space estimate's, not a difference
-//! of models. Linear errors are taken on the surfaces both renderers see (silhouette pixels where
-//! the traced and rasterised surfaces differ are left out and counted); FLIP on the whole image.
+//! **One truth for every mode**: the physical image under the scene's sky, lights and constant
+//! ambient, with exact visibility at any distance and one bounce from any surface. Off, SSAO, SSDO
+//! and SSAO+SSDO, default and classic, are all measured against it, so their errors are
+//! comparable. The **within-R** image (occluders and senders beyond the sampling radius removed)
+//! is a diagnostic beside it: the gap between the two errors is what a method's reach costs.
+//!
+//! Measured right: the GPU's half-float buffers hold radiance × pre-exposure, which is divided out
+//! before any metric; RMSE, PSNR and FLIP are taken on the surfaces both renderers see
+//! (background and silhouette pixels left out, and counted); the truth is the mean of two
+//! independent traces, whose difference gives its own noise floor.
 
 pub mod metrics;
 pub mod scenes;
@@ -24,6 +31,39 @@ use crate::render::{Mode, Renderer, Settings, Variant};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{output, Error, Result};
 
+/// A sampling radius to sweep: a multiple of the scene's default, or a length in model units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RadiusChoice {
+    Times(f32),
+    Units(f32),
+}
+
+impl std::str::FromStr for RadiusChoice {
+    type Err = Error;
+    /// `2x` (twice the default radius) or `0.3` (model units).
+    fn from_str(s: &str) -> Result<Self> {
+        let bad = || Error::Setting(format!("--radius {s}: expected a length or a multiple of the default like 2x"));
+        let (text, times) = match s.trim().strip_suffix(['x', 'X']) {
+            Some(t) => (t, true),
+            None => (s.trim(), false),
+        };
+        let value: f32 = text.parse().map_err(|_| bad())?;
+        if !value.is_finite() || value <= 0.0 {
+            return Err(bad());
+        }
+        Ok(if times { Self::Times(value) } else { Self::Units(value) })
+    }
+}
+
+impl RadiusChoice {
+    pub fn resolve(self, default: f32) -> f32 {
+        match self {
+            Self::Times(k) => k * default,
+            Self::Units(r) => r,
+        }
+    }
+}
+
 /// What to sweep.
 pub struct ReportOptions {
     pub scene: String,
@@ -32,6 +72,8 @@ pub struct ReportOptions {
     pub skybox: Option<PathBuf>,
     pub size: (u32, u32),
     pub samples: Vec<usize>,
+    pub radii: Vec<RadiusChoice>,
+    /// Reference rays per pixel in each of the two traces (at least 2).
     pub samples_per_pixel: u32,
     pub frames: usize,
     pub lights: usize,
@@ -44,17 +86,34 @@ pub struct ReportOptions {
 pub struct Row {
     pub mode: Mode,
     pub variant: Variant,
+    /// Samples per pixel of the sampling pass (0 for Off, which has none).
     pub samples: usize,
     pub blur: bool,
+    /// Sampling radius in model units (0 for Off).
+    pub radius: f32,
     /// Median GPU milliseconds of the whole frame.
     pub ms: f64,
+    /// AO against the within-R AO, its definition (a diagnostic).
     pub ao_rmse: Option<f64>,
-    pub ao_psnr: Option<f64>,
+    /// DO (sky light + bounce, before albedo) against the truth, and against the within-R image.
     pub do_rmse: Option<f64>,
-    pub do_psnr: Option<f64>,
+    pub do_rmse_near: Option<f64>,
+    /// Linear HDR radiance against the truth, and against the within-R image.
     pub hdr_rmse: f64,
+    pub hdr_rmse_near: f64,
     pub hdr_psnr: f64,
+    /// FLIP of the displayed images, on the valid surface pixels.
     pub flip: f64,
+    /// No other row is both as fast and as accurate (HDR RMSE against the truth).
+    pub pareto: bool,
+}
+
+/// The truth's own noise: RMSE of the mean of two independent traces (half their difference).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoiseFloor {
+    pub hdr: f64,
+    pub directional: f64,
+    pub ao: f64,
 }
 
 /// The report's result: rows and the facts printed with them.
@@ -65,21 +124,30 @@ pub struct Report {
     pub timing: &'static str,
     pub reference_seconds: f64,
     pub reference: reference::Reference,
+    pub noise: NoiseFloor,
+    /// The constant ambient radiance every configuration and the truth share.
+    pub ambient: f32,
+    pub default_radius: f32,
 }
 
-/// The reference's linear radiance for `settings`' lighting model at pixel `i`.
-fn reference_radiance(r: &reference::Reference, i: usize, s: &Settings) -> Vec3 {
-    let decl = s.mode.declaration();
-    let ao = if decl.ambient_occlusion { r.ao[i] } else { 1.0 };
-    let mut color = s.ambient * r.albedo[i] * ao + r.direct[i];
-    if decl.directional_occlusion {
-        color += r.albedo[i] * (r.sky[i] * s.sky_strength + r.bounce[i] * s.indirect_strength);
+/// Marks the rows no other row beats on both time and HDR error.
+fn mark_pareto(rows: &mut [Row]) {
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.ms, r.hdr_rmse)).collect();
+    for (i, row) in rows.iter_mut().enumerate() {
+        let (ms, e) = points[i];
+        row.pareto =
+            !points.iter().enumerate().any(|(j, &(m2, e2))| j != i && m2 <= ms && e2 <= e && (m2 < ms || e2 < e));
     }
-    color
 }
 
 /// Runs the sweep. `progress` is told about each finished row of the reference, and each row.
 pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync)) -> Result<Report> {
+    if options.samples_per_pixel < 2 {
+        return Err(Error::Setting(format!(
+            "--spp {}: the reference needs at least 2 rays per pixel for an error estimate",
+            options.samples_per_pixel
+        )));
+    }
     let (model, scene_sky) = match &options.model {
         Some(path) => (scene::model::load_obj(path)?, None),
         None => scenes::by_name(&options.scene)?,
@@ -93,104 +161,143 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let scene = Scene::new(model, options.lights, options.seed);
     let camera = OrbitCamera::framing(&scene.model.bounds);
     gpu.check_size(options.size.0, options.size.1)?;
-    let mut renderer = Renderer::new(gpu, &scene, &sky, options.size, CAPTURE_FORMAT, Settings::default())?;
+    let base = Settings::default();
+    let ambient = base.ambient;
+    let mut renderer = Renderer::new(gpu, &scene, &sky, options.size, CAPTURE_FORMAT, base)?;
     let timestamps = renderer.enable_timing(gpu);
+    let default_radius = renderer.radius();
 
     // The G-buffer is the same in every mode: one frame gives the depth the reference checks.
     capture(gpu, &mut renderer, &camera)?;
     let depth = read_depth(gpu, &renderer.targets().depth.texture)?;
-    let trace_settings = TraceSettings {
-        samples_per_pixel: options.samples_per_pixel,
-        seed: options.seed,
-        radius: renderer.radius(),
-        sky_scale: renderer.settings.sky_scale,
-    };
-    let started = Instant::now();
     let bvh = ReferenceScene::new(&scene.model);
-    let tick = || progress("reference row");
-    let reference =
-        reference::trace(&bvh, &scene.lights, &scene.rig, &sky, &camera, options.size, &depth, &trace_settings, &tick);
-    let reference_seconds = started.elapsed().as_secs_f64();
-
     let target = crate::render::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-    let valid: Vec<usize> = (0..reference.valid.len()).filter(|&i| reference.valid[i]).collect();
     let mut rows = Vec::new();
-    for variant in [Variant::Classic, Variant::Default] {
-        for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
-            for &samples in &options.samples {
-                for blur in [true, false] {
-                    let base = if variant == Variant::Classic { Settings::classic() } else { Settings::default() };
-                    renderer.settings = Settings { mode, samples, blur, ..base };
-                    let ms =
-                        crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
-                    let image = capture(gpu, &mut renderer, &camera)?;
-                    let s = renderer.settings;
-                    let targets = renderer.targets().occlusion();
-                    let directional =
-                        targets.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?;
-                    let ao = match (&targets.ao, &directional) {
-                        (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
-                        (None, Some(d)) if mode.declaration().ambient_occlusion => {
-                            Some(d.iter().map(|p| p[3]).collect())
-                        }
-                        _ => None,
-                    };
-                    let hdr = read_rgba16f(gpu, &renderer.targets().hdr.texture)?;
+    let mut reference_seconds = 0.0;
+    let mut kept = None;
+    for (r_index, choice) in options.radii.iter().enumerate() {
+        let radius = choice.resolve(default_radius);
+        let started = Instant::now();
+        let tick = || progress("reference row");
+        let trace = |seed: u64| {
+            let settings =
+                TraceSettings { samples_per_pixel: options.samples_per_pixel, seed, radius, sky_scale: base.sky_scale };
+            reference::trace(&bvh, &scene.lights, &scene.rig, &sky, &camera, options.size, &depth, &settings, &tick)
+        };
+        let (a, b) = (trace(options.seed), trace(options.seed ^ 0x5DEE_CE66_D1CE_4E5B));
+        reference_seconds += started.elapsed().as_secs_f64();
+        let truth = reference::Reference::mean(&a, &b);
+        let valid: Vec<usize> = (0..truth.valid.len()).filter(|&i| truth.valid[i]).collect();
+        let half_difference = |f: &dyn Fn(&reference::Reference, usize) -> Vec3| {
+            metrics::rmse(valid.iter().flat_map(|&i| {
+                let (x, y) = (f(&a, i), f(&b, i));
+                (0..3).map(move |c| (0.5 * x[c], 0.5 * y[c]))
+            }))
+        };
+        let noise = NoiseFloor {
+            hdr: half_difference(&|r, i| r.radiance(i, ambient)),
+            directional: half_difference(&|r, i| r.directional(i)),
+            ao: half_difference(&|r, i| Vec3::splat(r.ao[i])),
+        };
 
-                    let ao_rmse = ao.as_ref().map(|ao| metrics::rmse(valid.iter().map(|&i| (ao[i], reference.ao[i]))));
-                    let do_ref =
-                        |i: usize| reference.sky[i] * s.sky_strength + reference.bounce[i] * s.indirect_strength;
-                    let do_rmse = directional.as_ref().map(|d| {
-                        metrics::rmse(valid.iter().flat_map(|&i| (0..3).map(move |c| (d[i][c], do_ref(i)[c]))))
-                    });
-                    let do_peak = valid.iter().map(|&i| do_ref(i).max_element()).fold(1e-6f32, f32::max) as f64;
-                    let hdr = &hdr;
-                    let hdr_rmse = metrics::rmse(valid.iter().flat_map(|&i| {
-                        let want = reference_radiance(&reference, i, &s);
-                        (0..3).map(move |c| (hdr[i][c], want[c]))
-                    }));
-                    let hdr_peak = valid
-                        .iter()
-                        .map(|&i| reference_radiance(&reference, i, &s).max_element())
-                        .fold(1e-6f32, f32::max) as f64;
-
-                    let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
-                    let mut ref_image = gpu_image.clone();
-                    for &i in &valid {
-                        let (x, y) = ((i as u32) % options.size.0, (i as u32) / options.size.0);
-                        ref_image.put_pixel(
-                            x,
-                            y,
-                            image::Rgb(metrics::display(reference_radiance(&reference, i, &s), s.exposure)),
-                        );
-                    }
-                    let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image);
-                    if variant == Variant::Default && samples == 16 && blur && mode == Mode::Both {
-                        write_maps(&options.out, &reference, &ao, &ref_image, &gpu_image, &flip_map)?;
-                    }
-                    rows.push(Row {
-                        mode,
-                        variant,
-                        samples,
-                        blur,
-                        ms,
-                        ao_psnr: ao_rmse.map(|e| metrics::psnr(e, 1.0)),
-                        ao_rmse,
-                        do_psnr: do_rmse.map(|e| metrics::psnr(e, do_peak)),
-                        do_rmse,
-                        hdr_rmse,
-                        hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
-                        flip,
-                    });
-                    progress(&format!(
-                        "{mode} {variant} {samples} samples, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}"
-                    ));
+        for variant in [Variant::Classic, Variant::Default] {
+            let mut configs: Vec<(Mode, usize, bool)> = Vec::new();
+            if r_index == 0 {
+                configs.push((Mode::Off, 0, false));
+            }
+            for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
+                for &samples in &options.samples {
+                    configs.extend([(mode, samples, true), (mode, samples, false)]);
                 }
             }
+            for (mode, samples, blur) in configs {
+                // Every configuration renders the same lighting (the classic variant keeps its
+                // own composite, not its own ambient), so all meet one truth.
+                renderer.settings =
+                    Settings { mode, variant, samples: samples.max(1), blur, radius: Some(radius), ..base };
+                let ms = crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
+                let image = capture(gpu, &mut renderer, &camera)?;
+                let s = renderer.settings;
+                // The half-float buffers hold radiance × pre-exposure: divided out here.
+                let unexpose = 1.0 / renderer.pre_exposure();
+                let targets = renderer.targets().occlusion();
+                let directional =
+                    targets.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?.map(|d| {
+                        d.into_iter()
+                            .map(|p| [p[0] * unexpose, p[1] * unexpose, p[2] * unexpose, p[3]])
+                            .collect::<Vec<_>>()
+                    });
+                let ao = match (&targets.ao, &directional) {
+                    (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
+                    (None, Some(d)) if mode.declaration().ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
+                    _ => None,
+                };
+                let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr.texture)?
+                    .into_iter()
+                    .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)
+                    .collect();
+                let against = |want: &dyn Fn(usize) -> Vec3| {
+                    metrics::rmse(valid.iter().flat_map(|&i| {
+                        let (got, want) = (hdr[i], want(i));
+                        (0..3).map(move |c| (got[c], want[c]))
+                    }))
+                };
+                let hdr_rmse = against(&|i| truth.radiance(i, ambient));
+                let hdr_rmse_near = against(&|i| truth.radiance_near(i, ambient));
+                let hdr_peak =
+                    valid.iter().map(|&i| truth.radiance(i, ambient).max_element()).fold(1e-6f32, f32::max) as f64;
+                let ao_rmse = ao.as_ref().map(|ao| metrics::rmse(valid.iter().map(|&i| (ao[i], truth.ao[i]))));
+                let do_against = |want: &dyn Fn(usize) -> Vec3| {
+                    directional.as_ref().map(|d| {
+                        metrics::rmse(valid.iter().flat_map(|&i| {
+                            let w = want(i);
+                            (0..3).map(move |c| (d[i][c], w[c]))
+                        }))
+                    })
+                };
+                let do_rmse = do_against(&|i| truth.directional(i));
+                let do_rmse_near = do_against(&|i| truth.directional_near(i));
+
+                let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
+                let mut ref_image = gpu_image.clone();
+                for &i in &valid {
+                    let (x, y) = ((i as u32) % options.size.0, (i as u32) / options.size.0);
+                    ref_image.put_pixel(x, y, image::Rgb(metrics::display(truth.radiance(i, ambient), s.exposure)));
+                }
+                let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.valid);
+                if variant == Variant::Default && samples == 16 && blur && mode == Mode::Both && r_index == 0 {
+                    write_maps(&options.out, &truth, &ao, &ref_image, &gpu_image, &flip_map)?;
+                }
+                rows.push(Row {
+                    mode,
+                    variant,
+                    samples,
+                    blur,
+                    radius: if mode == Mode::Off { 0.0 } else { radius },
+                    ms,
+                    ao_rmse,
+                    do_rmse,
+                    do_rmse_near,
+                    hdr_rmse,
+                    hdr_rmse_near,
+                    hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
+                    flip,
+                    pareto: false,
+                });
+                progress(&format!(
+                    "{mode} {variant} {samples} samples, radius {radius:.3}, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}"
+                ));
+            }
+        }
+        if r_index == 0 {
+            kept = Some((truth, noise));
         }
     }
     gpu.check()?;
+    mark_pareto(&mut rows);
+    rows.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+    let (reference, noise) = kept.ok_or_else(|| Error::Setting("--radius: give at least one radius".into()))?;
     Ok(Report {
         rows,
         device: gpu.describe(),
@@ -198,6 +305,9 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         timing: if timestamps { "GPU timestamp queries" } else { "synchronised wall time" },
         reference_seconds,
         reference,
+        noise,
+        ambient,
+        default_radius,
     })
 }
 
@@ -253,24 +363,27 @@ fn cell(v: Option<f64>, digits: usize) -> String {
 
 impl Report {
     pub fn csv(&self) -> String {
-        let mut out =
-            String::from("mode,variant,samples,blur,ms,ao_rmse,ao_psnr,do_rmse,do_psnr,hdr_rmse,hdr_psnr,flip\n");
+        let mut out = String::from(
+            "mode,variant,samples,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+        );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{:.4},{},{},{},{},{:.6},{:.3},{:.5}",
+                "{},{},{},{},{:.5},{:.4},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
                 r.blur,
+                r.radius,
                 r.ms,
                 cell(r.ao_rmse, 6),
-                cell(r.ao_psnr, 3),
                 cell(r.do_rmse, 6),
-                cell(r.do_psnr, 3),
+                cell(r.do_rmse_near, 6),
                 r.hdr_rmse,
+                r.hdr_rmse_near,
                 r.hdr_psnr,
-                r.flip
+                r.flip,
+                r.pareto
             );
         }
         out
@@ -279,10 +392,18 @@ impl Report {
     pub fn markdown(&self, options: &ReportOptions) -> String {
         let date = jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string();
         let r = &self.reference;
+        let surfaces = r.valid.iter().filter(|v| **v).count();
+        let background = r.valid.len() - surfaces - r.mismatched - r.covered;
         let mut out = format!(
             "# ssdo error-versus-time report\n\n- date: {date}\n- device: {}{}\n- timing: {}, median of {} frames\n\
-             - scene: {}, {}x{}, {} lights (seed {})\n- reference: {} rays per pixel, {:.1} s; its own standard error: \
-             AO {:.4}, sky {:.4}, bounce {:.4}; {} silhouette pixels left out\n\n",
+             - scene: {}, {}x{}, {} lights (seed {}), constant ambient {}, default radius {:.4}\n\
+             - truth: ray traced, exact visibility at any distance, one bounce from any surface (senders lit by the \
+             point lights), the mean of two traces of {} rays per pixel ({:.1} s in all)\n\
+             - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n\
+             - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
+             surfaces differ), {} under a light's cube\n\
+             - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); \
+             \"within R\" columns compare with the image whose occluders and senders beyond the radius are removed\n\n",
             self.device,
             if self.software { " (a CPU rasteriser, not a GPU)" } else { "" },
             self.timing,
@@ -292,40 +413,71 @@ impl Report {
             options.size.1,
             options.lights,
             options.seed,
+            self.ambient,
+            self.default_radius,
             options.samples_per_pixel,
             self.reference_seconds,
-            r.ao_error,
-            r.sky_error,
-            r.bounce_error,
+            self.noise.hdr,
+            self.noise.directional,
+            self.noise.ao,
+            surfaces,
+            background,
             r.mismatched,
+            r.covered,
         );
-        out.push_str("| mode | variant | samples | blur | ms | AO RMSE | AO PSNR | DO RMSE | DO PSNR | HDR RMSE | HDR PSNR | FLIP |\n");
-        out.push_str("|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        out.push_str(
+            "| | mode | variant | samples | blur | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | AO RMSE within R |\n",
+        );
+        out.push_str("|---|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
+            let off = row.mode == Mode::Off;
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {:.2} | {} | {} | {} | {} | {:.4} | {:.2} | {:.4} |",
+                "| {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} |",
+                if row.pareto { "★" } else { "" },
                 row.mode.name(),
                 row.variant,
-                row.samples,
-                if row.blur { "on" } else { "off" },
+                if off { "—".to_string() } else { row.samples.to_string() },
+                if off {
+                    "—"
+                } else if row.blur {
+                    "on"
+                } else {
+                    "off"
+                },
+                if off { "—".to_string() } else { format!("{:.3}", row.radius) },
                 row.ms,
-                cell(row.ao_rmse, 4),
-                cell(row.ao_psnr, 2),
-                cell(row.do_rmse, 4),
-                cell(row.do_psnr, 2),
                 row.hdr_rmse,
+                row.hdr_rmse_near,
                 row.hdr_psnr,
-                row.flip
+                row.flip,
+                cell(row.do_rmse, 4),
+                cell(row.do_rmse_near, 4),
+                cell(row.ao_rmse, 4),
             );
         }
         out
     }
 
-    /// Log-log plot of HDR RMSE against milliseconds, one line per mode and variant (blurred).
+    /// The rows of one table cell of the closing summary: each mode and variant at `samples`,
+    /// blur on, the first radius (Off once per variant).
+    pub fn at_samples(&self, samples: usize) -> Vec<&Row> {
+        let first_radius = self.rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
+        let mut picked: Vec<&Row> = self
+            .rows
+            .iter()
+            .filter(|r| r.mode == Mode::Off || (r.samples == samples && r.blur && r.radius == first_radius))
+            .collect();
+        picked.sort_by_key(|r| (r.variant == Variant::Default, Mode::ALL.iter().position(|m| *m == r.mode)));
+        picked
+    }
+
+    /// Log-log plot of HDR RMSE against the truth, against milliseconds: every mode on one chart,
+    /// one line per mode × variant through its sample counts (blur on, the first radius), every
+    /// other row as a faint point, and the Pareto front as a dashed black line.
     pub fn plot(&self, path: &Path) -> Result<()> {
         use plotters::prelude::*;
-        let (w, h) = (960u32, 640u32);
+        let (w, h) = (1024u32, 680u32);
         let mut buffer = vec![0u8; (w * h * 3) as usize];
         let font_result =
             plotters::style::register_font("sans-serif", FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT);
@@ -336,20 +488,17 @@ impl Report {
         {
             let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| fail(&e))?;
-            let rows: Vec<&Row> = self.rows.iter().filter(|r| r.blur).collect();
+            let rows = &self.rows;
             let (min_ms, max_ms) = rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.ms), b.max(r.ms)));
             let (min_e, max_e) =
                 rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.hdr_rmse), b.max(r.hdr_rmse)));
+            let floor = |v: f64| v.max(1e-9).log10();
             let mut chart = ChartBuilder::on(&root)
-                .caption("HDR RMSE against GPU frame time (blur on; points: 4 … 64 samples)", ("sans-serif", 22))
+                .caption("HDR RMSE against the one ray-traced truth, against frame time", ("sans-serif", 22))
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)
-                // Log-log: the axes carry log10 of the values, labelled with the values.
-                .build_cartesian_2d(
-                    (min_ms * 0.8).log10()..(max_ms * 1.25).log10(),
-                    (min_e * 0.8).log10()..(max_e * 1.25).log10(),
-                )
+                .build_cartesian_2d(floor(min_ms * 0.8)..floor(max_ms * 1.25), floor(min_e * 0.8)..floor(max_e * 1.25))
                 .map_err(|e| fail(&e))?;
             chart
                 .configure_mesh()
@@ -357,20 +506,40 @@ impl Report {
                 .y_labels(12)
                 .x_label_formatter(&|v| format!("{:.1}", 10f64.powf(*v)))
                 .y_label_formatter(&|v| format!("{:.4}", 10f64.powf(*v)))
-                .x_desc(format!("frame time, ms ({})", if self.software { "lavapipe" } else { "GPU" }))
+                .x_desc(format!(
+                    "frame time, ms ({})",
+                    if self.software { "lavapipe / llvmpipe, a CPU rasteriser" } else { "GPU" }
+                ))
                 .y_desc("RMSE of linear HDR radiance")
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(|e| fail(&e))?;
-            let colours = [RGBColor(31, 119, 180), RGBColor(255, 127, 14), RGBColor(44, 160, 44)];
-            for (m, mode) in [Mode::Ssao, Mode::Ssdo, Mode::Both].into_iter().enumerate() {
+            let colours =
+                [RGBColor(120, 120, 120), RGBColor(31, 119, 180), RGBColor(255, 127, 14), RGBColor(44, 160, 44)];
+            // Every row, faint: the other radii and blur settings.
+            chart
+                .draw_series(rows.iter().map(|r| {
+                    let m = Mode::ALL.iter().position(|m| *m == r.mode).unwrap_or(0);
+                    Circle::new((floor(r.ms), floor(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
+                }))
+                .map_err(|e| fail(&e))?;
+            let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
+            for (m, mode) in Mode::ALL.into_iter().enumerate() {
                 for variant in [Variant::Default, Variant::Classic] {
-                    let mut points: Vec<(f64, f64)> = rows
+                    // Through the sample counts in order (timings are noisy; samples are not).
+                    let mut line: Vec<&Row> = rows
                         .iter()
-                        .filter(|r| r.mode == mode && r.variant == variant)
-                        .map(|r| (r.ms.log10(), r.hdr_rmse.log10()))
+                        .filter(|r| {
+                            r.mode == mode
+                                && r.variant == variant
+                                && (mode == Mode::Off || (r.blur && r.radius == first_radius))
+                        })
                         .collect();
-                    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    if line.is_empty() {
+                        continue;
+                    }
+                    line.sort_by_key(|r| r.samples);
+                    let points: Vec<(f64, f64)> = line.iter().map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
                     let colour = colours[m];
                     let style = if variant == Variant::Default {
                         colour.stroke_width(3)
@@ -383,16 +552,34 @@ impl Report {
                         .map_err(|e| fail(&e))?
                         .label(label)
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+                    let marker = if variant == Variant::Default { 5 } else { 3 };
                     chart
-                        .draw_series(points.iter().map(|p| Circle::new(*p, 4, colour.filled())))
+                        .draw_series(points.iter().map(|p| Circle::new(*p, marker, colour.filled())))
                         .map_err(|e| fail(&e))?;
                 }
             }
+            // The Pareto front, as a staircase through its rows in time order.
+            let front: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.pareto).map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
+            let mut stairs = Vec::new();
+            for (k, p) in front.iter().enumerate() {
+                if k > 0 {
+                    stairs.push((p.0, front[k - 1].1));
+                }
+                stairs.push(*p);
+            }
+            chart
+                .draw_series(DashedLineSeries::new(stairs, 6, 4, BLACK.stroke_width(2)))
+                .map_err(|e| fail(&e))?
+                .label("Pareto front")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+            chart.draw_series(front.iter().map(|p| Cross::new(*p, 7, BLACK.stroke_width(2)))).map_err(|e| fail(&e))?;
             chart
                 .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
-                .label_font(("sans-serif", 16))
+                .label_font(("sans-serif", 15))
                 .draw()
                 .map_err(|e| fail(&e))?;
             root.present().map_err(|e| fail(&e))?;

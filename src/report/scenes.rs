@@ -1,4 +1,5 @@
-//! Named scenes for the report: the default scene, and two that stress the screen-space methods.
+//! Named scenes for the report: the default scene, two that stress the screen-space methods, and
+//! a held-out one (`stairs`) that no estimator or default was tuned on.
 
 use std::path::PathBuf;
 
@@ -8,7 +9,7 @@ use crate::scene::builtin::{self, MeshBuilder};
 use crate::scene::{self, Material, Model};
 use crate::{Error, Result};
 
-pub const NAMES: [&str; 3] = ["cornell", "crevices", "open"];
+pub const NAMES: [&str; 4] = ["cornell", "crevices", "open", "stairs"];
 
 /// A scene by name, with the sky folder it is meant to be seen under.
 pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
@@ -16,6 +17,7 @@ pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
         "cornell" => Ok((scene::load_model(None)?, None)),
         "crevices" => Ok((crevices()?, None)),
         "open" => Ok((open()?, Some(PathBuf::from("skyboxes/redblue")))),
+        "stairs" => Ok((stairs()?, None)),
         other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
     }
 }
@@ -55,4 +57,31 @@ pub fn open() -> Result<Model> {
     b.sphere(balls, v(1.0, 0.9, -1.0), 0.9, 32, 16);
     b.cuboid(balls, v(-2.5, 0.0, -2.0), v(-1.5, 0.4, -1.0), false);
     b.build("open")
+}
+
+/// The held-out scene: a flight of stairs climbing under a deep overhang, with a green side wall
+/// and a low parapet — sky light blocked from far away above, coloured bounce from the side, and
+/// many small steps for AO. Added to check the estimators on geometry nobody tuned them on.
+pub fn stairs() -> Result<Model> {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let ground = b.material(Material::plain("ground", [0.55, 0.5, 0.45]));
+    let stone = b.material(Material::plain("stone", [0.75, 0.72, 0.68]));
+    let wall = b.material(Material::plain("green_wall", [0.15, 0.6, 0.2]));
+    let roof = b.material(Material::plain("roof", [0.6, 0.6, 0.65]));
+    b.quad(ground, [v(-3.0, 0.0, 3.0), v(3.0, 0.0, 3.0), v(3.0, 0.0, -3.0), v(-3.0, 0.0, -3.0)]);
+    // Eight steps climbing towards -z.
+    for k in 0..8 {
+        let z = 1.2 - 0.3 * k as f32;
+        b.cuboid(stone, v(-1.0, 0.0, z - 0.3), v(1.0, 0.15 * (k + 1) as f32, z), false);
+    }
+    // The green wall on the left of the flight, full height.
+    b.cuboid(wall, v(-1.3, 0.0, -1.6), v(-1.0, 2.2, 1.4), false);
+    // An overhang over the upper half, on two pillars, 2.2 high.
+    b.cuboid(roof, v(-1.3, 2.2, -1.6), v(1.6, 2.4, 0.0), true);
+    b.cuboid(stone, v(1.3, 0.0, -0.3), v(1.5, 2.2, -0.1), false);
+    b.cuboid(stone, v(1.3, 0.0, -1.5), v(1.5, 2.2, -1.3), false);
+    // A low parapet along the right of the lower steps.
+    b.cuboid(stone, v(1.0, 0.0, 0.0), v(1.1, 0.5, 1.4), false);
+    b.build("stairs")
 }

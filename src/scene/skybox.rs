@@ -206,21 +206,46 @@ impl Skybox {
         self.faces.iter().flatten().flat_map(|t| t.iter().copied()).fold(0.0, f32::max)
     }
 
-    /// Mean radiance over the sphere, weighting each texel by its solid angle.
-    pub fn mean(&self) -> Vec3 {
-        let mut sum = Vec3::ZERO;
-        let mut weight = 0.0;
+    /// Every texel as (unit direction, radiance, weight ∝ its solid angle: (1 + s² + t²)^-3/2).
+    fn texels(&self) -> impl Iterator<Item = (Vec3, Vec3, f32)> + '_ {
         let n = self.size;
-        for (face, texels) in self.faces.iter().enumerate() {
-            for (i, t) in texels.iter().enumerate() {
+        self.faces.iter().enumerate().flat_map(move |(face, texels)| {
+            texels.iter().enumerate().map(move |(i, t)| {
                 let s = 2.0 * ((i as u32 % n) as f32 + 0.5) / n as f32 - 1.0;
                 let tt = 2.0 * ((i as u32 / n) as f32 + 0.5) / n as f32 - 1.0;
-                let w = face_direction(face, s, tt).length().powi(-3);
-                sum += Vec3::from(*t) * w;
-                weight += w;
-            }
-        }
+                let d = face_direction(face, s, tt);
+                (d.normalize(), Vec3::from(*t), d.length().powi(-3))
+            })
+        })
+    }
+
+    /// Mean radiance over the sphere, weighting each texel by its solid angle.
+    pub fn mean(&self) -> Vec3 {
+        let (sum, weight) = self.texels().fold((Vec3::ZERO, 0.0), |(s, w), (_, l, dw)| (s + l * dw, w + dw));
         sum / weight.max(f32::MIN_POSITIVE)
+    }
+
+    /// The sky's irradiance over π for every normal, E(n)/π, as 9 spherical-harmonic coefficients
+    /// (bands 0-2, rgb): the sky's radiance projected on the basis, each band convolved with the
+    /// clamped cosine (Ramamoorthi & Hanrahan 2001, "An Efficient Representation for Irradiance
+    /// Environment Maps"). Evaluate with [`sh_basis`]: E(n)/π = Σ cᵢ·Yᵢ(n). Texels are weighted
+    /// by their solid angle, normalised to 4π, so a constant sky L gives exactly L. Three bands
+    /// hold irradiance to within a few percent for smooth skies; a small bright sun rings a little,
+    /// which the shader clamps at 0.
+    pub fn irradiance_sh(&self) -> [Vec3; 9] {
+        // The clamped cosine's band factors Â_l = π, 2π/3, π/4, divided by π.
+        const BAND: [f32; 9] = [1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25];
+        let mut sum = [Vec3::ZERO; 9];
+        let mut weight = 0.0f64;
+        for (d, radiance, w) in self.texels() {
+            let y = sh_basis(d);
+            for k in 0..9 {
+                sum[k] += radiance * (w * y[k]);
+            }
+            weight += w as f64;
+        }
+        let solid_angle = (4.0 * std::f64::consts::PI / weight.max(f64::MIN_POSITIVE)) as f32;
+        std::array::from_fn(|k| sum[k] * solid_angle * BAND[k])
     }
 
     /// Mip chain of every face, level 0 first: each level averages 2x2 texels of the one above.
@@ -252,5 +277,57 @@ impl Skybox {
             size = next;
         }
         levels
+    }
+}
+
+/// The real spherical harmonics of bands 0-2 at unit direction `d`, in the order of
+/// [`Skybox::irradiance_sh`] (and of `sky_irradiance` in shaders/composite.wgsl).
+pub fn sh_basis(d: Vec3) -> [f32; 9] {
+    let (x, y, z) = (d.x, d.y, d.z);
+    [
+        0.282_095,
+        0.488_603 * y,
+        0.488_603 * z,
+        0.488_603 * x,
+        1.092_548 * x * y,
+        1.092_548 * y * z,
+        0.315_392 * (3.0 * z * z - 1.0),
+        1.092_548 * x * z,
+        0.546_274 * (x * x - y * y),
+    ]
+}
+
+/// E(n)/π from the coefficients of [`Skybox::irradiance_sh`], clamped at 0.
+pub fn sh_irradiance(coefficients: &[Vec3; 9], n: Vec3) -> Vec3 {
+    let y = sh_basis(n);
+    coefficients.iter().zip(y).map(|(c, y)| *c * y).sum::<Vec3>().max(Vec3::ZERO)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_sky_has_irradiance_equal_to_its_radiance() {
+        let sh = Skybox::constant(Vec3::new(0.3, 0.6, 0.9)).irradiance_sh();
+        for n in [Vec3::X, Vec3::NEG_Y, Vec3::new(0.3, 0.5, -0.8).normalize()] {
+            let e = sh_irradiance(&sh, n);
+            assert!((e - Vec3::new(0.3, 0.6, 0.9)).abs().max_element() < 1e-4, "{n}: {e}");
+        }
+    }
+
+    #[test]
+    fn half_sky_matches_the_closed_form() {
+        // Radiance 1 above the horizon, 0 below. E/π at a normal tilted θ from up is
+        // (1 + cos θ)/2 exactly; three bands reproduce it within a few percent of 1.
+        let sky = Skybox::from_fn("half", 64, |d| if d.y > 0.0 { Vec3::ONE } else { Vec3::ZERO });
+        let sh = sky.irradiance_sh();
+        for theta in [0.0f32, 45.0, 90.0, 135.0, 180.0] {
+            let t = theta.to_radians();
+            let n = Vec3::new(t.sin(), t.cos(), 0.0);
+            let want = 0.5 * (1.0 + t.cos());
+            let got = sh_irradiance(&sh, n).x;
+            assert!((got - want).abs() < 0.05, "θ {theta}: {got} vs {want}");
+        }
     }
 }
