@@ -67,6 +67,23 @@ fn messy_obj(dir: &std::path::Path, normals: bool) -> ssdo::scene::Model {
     load_obj(&dir.join(name)).unwrap()
 }
 
+/// The default scene written as OBJ with every other triangle wound against its normals.
+fn rewound_obj(dir: &std::path::Path) -> ssdo::scene::Model {
+    let model = builtin::cornell().unwrap();
+    let mut obj = String::new();
+    for v in &model.vertices {
+        obj += &format!("v {} {} {}\n", v.position[0], v.position[1], v.position[2]);
+        obj += &format!("vn {} {} {}\n", v.normal[0], v.normal[1], v.normal[2]);
+    }
+    for (t, tri) in model.indices.chunks_exact(3).enumerate() {
+        let [a, b, c] = [tri[0] + 1, tri[1] + 1, tri[2] + 1];
+        let (b, c) = if t % 2 == 1 { (c, b) } else { (b, c) };
+        obj += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+    }
+    std::fs::write(dir.join("rewound.obj"), obj).unwrap();
+    load_obj(&dir.join("rewound.obj")).unwrap()
+}
+
 fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     let mut list = Vec::new();
     let mut c = base("near 1e-6, far inf", "--near 1e-6 --far inf");
@@ -86,6 +103,7 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(c);
     list.push(with_model("zero-area and NaN-vertex faces", "--model degenerate.obj", messy_obj(dir, true)));
     list.push(with_model("missing normals", "--model no_normals.obj", messy_obj(dir, false)));
+    list.push(with_model("half the faces wound against their normals", "--model rewound.obj", rewound_obj(dir)));
     let mut c = base("radius 0", "--radius 0");
     c.settings.radius = Some(0.0);
     list.push(c);

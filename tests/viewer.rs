@@ -1,5 +1,5 @@
 //! The viewer as a person uses it: a real window under Xvfb on the software driver, keys sent with
-//! xdotool (1-4 with F12 after each, then C, then Escape). The screenshots must exist, differ by
+//! xdotool (Tab into the panel, then 1-4 with F12 after each, then C, then Escape). The screenshots must exist, differ by
 //! mode, and match a headless `ssdo capture` of the same view: mean absolute difference at most
 //! 0.5 of 255 and no channel off by more than 6 (the window encodes sRGB in the shader, the
 //! capture in the texture format, so single levels differ).
@@ -108,6 +108,9 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
         !window.is_empty()
     });
     xdotool(&display, &["windowfocus", "--sync", &window]);
+    // Tab moves egui's keyboard focus into the panel (onto a button, not a text field): the keys
+    // below must still reach the view.
+    xdotool(&display, &["key", "--clearmodifiers", "Tab", "Tab"]);
 
     let modes = ["off", "ssao", "ssdo", "both"];
     for (i, mode) in modes.iter().enumerate() {

@@ -356,6 +356,14 @@ pub fn trace(
                         direct: Vec3::ZERO,
                     };
                     let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
+                    // The lights' emissive cubes cover the surface here on the GPU's image (and its
+                    // depth); the reference has no such cubes, so the pixel measures nothing.
+                    let cube = lights.iter().any(|l| {
+                        ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance)
+                    });
+                    if cube {
+                        return PixelResult { covered: true, ..empty };
+                    }
                     // The GPU's depth at this pixel as a distance along the same view axis.
                     let depth = gpu_depth[index];
                     let view_z = surface.distance * direction.dot((view_to_world * Vec3::NEG_Z.extend(0.0)).xyz());
@@ -363,14 +371,6 @@ pub fn trace(
                         if depth > 0.0 { (projection.w_axis.z) / (depth + projection.z_axis.z) } else { f32::INFINITY };
                     if !((view_z - gpu_z).abs() <= 1e-3 * view_z) {
                         return empty;
-                    }
-                    // The lights' emissive cubes cover the surface here on the GPU's image; the
-                    // reference has no such cubes, so the pixel measures nothing.
-                    let cube = lights.iter().any(|l| {
-                        ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance)
-                    });
-                    if cube {
-                        return PixelResult { covered: true, ..empty };
                     }
                     let mut rng =
                         StdRng::seed_from_u64(settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
