@@ -109,12 +109,24 @@ fn parse_far(s: &str) -> std::result::Result<f32, String> {
 
 #[derive(Args)]
 struct RenderArgs {
-    /// Algorithm family: default, or classic (the source documents' SSAO and SSDO)
+    /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the source chapters' SSAO and SSDO)
     #[arg(long, default_value = "default", value_parser = parse_variant)]
     variant: Variant,
-    /// Samples per pixel of the SSAO/SSDO pass, 1-256 [default: 16; classic 64]
+    /// Samples per pixel of the points and classic variants, 1-256 [default: 16; classic 64]
     #[arg(long)]
     samples: Option<usize>,
+    /// The march: slices (directions around the view vector) per pixel, 1-32
+    #[arg(long, default_value_t = 2)]
+    slices: usize,
+    /// The march: steps along each side of a slice, 1-64 (half within the radius)
+    #[arg(long, default_value_t = 12)]
+    steps: usize,
+    /// The march's reach, in model units [default: 24 radii]
+    #[arg(long, allow_negative_numbers = true)]
+    reach: Option<f32>,
+    /// The march's surface thickness, in model units [default: 1 radius]
+    #[arg(long, allow_negative_numbers = true)]
+    thickness: Option<f32>,
     /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
     #[arg(long, allow_negative_numbers = true)]
     radius: Option<f32>,
@@ -211,9 +223,12 @@ struct ReportArgs {
     /// Image size, WIDTHxHEIGHT
     #[arg(long, default_value = "320x240", value_parser = parse_size)]
     size: Size,
-    /// Sample counts to sweep, comma-separated
+    /// Sample counts of the points and classic variants to sweep, comma-separated
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     samples: Vec<usize>,
+    /// Slices x steps of the march variant to sweep, comma-separated
+    #[arg(long, default_value = "1x8,2x8,2x12,4x16", value_delimiter = ',', value_parser = parse_march)]
+    march: Vec<(usize, usize)>,
     /// Sampling radii to sweep, comma-separated: multiples of the scene's default (2x) or lengths
     /// in model units (0.3)
     #[arg(long, default_value = "1x", value_delimiter = ',')]
@@ -239,6 +254,9 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     if let Some(&bad) = args.samples.iter().find(|s| !(1..=256).contains(*s)) {
         return Err(Error::Setting(format!("--samples {bad}: each count must be between 1 and 256")));
     }
+    if let Some(&(slices, steps)) = args.march.iter().find(|(a, b)| !(1..=32).contains(a) || !(1..=64).contains(b)) {
+        return Err(Error::Setting(format!("--march {slices}x{steps}: slices must be 1-32 and steps 1-64")));
+    }
     if args.frames == 0 || args.samples.is_empty() || args.radius.is_empty() {
         return Err(Error::Setting("--frames, --samples and --radius must each give at least one".into()));
     }
@@ -248,6 +266,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         skybox: args.skybox.clone(),
         size: (args.size.0, args.size.1),
         samples: args.samples.clone(),
+        march: args.march.clone(),
         radii: args.radius.clone(),
         samples_per_pixel: args.spp,
         frames: args.frames,
@@ -259,7 +278,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let started = Instant::now();
     let rows = args.size.1 as u64;
     let radii = args.radius.len() as u64;
-    let configs = 2 + radii * 2 * 3 * 2 * args.samples.len() as u64;
+    let configs = 2 + radii * 3 * 2 * (2 * args.samples.len() + args.march.len()) as u64;
     let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
@@ -281,6 +300,13 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         started.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// `4x8`: slices × steps of the march.
+fn parse_march(s: &str) -> std::result::Result<(usize, usize), String> {
+    let (a, b) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}': expected SLICESxSTEPS like 4x8"))?;
+    let parse = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("'{s}': expected SLICESxSTEPS like 4x8"));
+    Ok((parse(a)?, parse(b)?))
 }
 
 fn parse_single_mode(s: &str) -> std::result::Result<Mode, String> {
@@ -368,7 +394,7 @@ impl SceneArgs {
 impl RenderArgs {
     fn settings(&self, mode: Mode) -> Result<Settings> {
         let base = match self.variant {
-            Variant::Default => Settings::default(),
+            Variant::March | Variant::Points => Settings::default(),
             Variant::Classic => Settings::classic(),
         };
         let samples = self.samples.unwrap_or(base.samples);
@@ -376,10 +402,20 @@ impl RenderArgs {
             return Err(Error::Setting(format!("--samples {samples}: must be between 1 and 256")));
         }
         let radius = self.radius.map(|r| non_negative("radius", r)).transpose()?;
+        if !(1..=32).contains(&self.slices) || !(1..=64).contains(&self.steps) {
+            return Err(Error::Setting(format!(
+                "--slices {} --steps {}: slices must be 1-32 and steps 1-64",
+                self.slices, self.steps
+            )));
+        }
         Ok(Settings {
             mode,
             variant: self.variant,
             samples,
+            slices: self.slices,
+            steps: self.steps,
+            reach: self.reach.map(|r| non_negative("reach", r)).transpose()?,
+            thickness: self.thickness.map(|r| non_negative("thickness", r)).transpose()?,
             radius,
             bias: non_negative("bias", self.bias)?,
             ao_strength: non_negative("ao-strength", self.ao_strength)?.min(1.0),

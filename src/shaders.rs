@@ -17,6 +17,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("gbuffer.wgsl", include_str!("../shaders/gbuffer.wgsl")),
     ("lighting.wgsl", include_str!("../shaders/lighting.wgsl")),
     ("occlusion.wgsl", include_str!("../shaders/occlusion.wgsl")),
+    ("march.wgsl", include_str!("../shaders/march.wgsl")),
     ("blur.wgsl", include_str!("../shaders/blur.wgsl")),
     ("composite.wgsl", include_str!("../shaders/composite.wgsl")),
     ("skybox.wgsl", include_str!("../shaders/skybox.wgsl")),

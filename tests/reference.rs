@@ -109,7 +109,7 @@ fn a_lit_wall_sends_its_diffuse_radiance_as_the_bounce() {
 }
 
 #[test]
-fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
+fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_variant() {
     let Some(gpu) = common::gpu() else { return };
     let out = tempfile::tempdir().unwrap();
     let options = ReportOptions {
@@ -118,6 +118,7 @@ fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
         skybox: None,
         size: (160, 120),
         samples: vec![8, 64],
+        march: vec![(1, 4), (4, 16)],
         radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 64,
         frames: 1,
@@ -127,33 +128,55 @@ fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
     };
     let result = report::run(&gpu, &options, &|_| {}).unwrap();
     assert!(result.reference.mismatched < 300, "silhouette pixels left out: {}", result.reference.mismatched);
-    for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
-        let row = |samples| {
+    for (mode, variant, small, large) in [Mode::Ssao, Mode::Ssdo, Mode::Both]
+        .into_iter()
+        .flat_map(|m| [(m, Variant::Points, (8, 0), (64, 0)), (m, Variant::March, (1, 4), (4, 16))])
+    {
+        let row = |(samples, steps)| {
             result
                 .rows
                 .iter()
-                .find(|r| r.mode == mode && r.variant == Variant::Default && r.samples == samples && !r.blur)
+                .find(|r| r.mode == mode && r.variant == variant && (r.samples, r.steps) == (samples, steps) && !r.blur)
                 .unwrap()
         };
-        let (few, many) = (row(8), row(64));
-        assert!(many.hdr_rmse < few.hdr_rmse, "{mode}: HDR RMSE {} at 64 vs {} at 8", many.hdr_rmse, few.hdr_rmse);
+        let (few, many) = (row(small), row(large));
+        let (a, b) = (many.hdr_rmse, few.hdr_rmse);
+        assert!(a < b, "{mode} {variant}: HDR RMSE {a} at {} vs {b} at {}", many.label(), few.label());
         if let (Some(a), Some(b)) = (many.ao_rmse, few.ao_rmse) {
-            assert!(a < b, "{mode}: AO RMSE {a} at 64 vs {b} at 8");
+            assert!(a < b, "{mode} {variant}: AO RMSE {a} at {} vs {b} at {}", many.label(), few.label());
         }
         if let (Some(a), Some(b)) = (many.do_rmse, few.do_rmse) {
-            assert!(a < b, "{mode}: DO RMSE {a} at 64 vs {b} at 8");
+            assert!(a < b, "{mode} {variant}: DO RMSE {a} at {} vs {b} at {}", many.label(), few.label());
         }
     }
+    // The march sees beyond the radius: below the points at their most samples, in SSDO.
+    let best = |variant| {
+        result
+            .rows
+            .iter()
+            .filter(|r| r.mode == Mode::Ssdo && r.variant == variant)
+            .map(|r| r.hdr_rmse)
+            .fold(f64::MAX, f64::min)
+    };
+    assert!(
+        best(Variant::March) < best(Variant::Points),
+        "march {} vs points {}",
+        best(Variant::March),
+        best(Variant::Points)
+    );
     // The report files are complete.
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
-    assert!(csv.starts_with("mode,variant,samples,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,hdr_rmse"));
-    assert_eq!(csv.lines().count(), 1 + 2 + 2 * 3 * 2 * 2, "Off once per variant, the rest swept");
-    assert!(std::fs::read_to_string(out.path().join("report.md")).unwrap().contains("| both | default | 64 |"));
+    assert!(csv.starts_with(
+        "mode,variant,samples,steps,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse"
+    ));
+    assert_eq!(csv.lines().count(), 1 + 2 + 3 * 3 * 2 * 2, "Off sky-lit and classic, the rest swept");
+    let md = std::fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(md.contains("| both | points | 64 |") && md.contains("| both | march | 4×16 |"), "{md}");
     assert!(result.rows.iter().any(|r| r.pareto), "a Pareto front is marked");
     // The truth's own noise is measured (not 0) and well below what Off, with no occlusion at
     // all, gets wrong.
-    let off = result.rows.iter().find(|r| r.mode == Mode::Off && r.variant == Variant::Default).unwrap();
+    let off = result.rows.iter().find(|r| r.mode == Mode::Off && r.variant == Variant::March).unwrap();
     assert!(
         result.noise.hdr > 0.0 && result.noise.hdr < 0.5 * off.hdr_rmse,
         "noise {} vs Off {}",
@@ -172,7 +195,7 @@ fn gpu_error_at_64_samples_is_below_its_error_at_8_for_each_mode() {
                     .unwrap()
                     .flip
             };
-            assert!(flip(Variant::Default) < flip(Variant::Classic), "{mode} {samples}: FLIP default vs classic");
+            assert!(flip(Variant::Points) < flip(Variant::Classic), "{mode} {samples}: FLIP points vs classic");
         }
     }
 }
@@ -208,6 +231,7 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
             skybox: Some(sky_dir.clone()),
             size: (96, 72),
             samples: vec![16],
+            march: vec![(2, 8)],
             radii: vec![RadiusChoice::Times(1.0)],
             samples_per_pixel: 8,
             frames: 1,
@@ -219,7 +243,7 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
         let row = report
             .rows
             .iter()
-            .find(|r| r.mode == Mode::Ssao && r.variant == Variant::Default && r.blur)
+            .find(|r| r.mode == Mode::Ssao && r.variant == Variant::Points && r.blur)
             .unwrap()
             .clone();
         row.hdr_rmse

@@ -13,4 +13,8 @@ struct OcclusionParams {
     params: vec4<f32>,
     // sky-light strength, indirect strength, unused, unused
     strengths: vec4<f32>,
+    // The march (shaders/march.wgsl): slices, steps per side, reach (view units: how far the
+    // sky's visibility and the bounce are looked for), thickness (view units: how deep a surface
+    // in the depth buffer is taken to be)
+    march: vec4<f32>,
 }

@@ -106,7 +106,7 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                 }
             });
             egui::ComboBox::from_label("variant").selected_text(settings.variant.name()).show_ui(ui, |ui| {
-                for v in [Variant::Default, Variant::Classic] {
+                for v in Variant::ALL {
                     ui.selectable_value(&mut settings.variant, v, v.name());
                 }
             });

@@ -64,13 +64,15 @@ pub struct OcclusionUniforms {
     pub params: [f32; 4],
     /// sky-light strength, indirect strength, unused, unused
     pub strengths: [f32; 4],
+    /// The march: slices, steps per side, reach and thickness (view units).
+    pub march: [f32; 4],
 }
 
 /// Largest kernel the occlusion pass takes.
 pub const MAX_SAMPLES: usize = 256;
 
 const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 4 * 64 + 6 * 16 + 9 * 16);
-const _: () = assert!(std::mem::size_of::<OcclusionUniforms>() == (MAX_SAMPLES + 16 + 2) * 16);
+const _: () = assert!(std::mem::size_of::<OcclusionUniforms>() == (MAX_SAMPLES + 16 + 3) * 16);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 48);
 const _: () = assert!(std::mem::size_of::<MaterialParams>() == 32);
 

@@ -71,7 +71,10 @@ pub struct ReportOptions {
     pub model: Option<PathBuf>,
     pub skybox: Option<PathBuf>,
     pub size: (u32, u32),
+    /// Sample counts of the points and classic variants.
     pub samples: Vec<usize>,
+    /// Slices × steps of the march variant.
+    pub march: Vec<(usize, usize)>,
     pub radii: Vec<RadiusChoice>,
     /// Reference rays per pixel in each of the two traces (at least 2).
     pub samples_per_pixel: u32,
@@ -86,8 +89,10 @@ pub struct ReportOptions {
 pub struct Row {
     pub mode: Mode,
     pub variant: Variant,
-    /// Samples per pixel of the sampling pass (0 for Off, which has none).
+    /// Samples per pixel of the sampling pass (0 for Off, which has none); slices for the march.
     pub samples: usize,
+    /// Steps per side of each slice (the march; 0 otherwise).
+    pub steps: usize,
     pub blur: bool,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
@@ -98,6 +103,8 @@ pub struct Row {
     /// DO (sky light + bounce, before albedo) against the truth, and against the within-R image.
     pub do_rmse: Option<f64>,
     pub do_rmse_near: Option<f64>,
+    /// The mean of the DO's bounce over the measured pixels, over the truth's (1 is unbiased).
+    pub bounce_ratio: Option<f64>,
     /// Linear HDR radiance against the truth, and against the within-R image.
     pub hdr_rmse: f64,
     pub hdr_rmse_near: f64,
@@ -201,21 +208,39 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             ao: half_difference(&|r, i| Vec3::splat(r.ao[i])),
         };
 
-        for variant in [Variant::Classic, Variant::Default] {
-            let mut configs: Vec<(Mode, usize, bool)> = Vec::new();
-            if r_index == 0 {
-                configs.push((Mode::Off, 0, false));
+        for variant in [Variant::Classic, Variant::Points, Variant::March] {
+            // (mode, samples or slices, steps, blur)
+            let mut configs: Vec<(Mode, usize, usize, bool)> = Vec::new();
+            if r_index == 0 && variant != Variant::Points {
+                // Off has no sampling pass: once for the sky-lit composite (under the default
+                // variant's name; points is the same image), once for classic.
+                configs.push((Mode::Off, 0, 0, false));
             }
+            let counts: Vec<(usize, usize)> = if variant.marches() {
+                options.march.clone()
+            } else {
+                options.samples.iter().map(|&n| (n, 0)).collect()
+            };
             for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
-                for &samples in &options.samples {
-                    configs.extend([(mode, samples, true), (mode, samples, false)]);
+                for &(samples, steps) in &counts {
+                    configs.extend([(mode, samples, steps, true), (mode, samples, steps, false)]);
                 }
             }
-            for (mode, samples, blur) in configs {
+            for (mode, samples, steps, blur) in configs {
                 // Every configuration renders the same lighting (the classic variant keeps its
                 // own composite, not its own ambient), so all meet one truth.
-                renderer.settings =
-                    Settings { mode, variant, samples: samples.max(1), blur, radius: Some(radius), ..base };
+                let (slices, steps_or_default) =
+                    if variant.marches() { (samples, steps) } else { (base.slices, base.steps) };
+                renderer.settings = Settings {
+                    mode,
+                    variant,
+                    samples: if variant.marches() { base.samples } else { samples.max(1) },
+                    slices,
+                    steps: steps_or_default,
+                    blur,
+                    radius: Some(radius),
+                    ..base
+                };
                 let ms = crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
                 let image = capture(gpu, &mut renderer, &camera)?;
                 let s = renderer.settings;
@@ -258,6 +283,25 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 };
                 let do_rmse = do_against(&|i| truth.directional(i));
                 let do_rmse_near = do_against(&|i| truth.directional_near(i));
+                // The bounce alone (the DO-indirect view zeroes the sky), against the truth's:
+                // a ratio of means, so noise cancels and only the estimator's bias remains.
+                let bounce_ratio = if directional.is_some() && !scene.lights.is_empty() {
+                    renderer.settings.view = crate::render::View::DoIndirect;
+                    capture(gpu, &mut renderer, &camera)?;
+                    renderer.settings.view = s.view;
+                    let bounce =
+                        renderer.targets().occlusion().directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture));
+                    let bounce = bounce.transpose()?.unwrap_or_default();
+                    let mean = |f: &dyn Fn(usize) -> f32| {
+                        valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64
+                    };
+                    let got =
+                        mean(&|i| reference::luminance(Vec3::new(bounce[i][0], bounce[i][1], bounce[i][2]) * unexpose));
+                    let want = mean(&|i| reference::luminance(truth.bounce[i]));
+                    (want > 0.0).then(|| got / want)
+                } else {
+                    None
+                };
 
                 let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
                 let mut ref_image = gpu_image.clone();
@@ -266,19 +310,27 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     ref_image.put_pixel(x, y, image::Rgb(metrics::display(truth.radiance(i, ambient), s.exposure)));
                 }
                 let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.valid);
-                if variant == Variant::Default && samples == 16 && blur && mode == Mode::Both && r_index == 0 {
+                let shown = (base.slices, base.steps);
+                if variant == Variant::default()
+                    && (samples, steps) == shown
+                    && blur
+                    && mode == Mode::Both
+                    && r_index == 0
+                {
                     write_maps(&options.out, &truth, &ao, &ref_image, &gpu_image, &flip_map)?;
                 }
                 rows.push(Row {
                     mode,
                     variant,
                     samples,
+                    steps,
                     blur,
                     radius: if mode == Mode::Off { 0.0 } else { radius },
                     ms,
                     ao_rmse,
                     do_rmse,
                     do_rmse_near,
+                    bounce_ratio,
                     hdr_rmse,
                     hdr_rmse_near,
                     hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
@@ -286,7 +338,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     pareto: false,
                 });
                 progress(&format!(
-                    "{mode} {variant} {samples} samples, radius {radius:.3}, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}"
+                    "{mode} {variant} {}, radius {radius:.3}, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}",
+                    Row::count_label(variant, samples, steps)
                 ));
             }
         }
@@ -361,24 +414,41 @@ fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(String::new, |v| format!("{v:.digits$}"))
 }
 
+impl Row {
+    /// "16" samples, or "4×8" slices × steps for the march.
+    fn count_label(variant: Variant, samples: usize, steps: usize) -> String {
+        if variant.marches() {
+            format!("{samples}×{steps}")
+        } else {
+            samples.to_string()
+        }
+    }
+
+    pub fn label(&self) -> String {
+        Self::count_label(self.variant, self.samples, self.steps)
+    }
+}
+
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{:.5},{:.4},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
+                r.steps,
                 r.blur,
                 r.radius,
                 r.ms,
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),
                 cell(r.do_rmse_near, 6),
+                cell(r.bounce_ratio, 3),
                 r.hdr_rmse,
                 r.hdr_rmse_near,
                 r.hdr_psnr,
@@ -426,18 +496,18 @@ impl Report {
             r.covered,
         );
         out.push_str(
-            "| | mode | variant | samples | blur | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | AO RMSE within R |\n",
+            "| | mode | variant | samples (slices×steps) | blur | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
         );
-        out.push_str("|---|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        out.push_str("|---|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
             let off = row.mode == Mode::Off;
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
                 if row.pareto { "★" } else { "" },
                 row.mode.name(),
                 row.variant,
-                if off { "—".to_string() } else { row.samples.to_string() },
+                if off { "—".to_string() } else { row.label() },
                 if off {
                     "—"
                 } else if row.blur {
@@ -453,23 +523,11 @@ impl Report {
                 row.flip,
                 cell(row.do_rmse, 4),
                 cell(row.do_rmse_near, 4),
+                cell(row.bounce_ratio, 2),
                 cell(row.ao_rmse, 4),
             );
         }
         out
-    }
-
-    /// The rows of one table cell of the closing summary: each mode and variant at `samples`,
-    /// blur on, the first radius (Off once per variant).
-    pub fn at_samples(&self, samples: usize) -> Vec<&Row> {
-        let first_radius = self.rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
-        let mut picked: Vec<&Row> = self
-            .rows
-            .iter()
-            .filter(|r| r.mode == Mode::Off || (r.samples == samples && r.blur && r.radius == first_radius))
-            .collect();
-        picked.sort_by_key(|r| (r.variant == Variant::Default, Mode::ALL.iter().position(|m| *m == r.mode)));
-        picked
     }
 
     /// Log-log plot of HDR RMSE against the truth, against milliseconds: every mode on one chart,
@@ -525,7 +583,7 @@ impl Report {
                 .map_err(|e| fail(&e))?;
             let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
             for (m, mode) in Mode::ALL.into_iter().enumerate() {
-                for variant in [Variant::Default, Variant::Classic] {
+                for variant in Variant::ALL {
                     // Through the sample counts in order (timings are noisy; samples are not).
                     let mut line: Vec<&Row> = rows
                         .iter()
@@ -538,13 +596,13 @@ impl Report {
                     if line.is_empty() {
                         continue;
                     }
-                    line.sort_by_key(|r| r.samples);
+                    line.sort_by_key(|r| r.samples * 1000 + r.steps);
                     let points: Vec<(f64, f64)> = line.iter().map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
                     let colour = colours[m];
-                    let style = if variant == Variant::Default {
-                        colour.stroke_width(3)
-                    } else {
-                        colour.mix(0.6).stroke_width(1)
+                    let style = match variant {
+                        Variant::March => colour.stroke_width(3),
+                        Variant::Points => colour.mix(0.8).stroke_width(2),
+                        Variant::Classic => colour.mix(0.5).stroke_width(1),
                     };
                     let label = format!("{} {}", mode.title(), variant);
                     chart
@@ -552,7 +610,7 @@ impl Report {
                         .map_err(|e| fail(&e))?
                         .label(label)
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
-                    let marker = if variant == Variant::Default { 5 } else { 3 };
+                    let marker = if variant == Variant::default() { 5 } else { 3 };
                     chart
                         .draw_series(points.iter().map(|p| Circle::new(*p, marker, colour.filled())))
                         .map_err(|e| fail(&e))?;

@@ -56,7 +56,7 @@ impl BlurPass {
             self.bind_group = None;
             return;
         };
-        let key = Key { outputs: Outputs::of(plan), bilateral: variant == Variant::Default };
+        let key = Key { outputs: Outputs::of(plan), bilateral: variant != Variant::Classic };
         let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
         self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;

@@ -18,6 +18,11 @@ use crate::{shaders, Result};
 pub struct SamplingParams {
     pub variant: Variant,
     pub samples: usize,
+    pub slices: usize,
+    pub steps: usize,
+    /// View-space reach and thickness of the march.
+    pub reach: f32,
+    pub thickness: f32,
     /// View-space radius of the hemisphere.
     pub radius: f32,
     /// Depth bias in view units.
@@ -57,6 +62,7 @@ impl OcclusionData {
         }
         self.uniforms.params = [params.radius, params.bias, samples as f32, params.sky_mip];
         self.uniforms.strengths = [params.sky_strength, params.indirect_strength, 0.0, 0.0];
+        self.uniforms.march = [params.slices as f32, params.steps as f32, params.reach, params.thickness];
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
     }
 }
@@ -93,23 +99,25 @@ impl Outputs {
 struct Key {
     outputs: Outputs,
     classic: bool,
+    /// The march shader rather than the point-sampling one.
+    march: bool,
 }
 
 impl Key {
-    fn constants(self) -> [(&'static str, f64); 4] {
+    fn constants(self) -> Vec<(&'static str, f64)> {
         let f = |b: bool| b as u8 as f64;
         let o = self.outputs;
-        [
-            ("COMPUTE_AO", f(o.ao)),
-            ("COMPUTE_DO", f(o.directional)),
-            ("INDIRECT", f(o.indirect)),
-            ("CLASSIC", f(self.classic)),
-        ]
+        let mut list = vec![("COMPUTE_AO", f(o.ao)), ("COMPUTE_DO", f(o.directional)), ("INDIRECT", f(o.indirect))];
+        if !self.march {
+            list.push(("CLASSIC", f(self.classic)));
+        }
+        list
     }
 }
 
 pub struct OcclusionPass {
     module: wgpu::ShaderModule,
+    march_module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     pipeline_layouts: [wgpu::BindGroupLayout; 2],
     pipeline: KeyedPipeline<Key>,
@@ -123,6 +131,7 @@ impl OcclusionPass {
         sky_layout: &wgpu::BindGroupLayout,
     ) -> Result<Self> {
         let module = shaders::module(device, "occlusion.wgsl")?;
+        let march_module = shaders::module(device, "march.wgsl")?;
         let [a, n, d] = gbuffer_entries();
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("occlusion_layout"),
@@ -130,6 +139,7 @@ impl OcclusionPass {
         });
         Ok(Self {
             module,
+            march_module,
             layout,
             pipeline_layouts: [frame_layout.clone(), sky_layout.clone()],
             pipeline: KeyedPipeline::new(),
@@ -152,7 +162,7 @@ impl OcclusionPass {
             self.bind_group = None;
             return;
         }
-        let key = Key { outputs: Outputs::of(plan), classic: variant == Variant::Classic };
+        let key = Key { outputs: Outputs::of(plan), classic: variant == Variant::Classic, march: variant.marches() };
         self.pipeline.ensure(key, |key| {
             let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
             let [frame, sky] = &self.pipeline_layouts;
@@ -160,7 +170,7 @@ impl OcclusionPass {
                 device,
                 &FullscreenDesc {
                     label: "occlusion_pipeline",
-                    module: &self.module,
+                    module: if key.march { &self.march_module } else { &self.module },
                     entry,
                     bind_group_layouts: &[Some(frame), Some(&self.layout), Some(sky)],
                     targets: &[Some(key.outputs.format().into())],

@@ -1,0 +1,283 @@
+// The marched sampling pass: AO, SSDO's sky light and its one bounce from one march of the depth
+// buffer per direction, after GTAO (Jimenez et al. 2016, "Practical Real-Time Strategies for
+// Accurate Indirect Occlusion") and the visibility bitmask (Therrien, Levesque & Gilet 2023,
+// "Screen Space Indirect Lighting with Visibility Bitmask").
+//
+// The hemisphere above a pixel is cut into `slices` planes that contain the view vector v; a
+// direction ω in slice φ at angle θ from v has solid angle dω = |sin θ| dθ dφ, and its cosine at
+// the receiver is n·ω = |n_p| cos(θ − γ), with n_p the normal projected into the slice and γ its
+// angle. So every cosine-weighted integral (1/π)∫ f(ω) n·ω dω becomes a sum over slices of
+// |n_p| ∫ f cos(θ − γ) |sin θ| dθ, which each slice evaluates over 32 sectors of θ, in closed form.
+//
+// Each slice is marched both ways across the screen. Every depth sample is a surface of a given
+// thickness (its front at the depth buffer, its back `thickness` further along its view ray); the
+// sectors between the angles of its front and back are occluded, and the sectors it occludes
+// first take their bounce from it (its diffuse radiance from the lighting pass, if it faces the
+// receiver). Sectors never occluded see the sky, read from the cube map at the mip level of a
+// sector group's solid angle. Steps are dense within the AO radius R (AO counts occluders within
+// R only) and then spread geometrically out to `reach`, so walls far beyond R still block the sky.
+//
+//   AO       = 1 − Σ|n_p| w(occluded within R) / Σ|n_p| w(all)
+//   direct   = Σ|n_p| Σ_g w_g · visible_g · L_sky(ω_g) / Σ|n_p| w(all)     (white furnace exact)
+//   indirect = Σ|n_p| Σ_k w_k · occluded_first_by(s) · L_bounce(s) / Σ|n_p| w(all)
+// with w = ∫ cos(θ − γ)|sin θ| dθ over the sectors named. Albedo is applied in the composite.
+
+#include "common/uniforms.wgsl"
+#include "common/gbuffer_read.wgsl"
+#include "common/occlusion_params.wgsl"
+#include "common/fullscreen.wgsl"
+
+@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(4) var bounce_map: texture_2d<f32>;
+@group(2) @binding(0) var sky_map: texture_cube<f32>;
+@group(2) @binding(1) var sky_sampler: sampler;
+
+override COMPUTE_AO: bool = true;
+override COMPUTE_DO: bool = true;
+// The scene has point lights, so there is a bounce buffer to read.
+override INDIRECT: bool = true;
+
+// Sectors per slice (one bit each: what occludes is resolved to π/32) and the groups the sky is
+// read and the weights are integrated for (a sky read per group, not per sector: 4 reads per
+// slice instead of 32; a group's partial visibility scales its read). Fewer groups cost fewer
+// cube-map reads and blur the sky's directions within a slice more.
+const SECTORS: u32 = 32u;
+const GROUPS: u32 = 4u;
+const PER_GROUP: u32 = 8u;
+const HALF_PI: f32 = 1.5707963;
+
+struct Occlusion {
+    ao: f32,
+    direct: vec3<f32>,
+    indirect: vec3<f32>,
+}
+
+// F(θ) = ∫ cos(θ − γ) sin θ dθ = (θ sin γ − cos(2θ − γ)/2) / 2. F falls where sin θ < 0 and rises
+// where sin θ > 0 (cos(θ − γ) ≥ 0 inside the hemisphere), so ∫_a^b cos(θ − γ)|sin θ| dθ is
+// |F(b) − F(a)| for an interval on one side of θ = 0, and F(a) + F(b) − 2F(0) across it.
+fn antiderivative(theta: f32, gamma: f32, sin_gamma: f32) -> f32 {
+    return 0.5 * (theta * sin_gamma - 0.5 * cos(2.0 * theta - gamma));
+}
+
+// atan2 to within 0.004 rad (a sector is 0.098 rad wide), without the library call's cost.
+fn fast_atan2(y: f32, x: f32) -> f32 {
+    let ax = abs(x);
+    let ay = abs(y);
+    let q = min(ax, ay) / max(max(ax, ay), 1e-30);
+    var a = q * (0.7853982 + 0.273 * (1.0 - q));
+    if ay > ax {
+        a = HALF_PI - a;
+    }
+    if x < 0.0 {
+        a = PI - a;
+    }
+    return select(a, -a, y < 0.0);
+}
+
+// The bits of sectors [first, last] (inclusive, 0..31).
+fn bit_range(first: u32, last: u32) -> u32 {
+    let count = last - first + 1u;
+    let ones = select((1u << count) - 1u, 0xffffffffu, count >= 32u);
+    return ones << first;
+}
+
+// The sector holding angle θ (clamped into the hemisphere [γ − π/2, γ + π/2]).
+fn sector_of(theta: f32, gamma: f32) -> u32 {
+    let t = clamp((theta - (gamma - HALF_PI)) / PI, 0.0, 0.99999);
+    return u32(t * f32(SECTORS));
+}
+
+// Signed angle of `d` from the view vector `v` towards `t`, in the slice plane.
+fn slice_angle(d: vec3<f32>, v: vec3<f32>, t: vec3<f32>) -> f32 {
+    return fast_atan2(dot(d, t), dot(d, v));
+}
+
+fn evaluate(position: vec2<f32>) -> Occlusion {
+    var out: Occlusion;
+    out.ao = 1.0;
+    let pixel = vec2<i32>(position);
+    let depth = load_depth(pixel);
+    if depth <= 0.0 {
+        return out;
+    }
+    let n = textureLoad(g_normal, pixel, 0).xyz;
+    let radius = occ.params.x;
+    // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
+    let p = view_position(position, depth) + n * occ.params.y;
+    let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
+    let slices = max(u32(occ.march.x), 1u);
+    let steps = max(u32(occ.march.y), 1u);
+    let reach = max(occ.march.z, radius);
+    let thickness = max(occ.march.w, 0.0);
+    let size = frame.viewport.xy;
+    // Pixels per view unit at the receiver's depth.
+    let pixels_per_unit = 0.5 * size.y * frame.view_to_clip[1][1] / max(-p.z, 1e-30);
+    let near_steps = max(steps / 2u, 1u);
+    let far_steps = steps - near_steps;
+    // AO alone counts occluders within R only: the far steps would change nothing.
+    let last_step = select(near_steps, steps, COMPUTE_DO);
+    let noise = occ.rotations[u32(pixel.x & 3) + 4u * u32(pixel.y & 3)];
+
+    var total = 0.0;
+    var occluded_near = 0.0;
+    var direct = vec3<f32>(0.0);
+    var indirect = vec3<f32>(0.0);
+    for (var slice = 0u; slice < slices; slice += 1u) {
+        let phi = PI * (f32(slice) + noise.z) / f32(slices);
+        // Screen direction (x right, y down) and the view-space direction it moves along.
+        let screen_dir = vec2<f32>(cos(phi), sin(phi));
+        let axis = vec3<f32>(screen_dir.x, -screen_dir.y, 0.0);
+        let t = safe_normalize(axis - v * dot(axis, v), vec3<f32>(1.0, 0.0, 0.0));
+        let plane_normal = cross(v, t);
+        let n_p = n - plane_normal * dot(n, plane_normal);
+        let n_len = length(n_p);
+        if n_len < 1e-6 {
+            continue;
+        }
+        let gamma = slice_angle(n_p, v, t);
+        let lo = gamma - HALF_PI;
+        let sin_gamma = dot(n_p, t) / n_len;
+        // The cosine-weighted measure of each sector group, times |n_p|.
+        let width = PI / f32(GROUPS);
+        let f_zero = antiderivative(0.0, gamma, sin_gamma);
+        var weights: array<f32, GROUPS>;
+        var f_a = antiderivative(lo, gamma, sin_gamma);
+        for (var g = 0u; g < GROUPS; g += 1u) {
+            let a = lo + f32(g) * width;
+            let b = a + width;
+            let f_b = antiderivative(b, gamma, sin_gamma);
+            var w = abs(f_b - f_a);
+            if a < 0.0 && b > 0.0 {
+                w = f_a + f_b - 2.0 * f_zero;
+            }
+            weights[g] = n_len * w;
+            f_a = f_b;
+        }
+
+        var mask = 0u;
+        var near_mask = 0u;
+        for (var side = 0u; side < 2u; side += 1u) {
+            let sign = select(-1.0, 1.0, side == 0u);
+            // The last sample's surface point and front angle, while samples are on one surface.
+            var connected = false;
+            var previous = vec3<f32>(0.0);
+            var previous_angle = 0.0;
+            var previous_distance = 0.0;
+            var previous_above = false;
+            for (var i = 0u; i < last_step; i += 1u) {
+                // Dense within R, then geometric out to the reach; jittered per pixel.
+                let j = f32(i) + noise.w;
+                var distance: f32;
+                if i < near_steps {
+                    let x = j / f32(near_steps);
+                    distance = radius * x * x;
+                } else {
+                    let x = (j - f32(near_steps)) / f32(max(far_steps, 1u));
+                    distance = radius * pow(reach / radius, x);
+                }
+                let offset = max(distance * pixels_per_unit, f32(i + 1u));
+                let sample_f = position + sign * screen_dir * offset;
+                if any(sample_f < vec2<f32>(0.0)) || any(sample_f >= size) {
+                    break;
+                }
+                let texel = vec2<i32>(sample_f);
+                let sample_depth = load_depth(texel);
+                if sample_depth <= 0.0 {
+                    connected = false;
+                    continue;
+                }
+                let s = view_position(vec2<f32>(texel) + 0.5, sample_depth);
+                let front = s - p;
+                let back = front - safe_normalize(-s, v) * thickness;
+                let a_front = slice_angle(front, v, t);
+                let a_back = slice_angle(back, v, t);
+                var a_min = min(a_front, a_back);
+                var a_max = max(a_front, a_back);
+                // One surface between this sample and the last (closer than the thickness plus
+                // twice the step between them): the angles between them are that surface too, not
+                // a gap the sky shows through. Sparse far steps would otherwise leak sky through
+                // every wall.
+                // Only between two samples above the receiver's tangent plane: a surface rising
+                // from below the horizon is the receiver's own ground, not an occluder to extend.
+                let above = dot(front, n) > 0.0;
+                if connected && above && previous_above
+                    && length(s - previous) < thickness + 2.0 * (distance - previous_distance) {
+                    a_min = min(a_min, previous_angle);
+                    a_max = max(a_max, previous_angle);
+                }
+                connected = true;
+                previous = s;
+                previous_distance = distance;
+                previous_above = above;
+                previous_angle = a_front;
+                // Wholly below the receiver's tangent plane: it blocks nothing of the hemisphere.
+                // (Tested on the positions, exactly, not on the approximate angles.)
+                if !above && dot(back, n) <= 0.0 {
+                    continue;
+                }
+                let first = sector_of(a_min, gamma);
+                let last = sector_of(a_max, gamma);
+                let bits = bit_range(first, last);
+                let fresh = bits & ~mask;
+                mask |= bits;
+                // AO counts the near steps only (within R of the receiver), so AO alone (which
+                // skips the far steps) and AO beside DO are the same.
+                if COMPUTE_AO && i < near_steps && dot(front, front) < radius * radius {
+                    near_mask |= bits;
+                }
+                if COMPUTE_DO && INDIRECT && fresh != 0u {
+                    let n_s = textureLoad(g_normal, texel, 0).xyz;
+                    // Only a sender facing the receiver sends its light this way.
+                    if dot(n_s, -front) > 0.0 {
+                        // The measure of the sectors it occludes first, group by group.
+                        var w = 0.0;
+                        for (var g = 0u; g < GROUPS; g += 1u) {
+                            let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
+                            w += weights[g] * f32(countOneBits(fresh & group_bits));
+                        }
+                        indirect += (w / f32(PER_GROUP)) * textureLoad(bounce_map, texel, 0).rgb;
+                    }
+                }
+            }
+        }
+
+        // Integrate the slice over the sector groups.
+        for (var g = 0u; g < GROUPS; g += 1u) {
+            let a = lo + f32(g) * width;
+            let w = weights[g];
+            let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
+            total += w;
+            if COMPUTE_AO {
+                occluded_near += w * f32(countOneBits(near_mask & group_bits)) / f32(PER_GROUP);
+            }
+            if COMPUTE_DO {
+                let visible = f32(countOneBits(~mask & group_bits)) / f32(PER_GROUP);
+                if visible > 0.0 {
+                    let theta = a + 0.5 * width;
+                    let omega = v * cos(theta) + t * sin(theta);
+                    let world = (frame.view_to_world * vec4<f32>(omega, 0.0)).xyz;
+                    direct += w * visible * textureSampleLevel(sky_map, sky_sampler, world, occ.params.w).rgb;
+                }
+            }
+        }
+    }
+    if total > 0.0 {
+        out.ao = 1.0 - occluded_near / total;
+        out.direct = direct / total * frame.sky.x;
+        out.indirect = indirect / total;
+    }
+    return out;
+}
+
+// SSAO: AO alone, into a one-channel target.
+@fragment
+fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(evaluate(in.position.xy).ao, 0.0, 0.0, 1.0);
+}
+
+// SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
+@fragment
+fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let o = evaluate(in.position.xy);
+    return vec4<f32>(o.direct * occ.strengths.x + o.indirect * occ.strengths.y, select(1.0, o.ao, COMPUTE_AO));
+}
