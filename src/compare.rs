@@ -16,7 +16,12 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {
         let blur = if s.blur { "blurred" } else { "no blur" };
-        lines.push(format!("{} variant, {} samples, radius {radius:.3}, {blur}", s.variant, s.samples));
+        let count = if s.variant.marches() {
+            format!("{} slices × {} steps", s.slices, s.steps)
+        } else {
+            format!("{} samples", s.samples)
+        };
+        lines.push(format!("{} variant, {count}, radius {radius:.3}, {blur}", s.variant));
     }
     lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
     lines

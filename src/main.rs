@@ -560,14 +560,12 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     } else {
         println!("device: {}{}", gpu.describe(), if gpu.is_software() { " — a CPU rasteriser, not a GPU" } else { "" });
         println!("timing: {method}; median of {} frames after 2 warm-up frames", args.frames);
-        println!(
-            "size {}x{}, {} variant, {} samples, blur {}",
-            size.0,
-            size.1,
-            s.variant,
-            s.samples,
-            if s.blur { "on" } else { "off" }
-        );
+        let count = if s.variant.marches() {
+            format!("{} slices × {} steps", s.slices, s.steps)
+        } else {
+            format!("{} samples", s.samples)
+        };
+        println!("size {}x{}, {} variant, {count}, blur {}", size.0, size.1, s.variant, if s.blur { "on" } else { "off" });
         for (mode, r) in &results {
             let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
             println!(

@@ -118,12 +118,27 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.separator();
 
             ui.label("Sampling");
-            ui.add(egui::Slider::new(&mut settings.samples, 1..=256).logarithmic(true).text("samples"));
-            let mut radius = settings.radius.unwrap_or(default_radius);
-            let before = radius;
-            ui.add(egui::Slider::new(&mut radius, 0.0..=default_radius * 5.0).text("radius"));
-            if radius != before {
-                settings.radius = Some(radius);
+            if settings.variant.marches() {
+                ui.add(egui::Slider::new(&mut settings.slices, 1..=32).logarithmic(true).text("slices"));
+                ui.add(egui::Slider::new(&mut settings.steps, 1..=64).logarithmic(true).text("steps per side"));
+            } else {
+                ui.add(egui::Slider::new(&mut settings.samples, 1..=256).logarithmic(true).text("samples"));
+            }
+            // A length with a scene-derived default: the slider shows the default until moved.
+            let length = |ui: &mut egui::Ui, value: &mut Option<f32>, default: f32, max: f32, text: &str| {
+                let mut v = value.unwrap_or(default);
+                let before = v;
+                ui.add(egui::Slider::new(&mut v, 0.0..=max).text(text));
+                if v != before {
+                    *value = Some(v);
+                }
+            };
+            length(ui, &mut settings.radius, default_radius, default_radius * 5.0, "radius");
+            if settings.variant.marches() {
+                let reach = default_radius * crate::render::REACH_RADII;
+                let thickness = default_radius * crate::render::THICKNESS_RADII;
+                length(ui, &mut settings.reach, reach, reach * 4.0, "reach");
+                length(ui, &mut settings.thickness, thickness, thickness * 10.0, "thickness");
             }
             slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
             ui.checkbox(&mut settings.blur, "blur");

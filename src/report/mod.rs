@@ -393,7 +393,7 @@ fn write_maps(
                 image::Rgb([255 - v, 255 - v, 255])
             }
         });
-        save("error_ao_both_default_16.png", &map)?;
+        save("error_ao_both_default.png", &map)?;
         let reference_ao = image::RgbImage::from_fn(w, h, |x, y| {
             let i = (y * w + x) as usize;
             let v = (reference.ao[i].clamp(0.0, 1.0) * 255.0) as u8;
@@ -406,8 +406,8 @@ fn write_maps(
         save("reference_ao.png", &reference_ao)?;
     }
     save("reference_both_default.png", ref_image)?;
-    save("gpu_both_default_16.png", gpu_image)?;
-    save("error_flip_both_default_16.png", flip_map)
+    save("gpu_both_default.png", gpu_image)?;
+    save("error_flip_both_default.png", flip_map)
 }
 
 fn cell(v: Option<f64>, digits: usize) -> String {
