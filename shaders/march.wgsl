@@ -29,6 +29,9 @@
 
 @group(1) @binding(3) var<uniform> occ: OcclusionParams;
 @group(1) @binding(4) var bounce_map: texture_2d<f32>;
+// The closest depth per 2^(k+1)-pixel block at level k, as f32 bits (shaders/depth_pyramid.wgsl),
+// read by the far steps when the plan built it (USE_PYRAMID); a 1x1 stand-in otherwise.
+@group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
 @group(2) @binding(0) var sky_map: texture_cube<f32>;
 @group(2) @binding(1) var sky_sampler: sampler;
 
@@ -36,6 +39,8 @@ override COMPUTE_AO: bool = true;
 override COMPUTE_DO: bool = true;
 // The scene has point lights, so there is a bounce buffer to read.
 override INDIRECT: bool = true;
+// The far steps read the depth pyramid (the plan built one) rather than the depth buffer.
+override USE_PYRAMID: bool = false;
 
 // Sectors per slice (one bit each: what occludes is resolved to π/32) and the groups the sky is
 // read and the weights are integrated for (a sky read per group, not per sector: 4 reads per
@@ -164,6 +169,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
             var previous_angle = 0.0;
             var previous_distance = 0.0;
             var previous_above = false;
+            var previous_offset = 0.0;
             for (var i = 0u; i < last_step; i += 1u) {
                 // Dense within R, then geometric out to the reach; jittered per pixel.
                 let j = f32(i) + noise.w;
@@ -176,12 +182,26 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                     distance = radius * pow(reach / radius, x);
                 }
                 let offset = max(distance * pixels_per_unit, f32(i + 1u));
+                let spacing = offset - previous_offset;
+                previous_offset = offset;
                 let sample_f = position + sign * screen_dir * offset;
                 if any(sample_f < vec2<f32>(0.0)) || any(sample_f >= size) {
                     break;
                 }
                 let texel = vec2<i32>(sample_f);
-                let sample_depth = load_depth(texel);
+                // A far step stands for the pixels since the last one: it reads the closest depth
+                // of a block about that wide, so what lies between steps is not skipped.
+                var sample_depth: f32;
+                let level = i32(floor(log2(max(spacing, 1.0)))) - 1;
+                if !USE_PYRAMID || i < near_steps || level < 0 {
+                    sample_depth = load_depth(texel);
+                } else {
+                    let top = i32(textureNumLevels(depth_pyramid)) - 1;
+                    let k = min(level, top);
+                    let last = vec2<i32>(textureDimensions(depth_pyramid, k)) - vec2<i32>(1);
+                    let block = min(texel >> vec2<u32>(u32(k + 1)), last);
+                    sample_depth = bitcast<f32>(textureLoad(depth_pyramid, block, k).r);
+                }
                 if sample_depth <= 0.0 {
                     connected = false;
                     continue;

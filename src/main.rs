@@ -127,6 +127,9 @@ struct RenderArgs {
     /// The march's surface thickness, in model units [default: 1 radius]
     #[arg(long, allow_negative_numbers = true)]
     thickness: Option<f32>,
+    /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see README)
+    #[arg(long)]
+    depth_pyramid: bool,
     /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
     #[arg(long, allow_negative_numbers = true)]
     radius: Option<f32>,
@@ -278,7 +281,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let started = Instant::now();
     let rows = args.size.1 as u64;
     let radii = args.radius.len() as u64;
-    let configs = 2 + radii * 3 * 2 * (2 * args.samples.len() + args.march.len()) as u64;
+    let configs = 2 + radii * (3 * 2 * (2 * args.samples.len() + args.march.len()) + 2 * args.march.len()) as u64;
     let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
@@ -416,6 +419,7 @@ impl RenderArgs {
             steps: self.steps,
             reach: self.reach.map(|r| non_negative("reach", r)).transpose()?,
             thickness: self.thickness.map(|r| non_negative("thickness", r)).transpose()?,
+            depth_pyramid: self.depth_pyramid,
             radius,
             bias: non_negative("bias", self.bias)?,
             ao_strength: non_negative("ao-strength", self.ao_strength)?.min(1.0),
@@ -565,7 +569,13 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
         } else {
             format!("{} samples", s.samples)
         };
-        println!("size {}x{}, {} variant, {count}, blur {}", size.0, size.1, s.variant, if s.blur { "on" } else { "off" });
+        println!(
+            "size {}x{}, {} variant, {count}, blur {}",
+            size.0,
+            size.1,
+            s.variant,
+            if s.blur { "on" } else { "off" }
+        );
         for (mode, r) in &results {
             let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
             println!(

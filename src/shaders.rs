@@ -24,6 +24,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("light_cubes.wgsl", include_str!("../shaders/light_cubes.wgsl")),
     ("tonemap.wgsl", include_str!("../shaders/tonemap.wgsl")),
     ("depth_copy.wgsl", include_str!("../shaders/depth_copy.wgsl")),
+    ("depth_pyramid.wgsl", include_str!("../shaders/depth_pyramid.wgsl")),
 ];
 
 /// The shaders that are compiled as modules (the rest are only included).

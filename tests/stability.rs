@@ -122,6 +122,14 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     let mut c = base("3x2 target", "--size 3x2");
     c.size = (3, 2);
     list.push(c);
+    let mut c = base("depth pyramid, 37x23 (odd sizes down the chain)", "--depth-pyramid --size 37x23");
+    c.size = (37, 23);
+    c.settings.depth_pyramid = true;
+    list.push(c);
+    let mut c = base("depth pyramid, 1x1", "--depth-pyramid --size 1x1");
+    c.size = (1, 1);
+    c.settings.depth_pyramid = true;
+    list.push(c);
     let max = gpu.device.limits().max_texture_dimension_2d;
     let mut c = base("largest 2D size (width)", "--size <max>x2");
     c.size = (max, 2);

@@ -139,6 +139,7 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                 let thickness = default_radius * crate::render::THICKNESS_RADII;
                 length(ui, &mut settings.reach, reach, reach * 4.0, "reach");
                 length(ui, &mut settings.thickness, thickness, thickness * 10.0, "thickness");
+                ui.checkbox(&mut settings.depth_pyramid, "depth pyramid for far steps");
             }
             slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
             ui.checkbox(&mut settings.blur, "blur");

@@ -25,6 +25,7 @@ pub use kernel::Variant;
 pub use modes::{Mode, Plan, SceneFeatures, Step};
 use passes::blur::BlurPass;
 use passes::composite::CompositePass;
+use passes::depth_pyramid::DepthPyramidPass;
 use passes::gbuffer::{GBufferPass, SceneGpu};
 use passes::light_cubes::LightCubesPass;
 use passes::lighting::LightingPass;
@@ -119,6 +120,9 @@ pub struct Settings {
     /// How deep a surface in the depth buffer is taken to be, in model units; `None` is the
     /// bounding radius × 0.1 (1 sampling radius).
     pub thickness: Option<f32>,
+    /// The march's far steps read a closest-depth pyramid instead of the depth buffer (off by
+    /// default: the report measured it over-occluding on three scenes of four).
+    pub depth_pyramid: bool,
     /// Sampling radius in model units; `None` is a tenth of the scene's bounding radius.
     pub radius: Option<f32>,
     /// Depth bias of the occlusion test, as a fraction of the radius.
@@ -153,6 +157,7 @@ impl Default for Settings {
             steps: 12,
             reach: None,
             thickness: None,
+            depth_pyramid: false,
             radius: None,
             bias: 0.03,
             ao_strength: 1.0,
@@ -199,6 +204,9 @@ pub struct Renderer {
     sky_layout: wgpu::BindGroupLayout,
     /// Bound where a pass's input does not exist in the current plan (1x1, never read).
     unused: wgpu::TextureView,
+    /// The same for the depth pyramid's integer format.
+    unused_pyramid: wgpu::TextureView,
+    pyramid: DepthPyramidPass,
     targets: Targets,
     scene: SceneGpu,
     sky: SkyGpu,
@@ -227,7 +235,9 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        let plan = Plan::new(settings.mode, SceneFeatures { lights: scene.lights.len() }, settings.blur);
+        let features = SceneFeatures { lights: scene.lights.len() };
+        let plan =
+            Plan::new(settings.mode, features, settings.blur, settings.variant.marches() && settings.depth_pyramid);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan);
@@ -235,6 +245,7 @@ impl Renderer {
         let scene_gpu = gbuffer.upload(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
         let unused = targets::Target::new(device, "unused_input", (1, 1), targets::DO_FORMAT).view;
+        let unused_pyramid = targets::Target::new(device, "unused_pyramid", (1, 1), targets::PYRAMID_FORMAT).view;
         let mut renderer = Self {
             settings,
             prepared: (settings.variant, settings.view),
@@ -255,6 +266,8 @@ impl Renderer {
             frame,
             sky_layout,
             unused,
+            unused_pyramid,
+            pyramid: DepthPyramidPass::new(device)?,
             targets,
             scene: scene_gpu,
             sky: sky_gpu,
@@ -286,7 +299,9 @@ impl Renderer {
     /// Brings the plan, targets and pipelines in line with the settings and lights: only what a
     /// change affects is rebuilt. Called by [`Renderer::encode`]; call it to read the new plan.
     pub fn apply(&mut self, gpu: &Gpu) {
-        let plan = Plan::new(self.settings.mode, SceneFeatures { lights: self.lights.len() }, self.settings.blur);
+        let s = &self.settings;
+        let pyramid = s.variant.marches() && s.depth_pyramid;
+        let plan = Plan::new(s.mode, SceneFeatures { lights: self.lights.len() }, s.blur, pyramid);
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
@@ -307,7 +322,8 @@ impl Renderer {
         let (device, t, plan) = (&gpu.device, &self.targets, &self.plan);
         let (variant, view) = (self.settings.variant, self.settings.view);
         self.lighting.resize(device, t);
-        self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused);
+        self.pyramid.prepare(device, t);
+        self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused, &self.unused_pyramid);
         self.blur.prepare(device, t, plan, variant, &self.occlusion_data);
         self.composite.prepare(device, t, plan, variant, view == View::LightingOnly, &self.unused);
         self.tonemap.prepare(device, t, plan, view, &self.unused);
@@ -491,6 +507,8 @@ impl Renderer {
             match step {
                 // Geometry once: albedo, normal, depth.
                 Step::GBuffer => self.gbuffer.encode(encoder, ts, t, frame, &self.scene),
+                // The closest depth per block, for the march's far steps.
+                Step::DepthPyramid => self.pyramid.encode(encoder, ts, t),
                 // Point lights: displayed direct light, and the radiance SSDO bounces.
                 Step::Lighting => self.lighting.encode(encoder, ts, t, frame),
                 // AO and/or DO from one set of hemisphere samples.

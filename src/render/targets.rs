@@ -37,6 +37,51 @@ impl Target {
     }
 }
 
+/// The depth pyramid: closest depth per block, as f32 bits (see `shaders/depth_pyramid.wgsl`).
+pub const PYRAMID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+/// Levels of the pyramid at most: level k covers 2^(k+1) pixels, so 7 levels serve steps up
+/// to 256 pixels apart.
+pub const PYRAMID_LEVELS: u32 = 7;
+
+/// The depth pyramid: half the screen at level 0, halving down to 1x1 or `PYRAMID_LEVELS`.
+pub struct Pyramid {
+    pub texture: wgpu::Texture,
+    /// Every level, for the march.
+    pub view: wgpu::TextureView,
+    /// One view per level, for building it.
+    pub levels: Vec<wgpu::TextureView>,
+    pub bytes: u64,
+}
+
+impl Pyramid {
+    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+        let base = ((size.0 / 2).max(1), (size.1 / 2).max(1));
+        let count = (32 - base.0.max(base.1).leading_zeros()).clamp(1, PYRAMID_LEVELS);
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("depth_pyramid"),
+            size: wgpu::Extent3d { width: base.0, height: base.1, depth_or_array_layers: 1 },
+            mip_level_count: count,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: PYRAMID_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let levels = (0..count)
+            .map(|level| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    base_mip_level: level,
+                    mip_level_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let bytes = (0..count).map(|l| ((base.0 >> l).max(1) as u64) * ((base.1 >> l).max(1) as u64) * 4).sum();
+        Self { texture, view, levels, bytes }
+    }
+}
+
 pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -97,6 +142,8 @@ pub struct Targets {
     pub raw: OcclusionTargets,
     /// What the blur writes (when the plan blurs).
     pub blurred: Option<OcclusionTargets>,
+    /// The closest-depth pyramid the march reads (when the plan builds one).
+    pub pyramid: Option<Pyramid>,
 }
 
 impl Targets {
@@ -110,6 +157,7 @@ impl Targets {
             bounce: plan.indirect().then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
             raw: OcclusionTargets::new(device, plan, size, false),
             blurred: plan.blur.then(|| OcclusionTargets::new(device, plan, size, true)),
+            pyramid: plan.has(super::modes::Step::DepthPyramid).then(|| Pyramid::new(device, size)),
         }
     }
 
@@ -122,6 +170,10 @@ impl Targets {
     pub fn allocations(&self) -> Vec<(&'static str, u64)> {
         let fixed = [&self.albedo, &self.normal, &self.depth, &self.hdr].into_iter();
         let optional = self.bounce.iter().chain(self.raw.all()).chain(self.blurred.iter().flat_map(|b| b.all()));
-        fixed.chain(optional).map(|t| (t.name, t.bytes)).collect()
+        let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();
+        if let Some(p) = &self.pyramid {
+            list.push(("depth_pyramid", p.bytes));
+        }
+        list
     }
 }

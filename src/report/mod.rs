@@ -93,6 +93,8 @@ pub struct Row {
     pub samples: usize,
     /// Steps per side of each slice (the march; 0 otherwise).
     pub steps: usize,
+    /// The march's far steps read the depth pyramid.
+    pub pyramid: bool,
     pub blur: bool,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
@@ -209,12 +211,12 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         };
 
         for variant in [Variant::Classic, Variant::Points, Variant::March] {
-            // (mode, samples or slices, steps, blur)
-            let mut configs: Vec<(Mode, usize, usize, bool)> = Vec::new();
+            // (mode, samples or slices, steps, blur, depth pyramid)
+            let mut configs: Vec<(Mode, usize, usize, bool, bool)> = Vec::new();
             if r_index == 0 && variant != Variant::Points {
                 // Off has no sampling pass: once for the sky-lit composite (under the default
                 // variant's name; points is the same image), once for classic.
-                configs.push((Mode::Off, 0, 0, false));
+                configs.push((Mode::Off, 0, 0, false, false));
             }
             let counts: Vec<(usize, usize)> = if variant.marches() {
                 options.march.clone()
@@ -223,10 +225,14 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             };
             for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
                 for &(samples, steps) in &counts {
-                    configs.extend([(mode, samples, steps, true), (mode, samples, steps, false)]);
+                    configs.extend([(mode, samples, steps, true, false), (mode, samples, steps, false, false)]);
+                    // The march once more with its far steps on the depth pyramid (blurred).
+                    if variant.marches() && mode != Mode::Ssao {
+                        configs.push((mode, samples, steps, true, true));
+                    }
                 }
             }
-            for (mode, samples, steps, blur) in configs {
+            for (mode, samples, steps, blur, depth_pyramid) in configs {
                 // Every configuration renders the same lighting (the classic variant keeps its
                 // own composite, not its own ambient), so all meet one truth.
                 let (slices, steps_or_default) =
@@ -238,6 +244,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     slices,
                     steps: steps_or_default,
                     blur,
+                    depth_pyramid,
                     radius: Some(radius),
                     ..base
                 };
@@ -313,6 +320,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 let shown = (base.slices, base.steps);
                 if variant == Variant::default()
                     && (samples, steps) == shown
+                    && !depth_pyramid
                     && blur
                     && mode == Mode::Both
                     && r_index == 0
@@ -324,6 +332,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     variant,
                     samples,
                     steps,
+                    pyramid: depth_pyramid,
                     blur,
                     radius: if mode == Mode::Off { 0.0 } else { radius },
                     ms,
@@ -339,7 +348,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 });
                 progress(&format!(
                     "{mode} {variant} {}, radius {radius:.3}, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}",
-                    Row::count_label(variant, samples, steps)
+                    Row::count_label(variant, samples, steps, depth_pyramid)
                 ));
             }
         }
@@ -415,33 +424,34 @@ fn cell(v: Option<f64>, digits: usize) -> String {
 }
 
 impl Row {
-    /// "16" samples, or "4×8" slices × steps for the march.
-    fn count_label(variant: Variant, samples: usize, steps: usize) -> String {
-        if variant.marches() {
-            format!("{samples}×{steps}")
-        } else {
-            samples.to_string()
+    /// "16" samples, or "4×8" slices × steps for the march ("4×8 pyramid" with the pyramid).
+    fn count_label(variant: Variant, samples: usize, steps: usize, pyramid: bool) -> String {
+        match (variant.marches(), pyramid) {
+            (true, false) => format!("{samples}×{steps}"),
+            (true, true) => format!("{samples}×{steps} pyramid"),
+            _ => samples.to_string(),
         }
     }
 
     pub fn label(&self) -> String {
-        Self::count_label(self.variant, self.samples, self.steps)
+        Self::count_label(self.variant, self.samples, self.steps, self.pyramid)
     }
 }
 
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,steps,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,pyramid,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
                 r.steps,
+                r.pyramid,
                 r.blur,
                 r.radius,
                 r.ms,
@@ -590,6 +600,7 @@ impl Report {
                         .filter(|r| {
                             r.mode == mode
                                 && r.variant == variant
+                                && !r.pyramid
                                 && (mode == Mode::Off || (r.blur && r.radius == first_radius))
                         })
                         .collect();

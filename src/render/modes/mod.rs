@@ -104,6 +104,8 @@ pub struct SceneFeatures {
 pub enum Step {
     /// Rasterise the model into albedo, normal and depth.
     GBuffer,
+    /// The closest-depth pyramid the march's far steps read (march variant, DO modes).
+    DepthPyramid,
     /// Point lights once per pixel: the displayed direct light and the radiance SSDO bounces.
     Lighting,
     /// The sampling pass: AO, DO, or both from one set of samples.
@@ -134,6 +136,7 @@ impl Step {
     pub fn name(self) -> &'static str {
         match self {
             Step::GBuffer => "gbuffer",
+            Step::DepthPyramid => "depth_pyramid",
             Step::Lighting => "lighting",
             Step::Occlusion => "occlusion",
             Step::Blur => "blur",
@@ -157,10 +160,15 @@ pub struct Plan {
 
 impl Plan {
     /// The steps of `mode` for a scene with `features`; `blur` denoises the sampling output.
-    pub fn new(mode: Mode, features: SceneFeatures, blur: bool) -> Self {
+    /// `pyramid`: the sampling pass marches the depth buffer and its far steps, taken only where
+    /// DO is computed, read a depth pyramid (the march variant with `depth_pyramid` on).
+    pub fn new(mode: Mode, features: SceneFeatures, blur: bool, pyramid: bool) -> Self {
         let decl = *mode.declaration();
         let lights = features.lights > 0;
         let mut steps = vec![Step::GBuffer];
+        if pyramid && decl.directional_occlusion {
+            steps.push(Step::DepthPyramid);
+        }
         if decl.directional_occlusion && lights {
             steps.push(Step::Lighting);
         }

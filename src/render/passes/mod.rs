@@ -4,6 +4,7 @@
 
 pub mod blur;
 pub mod composite;
+pub mod depth_pyramid;
 pub mod gbuffer;
 pub mod light_cubes;
 pub mod lighting;

@@ -101,6 +101,8 @@ struct Key {
     classic: bool,
     /// The march shader rather than the point-sampling one.
     march: bool,
+    /// The march's far steps read the depth pyramid.
+    pyramid: bool,
 }
 
 impl Key {
@@ -108,7 +110,9 @@ impl Key {
         let f = |b: bool| b as u8 as f64;
         let o = self.outputs;
         let mut list = vec![("COMPUTE_AO", f(o.ao)), ("COMPUTE_DO", f(o.directional)), ("INDIRECT", f(o.indirect))];
-        if !self.march {
+        if self.march {
+            list.push(("USE_PYRAMID", f(self.pyramid)));
+        } else {
             list.push(("CLASSIC", f(self.classic)));
         }
         list
@@ -135,7 +139,14 @@ impl OcclusionPass {
         let [a, n, d] = gbuffer_entries();
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("occlusion_layout"),
-            entries: &[a, n, d, uniform_entry(3), texture_entry(4, false, wgpu::TextureViewDimension::D2)],
+            entries: &[
+                a,
+                n,
+                d,
+                uniform_entry(3),
+                texture_entry(4, false, wgpu::TextureViewDimension::D2),
+                super::depth_pyramid::uint_entry(5),
+            ],
         });
         Ok(Self {
             module,
@@ -156,13 +167,19 @@ impl OcclusionPass {
         variant: Variant,
         data: &OcclusionData,
         unused: &wgpu::TextureView,
+        unused_pyramid: &wgpu::TextureView,
     ) {
         if !plan.decl.samples() {
             self.pipeline.clear();
             self.bind_group = None;
             return;
         }
-        let key = Key { outputs: Outputs::of(plan), classic: variant == Variant::Classic, march: variant.marches() };
+        let key = Key {
+            outputs: Outputs::of(plan),
+            classic: variant == Variant::Classic,
+            march: variant.marches(),
+            pyramid: plan.has(super::super::modes::Step::DepthPyramid),
+        };
         self.pipeline.ensure(key, |key| {
             let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
             let [frame, sky] = &self.pipeline_layouts;
@@ -189,6 +206,12 @@ impl OcclusionPass {
                 wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&targets.depth.view) },
                 wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(
+                        targets.pyramid.as_ref().map_or(unused_pyramid, |p| &p.view),
+                    ),
+                },
             ],
         }));
     }

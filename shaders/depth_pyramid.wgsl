@@ -1,0 +1,49 @@
+// The depth pyramid for the march's far steps: mip k holds, for each 2^(k+1) × 2^(k+1) block of
+// the depth buffer, the depth of the closest surface in it (reverse-Z: the largest value), as
+// its bits in a u32 (integer targets render on every backend; positive floats order like their
+// bits). A far step that reads a coarse level sees whatever lies in the pixels it skipped, so
+// thin things between steps still occlude, and a GPU reads far fewer cache lines.
+// An odd-sized level folds its last row and column into the texels beside them.
+
+#include "common/fullscreen.wgsl"
+
+// The full-resolution depth buffer (fs_first) or the level above (fs_next).
+@group(0) @binding(0) var source_depth: texture_2d<f32>;
+@group(0) @binding(1) var source_level: texture_2d<u32>;
+
+// The source texels folded into destination texel `pixel`: its 2x2 block, plus the extra row
+// or column of an odd-sized source at the destination's last row or column.
+fn block_end(pixel: vec2<i32>, source: vec2<i32>, destination: vec2<i32>) -> vec2<i32> {
+    let last = pixel == destination - vec2<i32>(1);
+    return min(select(2 * pixel + 1, source - 1, last), source - 1);
+}
+
+@fragment
+fn fs_first(in: FullscreenOut) -> @location(0) vec4<u32> {
+    let pixel = vec2<i32>(in.position.xy);
+    let source = vec2<i32>(textureDimensions(source_depth));
+    let destination = max(source / 2, vec2<i32>(1));
+    let end = block_end(pixel, source, destination);
+    var closest = 0.0;
+    for (var y = 2 * pixel.y; y <= end.y; y += 1) {
+        for (var x = 2 * pixel.x; x <= end.x; x += 1) {
+            closest = max(closest, textureLoad(source_depth, vec2<i32>(x, y), 0).r);
+        }
+    }
+    return vec4<u32>(bitcast<u32>(closest), 0u, 0u, 1u);
+}
+
+@fragment
+fn fs_next(in: FullscreenOut) -> @location(0) vec4<u32> {
+    let pixel = vec2<i32>(in.position.xy);
+    let source = vec2<i32>(textureDimensions(source_level));
+    let destination = max(source / 2, vec2<i32>(1));
+    let end = block_end(pixel, source, destination);
+    var closest = 0u;
+    for (var y = 2 * pixel.y; y <= end.y; y += 1) {
+        for (var x = 2 * pixel.x; x <= end.x; x += 1) {
+            closest = max(closest, textureLoad(source_level, vec2<i32>(x, y), 0).r);
+        }
+    }
+    return vec4<u32>(closest, 0u, 0u, 1u);
+}
