@@ -170,7 +170,11 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     assert!(csv.starts_with(
         "mode,variant,samples,steps,pyramid,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse"
     ));
-    assert_eq!(csv.lines().count(), 1 + 2 + 3 * 3 * 2 * 2 + 2 * 2, "Off sky-lit and classic, the rest swept, the march on the pyramid in SSDO and Both");
+    assert_eq!(
+        csv.lines().count(),
+        1 + 2 + 3 * 3 * 2 * 2 + 2 * 2,
+        "Off sky-lit and classic, the rest swept, the march on the pyramid in SSDO and Both"
+    );
     let md = std::fs::read_to_string(out.path().join("report.md")).unwrap();
     assert!(md.contains("| both | points | 64 |") && md.contains("| both | march | 4×16 |"), "{md}");
     assert!(result.rows.iter().any(|r| r.pareto), "a Pareto front is marked");
