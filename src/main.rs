@@ -345,19 +345,39 @@ impl ViewArgs {
     }
 }
 
+/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
+/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
+/// would turn black instead of white.
+const MAX_GAIN: f32 = 1e6;
+/// The largest length setting (radius, reach, thickness), in model units.
+const MAX_LENGTH: f32 = 1e9;
+
 fn non_negative(name: &str, value: f32) -> Result<f32> {
-    if value.is_finite() && value >= 0.0 {
+    in_range(name, value, 0.0, MAX_LENGTH)
+}
+
+/// `value` if it is finite and within [lo, hi]; otherwise an error naming the flag and the range.
+fn in_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
+    if value.is_finite() && (lo..=hi).contains(&value) {
         Ok(value)
     } else {
-        Err(Error::Setting(format!("--{name} {value}: must be a finite number >= 0")))
+        Err(Error::Setting(format!("--{name} {}: must be a finite number from {} to {}", num(value), num(lo), num(hi))))
+    }
+}
+
+/// A number as people write it: 0.25, 1e6, 3.0e-5 (not 30 digits of a huge or tiny float).
+fn num(v: f32) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
 
 impl SceneArgs {
     fn load(&self) -> Result<(Scene, scene::Skybox)> {
-        if !(self.scale.is_finite() && self.scale > 0.0) {
-            return Err(Error::Setting(format!("--scale {}: must be a finite number > 0", self.scale)));
-        }
+        // Beyond these, positions lose the precision the depth buffer and the march need.
+        in_range("scale", self.scale, 1e-6, 1e6)?;
         let model = scene::load_model(self.model.as_deref())?.scaled(self.scale);
         let sky = scene::load_skybox(self.skybox.as_deref())?;
         Ok((Scene::new(model, self.lights, self.seed), sky))
@@ -366,21 +386,33 @@ impl SceneArgs {
     fn camera(&self, scene: &Scene) -> Result<OrbitCamera> {
         let mut camera = OrbitCamera::framing(&scene.model.bounds);
         if let Some(yaw) = self.yaw {
-            camera.yaw_deg = yaw;
+            camera.yaw_deg = in_range("yaw", yaw, -36000.0, 36000.0)?;
         }
         if let Some(pitch) = self.pitch {
-            camera.pitch_deg = pitch;
+            // ±90 would look along the orbit's up axis, where the view has no defined roll.
+            camera.pitch_deg = in_range("pitch", pitch, -89.0, 89.0)?;
         }
         if let Some(distance) = self.distance {
-            if !(distance.is_finite() && distance > 0.0) {
-                return Err(Error::Setting(format!("--distance {distance}: must be a finite number > 0")));
+            // From inside the model out to where it is a speck, in the model's own size.
+            let r = scene.model.bounds.radius().max(f32::MIN_POSITIVE);
+            let (lo, hi) = (1e-5 * r, 1e5 * r);
+            if !(distance.is_finite() && (lo..=hi).contains(&distance)) {
+                return Err(Error::Setting(format!(
+                    "--distance {}: must be from {lo:.3e} to {hi:.3e} for this model (1e-5 to 1e5 of its bounding radius)",
+                    num(distance)
+                )));
             }
             camera.distance = distance;
             camera.near = camera.near.min(distance * 1e-3);
         }
         if let Some(near) = self.near {
-            if !(near.is_finite() && near > 0.0) {
-                return Err(Error::Setting(format!("--near {near}: must be a finite number > 0")));
+            // Reverse-Z keeps precision down to a tiny near plane, but not to a denormal one.
+            let lo = camera.distance * 1e-9;
+            if !(near.is_finite() && near >= lo) {
+                return Err(Error::Setting(format!(
+                    "--near {}: must be a finite number of at least {lo:.3e} (1e-9 of the camera distance)",
+                    num(near)
+                )));
             }
             camera.near = near;
         }
@@ -422,14 +454,14 @@ impl RenderArgs {
             depth_pyramid: self.depth_pyramid,
             radius,
             bias: non_negative("bias", self.bias)?,
-            ao_strength: non_negative("ao-strength", self.ao_strength)?.min(1.0),
-            ao_power: non_negative("ao-power", self.ao_power)?,
-            sky_strength: non_negative("sky-strength", self.sky_strength)?,
-            indirect_strength: non_negative("indirect-strength", self.indirect_strength)?,
+            ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
+            ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
+            sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
+            indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
             blur: !self.no_blur,
-            exposure: non_negative("exposure", self.exposure)?,
-            ambient: non_negative("ambient", self.ambient.unwrap_or(base.ambient))?,
-            sky_scale: non_negative("sky-scale", self.sky_scale)?,
+            exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
+            ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
+            sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,
             view: self.view,
         })
     }
@@ -449,6 +481,9 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     let mut panels = Vec::new();
     let mut stats_json = serde_json::Map::new();
+    // Every file of the run lands together, or none does; leftovers of killed runs go first.
+    output::remove_stale_temporaries(&args.out);
+    let mut batch = output::Batch::default();
     // With --json, standard output is the JSON document alone.
     let say = |line: String| if args.json { log::info!("{line}") } else { println!("{line}") };
     for mode in modes {
@@ -474,14 +509,12 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         let started = Instant::now();
         let image = capture(&gpu, &mut renderer, &camera)?;
         let path = args.out.join(format!("{}.png", mode.name()));
-        output::save_png(&path, &image)?;
+        batch.stage(&path, &output::png_bytes(&path, &image)?)?;
         if args.raw {
             let exr = args.out.join(format!("{}.exr", mode.name()));
-            output::save_exr(&exr, &ssdo::render::stats::hdr_image(&gpu, &renderer)?)?;
-            say(format!("wrote {}", exr.display()));
+            batch.stage(&exr, &output::exr_bytes(&exr, &ssdo::render::stats::hdr_image(&gpu, &renderer)?)?)?;
         }
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
-        say(format!("wrote {}", path.display()));
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
     }
     if args.stats && args.json {
@@ -489,7 +522,9 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     }
     if panels.len() > 1 {
         let path = args.out.join("compare.png");
-        output::save_png(&path, &compare::grid(&panels))?;
+        batch.stage(&path, &output::png_bytes(&path, &compare::grid(&panels))?)?;
+    }
+    for path in batch.commit()? {
         say(format!("wrote {}", path.display()));
     }
     Ok(())
@@ -621,12 +656,32 @@ fn quiet_mesa_device_select() {
     }
 }
 
+/// `text` with control characters (a newline in a file name, say) written as escapes, so an error
+/// stays one line.
+fn one_line(text: &str) -> String {
+    text.chars().flat_map(|c| if c.is_control() { c.escape_default().collect::<Vec<_>>() } else { vec![c] }).collect()
+}
+
 fn main() -> ExitCode {
     quiet_mesa_device_select();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,ssdo=info"))
         .format_timestamp(None)
         .init();
-    let cli = Cli::parse();
+    // The parser's errors in this program's one-line form (help and version print as usual).
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            let text = e.to_string();
+            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("bad command line");
+            let first = first.trim().trim_start_matches("error:").trim();
+            eprintln!("ssdo: error: {} (see ssdo --help)", one_line(first));
+            return ExitCode::from(2);
+        }
+    };
     let result = match cli.command {
         Some(Command::Capture(args)) => run_capture(&args),
         Some(Command::Bench(args)) => run_bench(&args),
@@ -637,7 +692,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("ssdo: error: {e}");
+            eprintln!("ssdo: error: {}", one_line(&e.to_string()));
             ExitCode::from(e.exit_code() as u8)
         }
     }

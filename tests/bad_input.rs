@@ -151,10 +151,14 @@ fn crafted_models_load_with_fallbacks_or_fail_cleanly() {
         ("missing_texture.obj", face("d").into_bytes(), true),
         ("unknown_usemtl.obj", face("nonexistent").into_bytes(), true),
         ("missing_mtl.obj", format!("mtllib nowhere.mtl\n{TRI}f 1 2 3\n").into_bytes(), true),
+        // A material file that never ends: refused unread, the default material used.
+        ("mtl_dev_zero.obj", format!("mtllib /dev/zero\n{TRI}f 1 2 3\n").into_bytes(), true),
         ("texcoord_zero.obj", format!("{TRI}f 1/0 2/0 3/0\n").into_bytes(), false),
         ("texcoord_negative.obj", format!("{TRI}f 1/-9 2/-9 3/-9\n").into_bytes(), false),
         ("mixed_face_formats.obj", format!("{TRI}f 1/1 2/2 3/3\nf 1//1 2//1 3//1\n").into_bytes(), false),
         ("index_out_of_range.obj", format!("{TRI}f 1 2 99\nf 1 2 3\n").into_bytes(), true),
+        // Positions far beyond what f32 can place precisely: dropped, nothing left to draw.
+        ("huge_coordinates.obj", b"v 1e30 0 0\nv 0 1e30 0\nv 0 0 1e30\nf 1 2 3\n".to_vec(), false),
         // Wound against its normals (the winding is repaired with a warning).
         ("winding_against_normals.obj", format!("{TRI}f 1//1 3//1 2//1\nf 1//1 2//1 3//1\n").into_bytes(), true),
         ("latin1.obj", [b"# caf\xe9 \xfc\n".as_slice(), TRI.as_bytes(), b"f 1 2 3\n"].concat(), true),
@@ -219,7 +223,30 @@ fn crafted_skies_fail_naming_the_folder_or_face() {
     let huge = sky("huge", &|d, f| std::fs::write(d.join(format!("{f}.png")), png_header_only(30000, 30000)).unwrap());
     let corrupt =
         sky("corrupt", &|d, f| std::fs::write(d.join(format!("{f}.jpg")), b"\xff\xd8\xff not really").unwrap());
+    // Two files for one face; a face that is a folder; a face that is a link to nowhere.
+    let twice = sky("twice", &|d, f| write_png(&d.join(format!("{f}.png")), 8, 8));
+    write_png(&twice.join("px.png"), 8, 8);
+    let folder_face = sky("folder_face", &|d, f| {
+        if f == "top" {
+            std::fs::create_dir(d.join("top.png")).unwrap()
+        } else {
+            write_png(&d.join(format!("{f}.png")), 8, 8)
+        }
+    });
+    let dangling = sky("dangling", &|d, f| {
+        if f == "front" {
+            std::os::unix::fs::symlink(d.join("nowhere.png"), d.join("front.png")).unwrap()
+        } else {
+            write_png(&d.join(format!("{f}.png")), 8, 8)
+        }
+    });
+    let a_file = root.path().join("sky.png");
+    write_png(&a_file, 8, 8);
     for (dir, needle) in [
+        (&twice, "given twice: px.png and right.png"),
+        (&folder_face, "top.png: skybox face 'top' is not a regular file"),
+        (&dangling, "front.png: skybox face 'front' cannot be read"),
+        (&a_file, "is a file; a skybox is a folder"),
         (&five, "'back'"),
         (&non_square, "top.png"),
         (&mismatched, "left.png"),

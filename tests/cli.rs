@@ -210,3 +210,94 @@ fn stability_flags_are_validated() {
         assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
     }
 }
+
+#[test]
+fn extreme_settings_are_refused_with_their_valid_range() {
+    for (args, needle) in [
+        (vec!["capture", "--yaw", "nan"], "--yaw NaN: must be a finite number from"),
+        (vec!["capture", "--yaw", "inf"], "--yaw inf"),
+        (vec!["capture", "--pitch", "nan"], "--pitch NaN"),
+        (vec!["capture", "--pitch", "95"], "from -89 to 89"),
+        (vec!["capture", "--distance", "1e20"], "--distance 1e20: must be from"),
+        (vec!["capture", "--distance", "1e-30"], "--distance 1e-30"),
+        (vec!["capture", "--scale", "1e30"], "--scale 1e30: must be a finite number from 1e-6 to 1e6"),
+        (vec!["capture", "--scale", "1e-20"], "--scale 1e-20"),
+        (vec!["capture", "--near", "1e-45"], "--near 1e-45: must be a finite number of at least"),
+        (vec!["capture", "--ambient", "1e30"], "--ambient 1e30: must be a finite number from 0 to 1e6"),
+        (vec!["capture", "--sky-strength", "1e30"], "--sky-strength 1e30"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+}
+
+#[test]
+fn every_error_is_one_line_in_one_form() {
+    // The parser's own errors too, and a newline in a file name does not split the line.
+    let result = ssdo(&["capture", "--mode", "sideways"]);
+    assert_eq!(result.status.code(), Some(2));
+    assert!(error_line(&result).contains("sideways"), "{}", stderr(&result));
+    let result = ssdo(&["capture", "--model", "no/such\nmodel.obj"]);
+    assert_eq!(result.status.code(), Some(3));
+    let errors: Vec<&str> =
+        std::str::from_utf8(&result.stderr).unwrap().lines().filter(|l| l.contains("error")).collect();
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(errors[0].starts_with("ssdo: error:") && errors[0].contains("no/such\\nmodel.obj"), "{errors:?}");
+}
+
+#[test]
+fn capture_all_writes_everything_or_nothing_and_sweeps_stale_temporaries() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().to_str().unwrap();
+    // compare.png cannot be written (a folder has its name): not one of the five files lands.
+    std::fs::create_dir(out.path().join("compare.png")).unwrap();
+    // A temporary file a killed run left behind (no process has this id).
+    std::fs::write(out.path().join(".off.png.4000000.tmp"), b"half").unwrap();
+    let result = ssdo(&["capture", "--mode", "all", "--size", "48x36", "--out", dir]);
+    assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
+    assert!(error_line(&result).contains("compare.png"), "{}", stderr(&result));
+    let mut left: Vec<String> = std::fs::read_dir(out.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, vec!["compare.png".to_string()], "nothing else written, the stale temporary gone");
+}
+
+#[test]
+fn the_viewer_without_a_display_says_so_as_a_setting() {
+    let result = Command::new(env!("CARGO_BIN_EXE_ssdo"))
+        .args(["view", "--size", "64x48"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
+    assert!(error_line(&result).contains("needs a display"), "{}", stderr(&result));
+}
+
+#[test]
+fn special_and_huge_files_are_refused_before_they_are_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe.obj");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let sparse = dir.path().join("sparse.obj");
+    std::fs::File::create(&sparse).unwrap().set_len(2 << 30).unwrap();
+    for (model, needle) in [
+        ("/dev/zero", "/dev/zero: is not a regular file"),
+        (fifo.to_str().unwrap(), "pipe.obj: is not a regular file"),
+        (sparse.to_str().unwrap(), "sparse.obj: is 2048 MiB; files over 1024 MiB are refused"),
+        (dir.path().to_str().unwrap(), "is a folder, not a file"),
+    ] {
+        // Refused from the file's type and size, before any read (reading the FIFO would hang).
+        let result = ssdo(&["capture", "--model", model, "--out", dir.path().join("out").to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(3), "{model}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{model}: {}", stderr(&result));
+    }
+}

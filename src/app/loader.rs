@@ -13,35 +13,52 @@ pub enum Loaded {
     Model(PathBuf, Result<Model, Error>),
 }
 
+/// A finished load and the order it was asked for in.
+type Ticket = (u64, Loaded);
+
+/// Loads run in parallel and may finish in any order; only the newest request of each kind is
+/// applied. An earlier load that finishes after a newer request of its kind was made, before or
+/// after that one finished, is dropped, so the panel never names a model or sky other than the
+/// one on screen, and the last thing asked for is what ends up there (or, if it fails, what was
+/// there before).
 pub struct Loader {
-    sender: Sender<Loaded>,
-    receiver: Receiver<Loaded>,
+    sender: Sender<Ticket>,
+    receiver: Receiver<Ticket>,
     pending: usize,
+    next: u64,
+    /// The newest request of each kind: (sky, model).
+    requested: (u64, u64),
 }
 
 impl Default for Loader {
     fn default() -> Self {
         let (sender, receiver) = channel();
-        Self { sender, receiver, pending: 0 }
+        Self { sender, receiver, pending: 0, next: 0, requested: (0, 0) }
     }
 }
 
 impl Loader {
-    pub fn sky(&mut self, path: PathBuf) {
-        let sender = self.sender.clone();
+    fn ticket(&mut self) -> u64 {
+        self.next += 1;
         self.pending += 1;
+        self.next
+    }
+
+    pub fn sky(&mut self, path: PathBuf) {
+        let (sender, id) = (self.sender.clone(), self.ticket());
+        self.requested.0 = id;
         std::thread::spawn(move || {
             let result = Skybox::load(&path);
-            let _ = sender.send(Loaded::Sky(path, result));
+            let _ = sender.send((id, Loaded::Sky(path, result)));
         });
     }
 
     pub fn model(&mut self, path: PathBuf) {
-        let sender = self.sender.clone();
-        self.pending += 1;
+        let (sender, id) = (self.sender.clone(), self.ticket());
+        self.requested.1 = id;
         std::thread::spawn(move || {
             let result = scene::model::load_obj(&path);
-            let _ = sender.send(Loaded::Model(path, result));
+            let _ = sender.send((id, Loaded::Model(path, result)));
         });
     }
 
@@ -50,11 +67,27 @@ impl Loader {
         self.pending > 0
     }
 
-    /// Results that have arrived since the last call.
+    /// Results that have arrived since the last call that are still the newest request of
+    /// their kind; the others are dropped (and logged).
     pub fn finished(&mut self) -> Vec<Loaded> {
-        let done: Vec<Loaded> = self.receiver.try_iter().collect();
+        self.accept(self.receiver.try_iter().collect())
+    }
+
+    fn accept(&mut self, done: Vec<Ticket>) -> Vec<Loaded> {
         self.pending -= done.len().min(self.pending);
-        done
+        let mut out = Vec::new();
+        for (id, loaded) in done {
+            let (newest, path) = match &loaded {
+                Loaded::Sky(p, _) => (self.requested.0, p),
+                Loaded::Model(p, _) => (self.requested.1, p),
+            };
+            if id == newest {
+                out.push(loaded);
+            } else {
+                log::info!("{}: a newer request replaced this load; dropped", path.display());
+            }
+        }
+        out
     }
 }
 
@@ -65,4 +98,44 @@ pub fn skybox_folders() -> Vec<PathBuf> {
         .unwrap_or_default();
     list.sort();
     list
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(id: u64, name: &str) -> Ticket {
+        (id, Loaded::Model(PathBuf::from(name), Err(Error::Setting("stand-in".into()))))
+    }
+
+    fn names(list: &[Loaded]) -> Vec<String> {
+        list.iter()
+            .map(|l| match l {
+                Loaded::Sky(p, _) | Loaded::Model(p, _) => p.display().to_string(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_slow_earlier_load_never_replaces_a_newer_one() {
+        let mut loader = Loader::default();
+        let (slow, fast) = (loader.ticket(), loader.ticket());
+        loader.requested.1 = fast;
+        // The newer one finishes first and is applied; the older one, later, is dropped.
+        assert_eq!(names(&loader.accept(vec![model(fast, "fast.obj")])), ["fast.obj"]);
+        assert!(loader.accept(vec![model(slow, "slow.obj")]).is_empty());
+        assert!(!loader.busy());
+    }
+
+    #[test]
+    fn an_earlier_load_is_dropped_while_a_newer_one_runs() {
+        let mut loader = Loader::default();
+        let first = loader.ticket();
+        loader.requested.1 = first;
+        let second = loader.ticket();
+        loader.requested.1 = second;
+        assert!(loader.accept(vec![model(first, "first.obj")]).is_empty());
+        assert!(loader.busy(), "the newer load still runs");
+        assert_eq!(names(&loader.accept(vec![model(second, "second.obj")])), ["second.obj"]);
+    }
 }

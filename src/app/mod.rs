@@ -50,7 +50,13 @@ pub fn run(options: ViewerOptions) -> Result<()> {
     let sky = scene::load_skybox(options.skybox.as_deref())?;
     let scene = Scene::new(model, options.lights, options.seed);
     let camera = (options.camera)(&scene)?;
-    let event_loop = EventLoop::new().map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?;
+    // No display is a setting of the environment, not a GPU fault.
+    let event_loop = EventLoop::new().map_err(|e| {
+        Error::Setting(format!(
+            "cannot open a window ({e}): the viewer needs a display (DISPLAY or WAYLAND_DISPLAY); \
+             `ssdo capture` renders without one"
+        ))
+    })?;
     // Sleep until something happens: an idle viewer draws nothing (see `Viewer::schedule`).
     event_loop.set_control_flow(ControlFlow::Wait);
     let mut app = App { options, start: Some((scene, sky, camera)), viewer: None, failure: None };

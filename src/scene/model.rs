@@ -271,6 +271,8 @@ fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
 
 /// Decodes an image file whatever its extension says, within a size limit.
 pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
+    // A face of 16384² RGBA32F is 4 GiB decoded; compressed files are far smaller than that.
+    check_file(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
     let mut reader = image::ImageReader::open(path)
         .map_err(|e| Error::input(path, format!("cannot open: {e}")))?
         .with_guessed_format()
@@ -326,8 +328,42 @@ fn convert_material(m: &tobj::Material, dir: &Path, warnings: &mut Vec<String>) 
 }
 
 /// Loads an OBJ file (and its MTL files and textures).
+/// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
+pub const MAX_OBJ_BYTES: u64 = 1 << 30;
+pub const MAX_MTL_BYTES: u64 = 64 << 20;
+
+/// Checks that `path` is a regular file of at most `limit` bytes before anything opens it (a
+/// FIFO would block the open, `/dev/zero` would never end, a sparse file of gigabytes would fill
+/// memory), then reads at most that much. The error is the problem alone, for the caller to name
+/// the file.
+pub fn check_file(path: &Path, limit: u64) -> std::result::Result<(), String> {
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
+    if meta.is_dir() {
+        return Err("is a folder, not a file".into());
+    }
+    if !meta.is_file() {
+        return Err("is not a regular file (a device, a FIFO or a socket)".into());
+    }
+    if meta.len() > limit {
+        return Err(format!("is {} MiB; files over {} MiB are refused", meta.len() >> 20, limit >> 20));
+    }
+    Ok(())
+}
+
+fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
+    use std::io::Read;
+    check_file(path, limit)?;
+    let mut bytes = Vec::new();
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+    file.take(limit + 1).read_to_end(&mut bytes).map_err(|e| format!("cannot read: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(format!("grew past {} MiB while being read", limit >> 20));
+    }
+    Ok(bytes)
+}
+
 pub fn load_obj(path: &Path) -> Result<Model> {
-    let bytes = std::fs::read(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(Error::input(path, "the file is empty"));
     }
@@ -344,7 +380,7 @@ pub fn load_obj(path: &Path) -> Result<Model> {
     };
     let material_loader = |mtl: &Path| {
         let mtl_path = dir.join(mtl.to_string_lossy().replace('\\', "/"));
-        match std::fs::read(&mtl_path) {
+        match read_bounded(&mtl_path, MAX_MTL_BYTES) {
             Ok(bytes) => {
                 let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
                 if dropped > 0 {
@@ -421,7 +457,8 @@ pub fn load_obj(path: &Path) -> Result<Model> {
                 continue;
             }
             let pos = idx.map(|i| Vec3::from_slice(&mesh.positions[3 * i..3 * i + 3]));
-            if !pos.iter().all(|p| p.is_finite()) {
+            // Beyond 1e12 from the origin, f32 keeps no precision the depth buffer could use.
+            if !pos.iter().all(|p| p.is_finite() && p.abs().max_element() <= 1e12) {
                 dropped += 1;
                 continue;
             }
@@ -456,7 +493,9 @@ pub fn load_obj(path: &Path) -> Result<Model> {
         }
     }
     if dropped > 0 {
-        warnings.push(format!("dropped {dropped} triangle(s) with out-of-range indices or non-finite positions"));
+        warnings.push(format!(
+            "dropped {dropped} triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12"
+        ));
     }
     if flipped > 0 {
         warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));

@@ -80,27 +80,51 @@ fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-fn find_face(dir: &Path, names: (&str, &str)) -> Option<std::path::PathBuf> {
-    let entries: Vec<_> = std::fs::read_dir(dir).ok()?.flatten().map(|e| e.path()).collect();
-    for name in [names.0, names.1] {
-        for ext in EXTENSIONS {
-            let found = entries.iter().find(|p| {
-                let stem = p.file_stem().map(|s| s.to_string_lossy().to_lowercase());
-                let e = p.extension().map(|s| s.to_string_lossy().to_lowercase());
-                stem.as_deref() == Some(name) && e.as_deref() == Some(ext) && p.is_file()
-            });
-            if let Some(p) = found {
-                return Some(p.clone());
-            }
+/// The one file for a face, under either of its names and any image extension. Two candidates
+/// (`right.png` and `px.png`, or `right.png` and `right.jpg`) are an error, not a silent choice;
+/// so is a candidate that is not a readable regular file (a folder, a FIFO, a broken link).
+fn find_face(dir: &Path, names: (&str, &str)) -> Result<std::path::PathBuf> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| Error::input(dir, format!("cannot read the skybox folder: {e}")))?;
+    let candidates: Vec<std::path::PathBuf> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            let stem = p.file_stem().map(|s| s.to_string_lossy().to_lowercase());
+            let ext = p.extension().map(|s| s.to_string_lossy().to_lowercase());
+            [names.0, names.1].contains(&stem.as_deref().unwrap_or(""))
+                && EXTENSIONS.contains(&ext.as_deref().unwrap_or(""))
+        })
+        .collect();
+    match candidates.as_slice() {
+        [] => Err(Error::input(
+            dir,
+            format!(
+                "skybox face '{}' is missing (looked for {}.* and {}.* with .png .jpg .hdr .exr)",
+                names.0, names.0, names.1
+            ),
+        )),
+        [one] => match std::fs::metadata(one) {
+            Ok(m) if m.is_file() => Ok(one.clone()),
+            Ok(_) => Err(Error::input(one, format!("skybox face '{}' is not a regular file", names.0))),
+            Err(e) => Err(Error::input(one, format!("skybox face '{}' cannot be read: {e}", names.0))),
+        },
+        several => {
+            let mut list: Vec<String> =
+                several.iter().map(|p| p.file_name().unwrap_or_default().to_string_lossy().into_owned()).collect();
+            list.sort();
+            Err(Error::input(dir, format!("skybox face '{}' is given twice: {}", names.0, list.join(" and "))))
         }
     }
-    None
 }
 
 impl Skybox {
     /// Loads the six faces from `dir`; an incomplete or inconsistent folder is an error naming the
     /// folder or the face.
     pub fn load(dir: &Path) -> Result<Self> {
+        if dir.is_file() {
+            return Err(Error::input(dir, "is a file; a skybox is a folder of six face images"));
+        }
         if !dir.is_dir() {
             return Err(Error::input(dir, "skybox folder not found"));
         }
@@ -110,15 +134,7 @@ impl Skybox {
         let mut kinds = Vec::new();
         let mut first_face = String::new();
         for (index, names) in FACE_NAMES.iter().enumerate() {
-            let path = find_face(dir, *names).ok_or_else(|| {
-                Error::input(
-                    dir,
-                    format!(
-                        "skybox face '{}' is missing (looked for {}.* and {}.* with .png .jpg .hdr .exr)",
-                        names.0, names.0, names.1
-                    ),
-                )
-            })?;
+            let path = find_face(dir, *names)?;
             let image = read_image(&path, MAX_FACE_SIDE)?;
             let (w, h) = (image.width(), image.height());
             if w != h {
