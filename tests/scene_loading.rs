@@ -266,3 +266,42 @@ fn lights_are_seeded_saturated_and_scaled() {
     assert!((ratio / 1e6 - 1.0).abs() < 1e-3, "intensity scales with size squared");
     assert!(lights::hue_to_rgb(0.0).abs_diff_eq(Vec3::X, 1e-6));
 }
+
+#[test]
+fn textures_are_shared_by_path_link_and_content_and_kept_within_the_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let png = |name: &str, colour: [u8; 3]| {
+        image::RgbImage::from_pixel(64, 64, image::Rgb(colour)).save(d.join(name)).unwrap();
+    };
+    png("a.png", [200, 10, 10]);
+    std::fs::copy(d.join("a.png"), d.join("copy_of_a.png")).unwrap();
+    std::os::unix::fs::symlink(d.join("a.png"), d.join("link_to_a.png")).unwrap();
+    png("b.png", [10, 200, 10]);
+    // 32 materials naming a.png, its link and its copy; one naming b.png.
+    let mut mtl = String::new();
+    for i in 0..32 {
+        let file = ["a.png", "link_to_a.png", "copy_of_a.png"][i % 3];
+        mtl += &format!("newmtl m{i}\nKd 1 1 1\nmap_Kd {file}\n");
+    }
+    mtl += "newmtl other\nKd 1 1 1\nmap_Kd b.png\n";
+    std::fs::write(d.join("m.mtl"), mtl).unwrap();
+    let mut obj = String::from("mtllib m.mtl\n");
+    for i in 0..33 {
+        let name = if i < 32 { format!("m{i}") } else { "other".into() };
+        obj +=
+            &format!("v {i} 0 0\nv {i} 0 1\nv {i}.5 0 0\nusemtl {name}\nf {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+    }
+    std::fs::write(d.join("m.obj"), obj).unwrap();
+
+    // A budget of one 64x64 texture and a half: a.png fits, b.png is halved to fit.
+    let model = ssdo::scene::model::load_obj_with_budget(&d.join("m.obj"), 64 * 64 * 4 * 3 / 2).unwrap();
+    let maps: Vec<_> = model.materials.iter().filter_map(|m| m.diffuse_map.as_ref()).collect();
+    assert_eq!(maps.len(), 33);
+    let first = &maps[0].rgba;
+    assert!(maps[..32].iter().all(|t| std::sync::Arc::ptr_eq(&t.rgba, first)), "one copy of a.png for 32 materials");
+    let b = maps[32];
+    assert!(!std::sync::Arc::ptr_eq(&b.rgba, first));
+    assert_eq!((b.width, b.height), (32, 32), "b.png halved to fit the budget");
+    assert!(model.warnings.iter().any(|w| w.contains("b.png") && w.contains("budget")), "{:?}", model.warnings);
+}

@@ -25,12 +25,14 @@ pub struct Vertex {
     pub uv: [f32; 2],
 }
 
-/// An 8-bit RGBA texture in sRGB encoding, as decoded from a file.
+/// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every
+/// material that names the same file (by canonical path or by content) holds the same ones, and
+/// the G-buffer uploads them once.
 #[derive(Clone, Debug)]
 pub struct TextureImage {
     pub width: u32,
     pub height: u32,
-    pub rgba: Vec<u8>,
+    pub rgba: std::sync::Arc<Vec<u8>>,
 }
 
 impl TextureImage {
@@ -43,8 +45,23 @@ impl TextureImage {
                 |i| if ((i % size) / 2 + (i / size) / 2) % 2 == 0 { [200, 40, 200, 255] } else { [90, 90, 90, 255] },
             )
             .collect();
-        Self { width: size, height: size, rgba }
+        Self { width: size, height: size, rgba: std::sync::Arc::new(rgba) }
     }
+}
+
+/// The decoded RGBA8 bytes all of one model's textures may take together; a texture that would
+/// go beyond is halved until it fits, with a warning. A small file can decode to a huge image
+/// (a 128 KB PNG of 4096² 16-bit texels), and a material file can name it many times.
+pub const TEXTURE_BUDGET_BYTES: u64 = 1 << 30;
+
+/// The textures of one model load: each file decoded once, whichever names it.
+#[derive(Default)]
+struct TextureCache {
+    by_path: std::collections::HashMap<PathBuf, TextureImage>,
+    /// (length, hash) of the file's bytes: the same picture under another name.
+    by_content: std::collections::HashMap<(usize, u64), TextureImage>,
+    bytes: u64,
+    budget: u64,
 }
 
 /// Surface description: Blinn-Phong with optional diffuse and specular maps.
@@ -272,9 +289,13 @@ fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
 /// Decodes an image file whatever its extension says, within a size limit.
 pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
     // A face of 16384² RGBA32F is 4 GiB decoded; compressed files are far smaller than that.
-    check_file(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
-    let mut reader = image::ImageReader::open(path)
-        .map_err(|e| Error::input(path, format!("cannot open: {e}")))?
+    let bytes = read_bounded(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
+    decode_image(path, &bytes, max_side)
+}
+
+/// Decodes an image file's bytes (named `path` in errors), with the same limits.
+pub fn decode_image(path: &Path, bytes: &[u8], max_side: u32) -> Result<image::DynamicImage> {
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
     let mut limits = image::Limits::default();
@@ -288,7 +309,8 @@ pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
 /// Largest texture side accepted when loading (textures are also checked against the device).
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
 
-fn load_texture(dir: &Path, argument: &str, warnings: &mut Vec<String>) -> TextureImage {
+fn load_texture(dir: &Path, argument: &str, cache: &mut TextureCache, warnings: &mut Vec<String>) -> TextureImage {
+    use std::hash::{Hash, Hasher};
     let Some(name) = texture_file_name(argument) else {
         warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
         return TextureImage::checker();
@@ -297,16 +319,53 @@ fn load_texture(dir: &Path, argument: &str, warnings: &mut Vec<String>) -> Textu
         warnings.push(format!("{}: texture not found; using a checker", dir.join(&name).display()));
         return TextureImage::checker();
     };
-    match read_image(&path, MAX_TEXTURE_SIDE) {
-        Ok(image) => {
-            let rgba = image.to_rgba8();
-            TextureImage { width: rgba.width(), height: rgba.height(), rgba: rgba.into_raw() }
+    let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+    if let Some(image) = cache.by_path.get(&canonical) {
+        return image.clone();
+    }
+    let bytes = match read_bounded(&path, 1 << 30) {
+        Ok(bytes) => bytes,
+        Err(problem) => {
+            warnings.push(format!("{}: {problem}; using a checker", path.display()));
+            return TextureImage::checker();
         }
+    };
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut hasher);
+    let key = (bytes.len(), hasher.finish());
+    if let Some(image) = cache.by_content.get(&key) {
+        let image = image.clone();
+        cache.by_path.insert(canonical, image.clone());
+        return image;
+    }
+    let image = match decode_image(&path, &bytes, MAX_TEXTURE_SIDE) {
+        Ok(image) => image,
         Err(e) => {
             warnings.push(format!("{e}; using a checker"));
-            TextureImage::checker()
+            return TextureImage::checker();
         }
+    };
+    let mut rgba = image.to_rgba8();
+    drop(image);
+    let room = cache.budget.saturating_sub(cache.bytes);
+    let (w0, h0) = rgba.dimensions();
+    let (mut w, mut h) = (w0, h0);
+    while (w as u64) * (h as u64) * 4 > room && (w > 1 || h > 1) {
+        (w, h) = ((w / 2).max(1), (h / 2).max(1));
     }
+    if (w, h) != (w0, h0) {
+        warnings.push(format!(
+            "{}: downscaled from {w0}x{h0} to {w}x{h}: the model's textures would exceed the {} KiB texture budget",
+            path.display(),
+            cache.budget >> 10
+        ));
+        rgba = image::imageops::resize(&rgba, w, h, image::imageops::FilterType::Triangle);
+    }
+    cache.bytes += (w as u64) * (h as u64) * 4;
+    let texture = TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba.into_raw()) };
+    cache.by_path.insert(canonical, texture.clone());
+    cache.by_content.insert(key, texture.clone());
+    texture
 }
 
 fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
@@ -316,14 +375,14 @@ fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
     }
 }
 
-fn convert_material(m: &tobj::Material, dir: &Path, warnings: &mut Vec<String>) -> Material {
+fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, warnings: &mut Vec<String>) -> Material {
     Material {
         name: m.name.clone(),
         diffuse: finite3(m.diffuse, [0.8; 3]),
         specular: finite3(m.specular, [0.0; 3]),
         shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
-        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(dir, t, warnings)),
-        specular_map: m.specular_texture.as_deref().map(|t| load_texture(dir, t, warnings)),
+        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
+        specular_map: m.specular_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
     }
 }
 
@@ -363,6 +422,11 @@ fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String>
 }
 
 pub fn load_obj(path: &Path) -> Result<Model> {
+    load_obj_with_budget(path, TEXTURE_BUDGET_BYTES)
+}
+
+/// [`load_obj`] with another texture budget (decoded RGBA8 bytes for all textures together).
+pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
     let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(Error::input(path, "the file is empty"));
@@ -419,8 +483,9 @@ pub fn load_obj(path: &Path) -> Result<Model> {
         }
         Vec::new()
     });
+    let mut cache = TextureCache { budget: texture_budget, ..Default::default() };
     let mut materials: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &dir, &mut warnings)).collect();
+        tobj_materials.iter().map(|m| convert_material(m, &dir, &mut cache, &mut warnings)).collect();
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
 

@@ -41,12 +41,12 @@ fn upload_texture(
     let shrunk;
     let image = if image.width > max || image.height > max {
         log::warn!("{label}: {}x{} exceeds the adapter's {max}; downscaling", image.width, image.height);
-        let src = image::RgbaImage::from_raw(image.width, image.height, image.rgba.clone())
+        let src = image::RgbaImage::from_raw(image.width, image.height, image.rgba.to_vec())
             .expect("texture size matches its data");
         let scale = max as f32 / image.width.max(image.height) as f32;
         let (w, h) = (((image.width as f32 * scale) as u32).max(1), ((image.height as f32 * scale) as u32).max(1));
         let small = image::imageops::resize(&src, w, h, image::imageops::FilterType::Triangle);
-        shrunk = TextureImage { width: w, height: h, rgba: small.into_raw() };
+        shrunk = TextureImage { width: w, height: h, rgba: std::sync::Arc::new(small.into_raw()) };
         &shrunk
     } else {
         image
@@ -64,7 +64,7 @@ fn upload_texture(
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        &image.rgba,
+        &image.rgba[..],
     );
     (texture.create_view(&wgpu::TextureViewDescriptor::default()), image.rgba.len() as u64)
 }
@@ -173,7 +173,10 @@ impl GBufferPass {
             usage: wgpu::BufferUsages::INDEX,
         });
         let mut bytes = vertices.size() + indices.size();
-        let white = TextureImage { width: 1, height: 1, rgba: vec![255; 4] };
+        let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
+        // A texture that several materials share is uploaded once (by its pixels' identity).
+        let mut uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView> =
+            std::collections::HashMap::new();
         let (white_srgb, _) =
             upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
         let (white_linear, _) =
@@ -196,9 +199,14 @@ impl GBufferPass {
                 let mut map =
                     |image: &Option<TextureImage>, kind: &str, format, fallback: &wgpu::TextureView| match image {
                         Some(image) => {
+                            let key = (std::sync::Arc::as_ptr(&image.rgba) as usize, format);
+                            if let Some(view) = uploaded.get(&key) {
+                                return view.clone();
+                            }
                             let (view, size) =
                                 upload_texture(gpu, &format!("material_{}_{kind}", m.name), image, format);
                             bytes += size;
+                            uploaded.insert(key, view.clone());
                             view
                         }
                         None => fallback.clone(),
