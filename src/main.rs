@@ -631,6 +631,14 @@ fn run_view(args: ViewArgs) -> Result<()> {
     if size.0 == 0 || size.1 == 0 {
         return Err(Error::Setting(format!("--size {}x{}: both sides must be at least 1", size.0, size.1)));
     }
+    // Window systems refuse (X11: panic inside winit at 65536) what no adapter could draw anyway.
+    const MAX_WINDOW_SIDE: u32 = 16384;
+    if size.0 > MAX_WINDOW_SIDE || size.1 > MAX_WINDOW_SIDE {
+        return Err(Error::Setting(format!(
+            "--size {}x{}: the viewer's window can be at most {MAX_WINDOW_SIDE} on a side",
+            size.0, size.1
+        )));
+    }
     let settings = args.render.settings(args.mode)?;
     let ViewArgs { scene, screenshot_dir, .. } = args;
     ssdo::app::run(ssdo::app::ViewerOptions {

@@ -301,3 +301,10 @@ fn special_and_huge_files_are_refused_before_they_are_read() {
         assert!(error_line(&result).contains(needle), "{model}: {}", stderr(&result));
     }
 }
+
+#[test]
+fn a_window_no_adapter_could_draw_is_refused_before_it_opens() {
+    let result = ssdo(&["view", "--size", "65536x100"]);
+    assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
+    assert!(error_line(&result).contains("at most 16384"), "{}", stderr(&result));
+}

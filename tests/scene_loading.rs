@@ -305,3 +305,18 @@ fn textures_are_shared_by_path_link_and_content_and_kept_within_the_budget() {
     assert_eq!((b.width, b.height), (32, 32), "b.png halved to fit the budget");
     assert!(model.warnings.iter().any(|w| w.contains("b.png") && w.contains("budget")), "{:?}", model.warnings);
 }
+
+#[test]
+fn a_sky_larger_than_the_budget_is_downscaled_as_it_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["right", "left", "top", "bottom", "front", "back"] {
+        // 2304² of one colour: a few KB as PNG; more than the 2048² a face keeps.
+        image::RgbImage::from_pixel(2304, 2304, image::Rgb([128, 160, 200]))
+            .save(dir.path().join(format!("{name}.png")))
+            .unwrap();
+    }
+    let sky = ssdo::scene::Skybox::load(dir.path()).unwrap();
+    assert_eq!(sky.size, ssdo::scene::skybox::STORED_FACE_SIDE);
+    assert!(sky.faces.iter().all(|f| f.len() == (sky.size * sky.size) as usize));
+    assert!(sky.warnings.iter().any(|w| w.contains("downscaled")), "{:?}", sky.warnings);
+}

@@ -84,6 +84,13 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        // The window was destroyed from outside (its X11 drawable is gone): touch nothing of it
+        // again, and quit as if it had been closed.
+        if matches!(event, WindowEvent::Destroyed) {
+            self.viewer = None;
+            event_loop.exit();
+            return;
+        }
         let Some(viewer) = &mut self.viewer else { return };
         if let Err(e) = viewer.event(event_loop, event) {
             self.failure = Some(e);
@@ -122,6 +129,8 @@ struct Viewer {
     timing_refresh: Option<Instant>,
     /// The frame being drawn was asked for by `timing_refresh` alone.
     refreshing: bool,
+    /// The window outgrew the adapter once already (said once, not every frame).
+    told_too_large: bool,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -166,7 +175,9 @@ impl Viewer {
             .find(|f| matches!(f, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm))
             .or(caps.formats.first().copied())
             .ok_or_else(|| Error::Gpu("the window offers no surface format".into()))?;
+        let max = gpu.device.limits().max_texture_dimension_2d;
         let size = window.inner_size();
+        let size = PhysicalSize::new(size.width.min(max), size.height.min(max));
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             format,
@@ -223,6 +234,7 @@ impl Viewer {
             egui_repaint: None,
             timing_refresh: None,
             refreshing: false,
+            told_too_large: false,
         })
     }
 
@@ -344,6 +356,20 @@ impl Viewer {
         // A minimised window is 0x0: keep everything as it is until it comes back.
         if size.width == 0 || size.height == 0 {
             return;
+        }
+        // A window larger than the adapter's largest texture draws into its top-left part, and
+        // says so once, instead of failing every frame.
+        let max = self.gpu.device.limits().max_texture_dimension_2d;
+        let size = PhysicalSize::new(size.width.min(max), size.height.min(max));
+        if (size.width == max || size.height == max) && !self.told_too_large {
+            self.told_too_large = true;
+            self.panel.say(
+                format!(
+                    "the window is larger than this adapter's largest texture ({max}); drawing {}x{} of it",
+                    size.width, size.height
+                ),
+                true,
+            );
         }
         self.config.width = size.width;
         self.config.height = size.height;

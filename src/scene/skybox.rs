@@ -20,8 +20,12 @@ pub const FACE_NAMES: [(&str, &str); 6] =
 /// File extensions tried for each face, in this order.
 pub const EXTENSIONS: [&str; 5] = ["png", "jpg", "jpeg", "hdr", "exr"];
 
-/// Largest face side accepted when loading.
+/// Largest face side accepted when loading (a larger one is refused with one line).
 pub const MAX_FACE_SIDE: u32 = 8192;
+/// Largest face side kept: larger faces are downscaled to it as they load, with a warning. The
+/// sky is the background and, at coarse mips, SSDO's light; 2048² per face is more than either
+/// shows, and six of them take 0.3 GB as f32 texels and 0.27 GB on the GPU with mips.
+pub const STORED_FACE_SIDE: u32 = 2048;
 
 #[derive(Clone, Debug)]
 pub struct Skybox {
@@ -135,7 +139,7 @@ impl Skybox {
         let mut first_face = String::new();
         for (index, names) in FACE_NAMES.iter().enumerate() {
             let path = find_face(dir, *names)?;
-            let image = read_image(&path, MAX_FACE_SIDE)?;
+            let mut image = read_image(&path, MAX_FACE_SIDE)?;
             let (w, h) = (image.width(), image.height());
             if w != h {
                 return Err(Error::input(&path, format!("skybox face is {w}x{h}; faces must be square")));
@@ -150,6 +154,17 @@ impl Skybox {
                         "skybox face is {w}x{w} but {first_face} is {size}x{size}; all faces must be the same size"
                     ),
                 ));
+            }
+            // Kept at most STORED_FACE_SIDE² per face, one face at a time, so an 8192² sky takes
+            // what a 2048² one does once loaded (0.3 GB, not 4.8 GB) and fits any adapter.
+            if w > STORED_FACE_SIDE {
+                image = image.resize_exact(STORED_FACE_SIDE, STORED_FACE_SIDE, image::imageops::FilterType::Triangle);
+                if index == 0 {
+                    warnings.push(format!(
+                        "{}: faces of {w}x{w} downscaled to {STORED_FACE_SIDE}x{STORED_FACE_SIDE} (the sky's memory budget)",
+                        dir.display()
+                    ));
+                }
             }
             let hdr = matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_));
             kinds.push(hdr);
@@ -186,7 +201,7 @@ impl Skybox {
         }
         let name =
             dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| dir.display().to_string());
-        Ok(Self { name, size, faces, warnings })
+        Ok(Self { name, size: size.min(STORED_FACE_SIDE), faces, warnings })
     }
 
     /// A sky computed from a function of the (unit) world direction.
