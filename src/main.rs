@@ -305,6 +305,37 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
+/// Runs `work`, showing a spinner with the elapsed time on standard error once it has taken a
+/// second (a 2M-triangle model takes several); nothing when standard error is not a terminal.
+fn with_spinner<T>(message: &str, work: impl FnOnce() -> T) -> T {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let done = Arc::new(AtomicBool::new(false));
+    let bar = indicatif::ProgressBar::hidden();
+    let watcher = {
+        let (done, bar, message) = (done.clone(), bar.clone(), message.to_owned());
+        std::thread::spawn(move || {
+            for _ in 0..20 {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                if done.load(Ordering::Relaxed) {
+                    return;
+                }
+            }
+            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            bar.set_style(
+                indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})").expect("valid template"),
+            );
+            bar.set_message(message);
+            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+        })
+    };
+    let out = work();
+    done.store(true, std::sync::atomic::Ordering::Relaxed);
+    let _ = watcher.join();
+    bar.finish_and_clear();
+    out
+}
+
 /// `4x8`: slices × steps of the march.
 fn parse_march(s: &str) -> std::result::Result<(usize, usize), String> {
     let (a, b) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}': expected SLICESxSTEPS like 4x8"))?;
@@ -378,8 +409,8 @@ impl SceneArgs {
     fn load(&self) -> Result<(Scene, scene::Skybox)> {
         // Beyond these, positions lose the precision the depth buffer and the march need.
         in_range("scale", self.scale, 1e-6, 1e6)?;
-        let model = scene::load_model(self.model.as_deref())?.scaled(self.scale);
-        let sky = scene::load_skybox(self.skybox.as_deref())?;
+        let model = with_spinner("loading the model", || scene::load_model(self.model.as_deref()))?.scaled(self.scale);
+        let sky = with_spinner("loading the sky", || scene::load_skybox(self.skybox.as_deref()))?;
         Ok((Scene::new(model, self.lights, self.seed), sky))
     }
 

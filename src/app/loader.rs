@@ -28,12 +28,14 @@ pub struct Loader {
     next: u64,
     /// The newest request of each kind: (sky, model).
     requested: (u64, u64),
+    /// What the newest request loads and since when, for the panel's progress line.
+    current: Option<(String, std::time::Instant)>,
 }
 
 impl Default for Loader {
     fn default() -> Self {
         let (sender, receiver) = channel();
-        Self { sender, receiver, pending: 0, next: 0, requested: (0, 0) }
+        Self { sender, receiver, pending: 0, next: 0, requested: (0, 0), current: None }
     }
 }
 
@@ -46,6 +48,7 @@ impl Loader {
 
     pub fn sky(&mut self, path: PathBuf) {
         let (sender, id) = (self.sender.clone(), self.ticket());
+        self.current = Some((format!("sky {}", path.display()), std::time::Instant::now()));
         self.requested.0 = id;
         std::thread::spawn(move || {
             let result = Skybox::load(&path);
@@ -55,6 +58,7 @@ impl Loader {
 
     pub fn model(&mut self, path: PathBuf) {
         let (sender, id) = (self.sender.clone(), self.ticket());
+        self.current = Some((format!("model {}", path.display()), std::time::Instant::now()));
         self.requested.1 = id;
         std::thread::spawn(move || {
             let result = scene::model::load_obj(&path);
@@ -65,6 +69,12 @@ impl Loader {
     /// Whether a load is still running.
     pub fn busy(&self) -> bool {
         self.pending > 0
+    }
+
+    /// "loading model x.obj… 3 s" while a load runs.
+    pub fn progress(&self) -> Option<String> {
+        let (what, since) = self.current.as_ref().filter(|_| self.busy())?;
+        Some(format!("loading {what}… {:.0} s", since.elapsed().as_secs_f64()))
     }
 
     /// Results that have arrived since the last call that are still the newest request of

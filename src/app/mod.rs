@@ -131,6 +131,8 @@ struct Viewer {
     refreshing: bool,
     /// The window outgrew the adapter once already (said once, not every frame).
     told_too_large: bool,
+    /// When the loading line was last redrawn.
+    last_progress: Instant,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -213,7 +215,7 @@ impl Viewer {
             adapter: gpu.describe(),
             model_name: scene.model.name.clone(),
             sky_name: sky.name.clone(),
-            loading: false,
+            loading: None,
         };
         Ok(Self {
             window,
@@ -235,6 +237,7 @@ impl Viewer {
             timing_refresh: None,
             refreshing: false,
             told_too_large: false,
+            last_progress: Instant::now(),
         })
     }
 
@@ -254,7 +257,9 @@ impl Viewer {
         let now = Instant::now();
         let mut wake: Option<Instant> = None;
         if self.loader.busy() {
-            if self.apply_loads() {
+            // A finished load, or once a second the panel's "loading… N s" line.
+            if self.apply_loads() || now.duration_since(self.last_progress) >= Duration::from_secs(1) {
+                self.last_progress = now;
                 self.window.request_redraw();
             }
             wake = Some(now + LOAD_POLL);
@@ -476,7 +481,7 @@ impl Viewer {
                 }
             }
         }
-        self.panel.loading = self.loader.busy();
+        self.panel.loading = self.loader.progress();
         arrived
     }
 

@@ -43,7 +43,8 @@ pub struct PanelState {
     pub adapter: String,
     pub model_name: String,
     pub sky_name: String,
-    pub loading: bool,
+    /// What is loading and for how long, while a load runs.
+    pub loading: Option<String>,
 }
 
 impl PanelState {
@@ -84,8 +85,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.heading("ssdo");
             ui.label(format!("{}\nmodel: {}\nsky: {}", state.adapter, state.model_name, state.sky_name));
-            if state.loading {
-                ui.label("loading…");
+            if let Some(progress) = &state.loading {
+                ui.label(progress);
             }
             for m in &state.messages {
                 let color = if m.error {
