@@ -152,6 +152,28 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     let mut c = base("sky of 1e5 (beyond half float)", "--sky-scale 1e5");
     c.sky = Skybox::constant(Vec3::splat(1e5));
     list.push(c);
+    // The edges of the ranges the command line accepts (beyond them it refuses, with the range).
+    list.push(with_model(
+        "model × 1e-6 (the smallest scale taken)",
+        "--scale 1e-6",
+        builtin::cornell().unwrap().scaled(1e-6),
+    ));
+    list.push(with_model(
+        "model × 1e6 (the largest scale taken)",
+        "--scale 1e6",
+        builtin::cornell().unwrap().scaled(1e6),
+    ));
+    let mut c = base(
+        "ambient, sky and indirect strength 1e6 (the largest taken)",
+        "--ambient 1e6 --sky-strength 1e6 --indirect-strength 1e6",
+    );
+    c.settings.ambient = 1e6;
+    c.settings.sky_strength = 1e6;
+    c.settings.indirect_strength = 1e6;
+    list.push(c);
+    let mut c = base("near plane at 1e-9 of the distance (the smallest taken)", "--near <1e-9 × distance>");
+    c.camera.near = c.camera.distance * 1e-9;
+    list.push(c);
     list
 }
 
