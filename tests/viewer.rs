@@ -126,6 +126,28 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("the viewer to quit", Duration::from_secs(30), || viewer.0.try_wait().ok().flatten().is_some());
     assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "Escape quits cleanly");
 
+    // A window destroyed from outside (not closed by its user) ends the viewer cleanly too,
+    // not with a panic on the next frame.
+    let mut viewer = Guard(
+        ssdo()
+            .args(["view", "--size", &size, "--screenshot-dir", shots.path().to_str().unwrap()])
+            .env("DISPLAY", &display)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("the viewer starts"),
+    );
+    let mut window = String::new();
+    wait_for("the second viewer's window", Duration::from_secs(60), || {
+        window = xdotool(&display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
+        !window.is_empty()
+    });
+    xdotool(&display, &["windowclose", &window]);
+    wait_for("the viewer to quit after its window was destroyed", Duration::from_secs(30), || {
+        viewer.0.try_wait().ok().flatten().is_some()
+    });
+    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "a destroyed window quits cleanly");
+
     let screenshots = pngs(shots.path(), "screenshot-");
     for mode in modes {
         assert!(
