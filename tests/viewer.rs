@@ -128,9 +128,10 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
 
     // A window destroyed from outside (not closed by its user) ends the viewer cleanly too,
     // not with a panic on the next frame.
+    let shots2 = tempfile::tempdir().unwrap();
     let mut viewer = Guard(
         ssdo()
-            .args(["view", "--size", &size, "--screenshot-dir", shots.path().to_str().unwrap()])
+            .args(["view", "--size", &size, "--screenshot-dir", shots2.path().to_str().unwrap()])
             .env("DISPLAY", &display)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -141,6 +142,12 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("the second viewer's window", Duration::from_secs(60), || {
         window = xdotool(&display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
         !window.is_empty()
+    });
+    // Once it is drawing (a screenshot proves it), not while it is still starting up.
+    xdotool(&display, &["windowfocus", "--sync", &window]);
+    xdotool(&display, &["key", "--clearmodifiers", "F12"]);
+    wait_for("the second viewer's screenshot", Duration::from_secs(60), || {
+        !pngs(shots2.path(), "screenshot-").is_empty()
     });
     xdotool(&display, &["windowclose", &window]);
     wait_for("the viewer to quit after its window was destroyed", Duration::from_secs(30), || {
