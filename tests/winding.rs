@@ -128,6 +128,7 @@ fn both_windings_render_the_same_in_every_mode() {
         for (winding, scene) in &scenes[1..] {
             let other = buffers(&gpu, scene, &sky, &camera, mode, view);
             let d = max_difference(&reference, &other);
+            eprintln!("{mode} {}: {winding:?} vs counter-clockwise, max |Δ| {d:e}", view.name());
             assert!(d < 1e-3, "{mode} {}: {winding:?} differs from counter-clockwise by {d}", view.name());
         }
     }
