@@ -5,20 +5,17 @@
 mod common;
 
 use common::{gpu, looking, renderer, shoot};
-use glam::{Vec3, Vec4Swizzles};
+use glam::Vec3;
 use ssdo::render::readback::read_rgba16f;
 use ssdo::render::{Mode, Settings, Variant};
 use ssdo::scene::builtin::MeshBuilder;
-use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};
+use ssdo::scene::{Material, OrbitCamera, Scene, Skybox};
 
 const W: u32 = 160;
 const H: u32 = 120;
 
 fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
-    let clip = camera.view_to_clip(W as f32 / H as f32) * camera.world_to_view() * p.extend(1.0);
-    let ndc = clip.xy() / clip.w;
-    assert!(clip.w > 0.0 && ndc.abs().max_element() < 0.95, "{p} is not well inside the view");
-    (((ndc.x * 0.5 + 0.5) * W as f32) as usize, ((0.5 - ndc.y * 0.5) * H as f32) as usize)
+    common::project_to(camera, (W, H), p)
 }
 
 /// Mean DO (rgb) over a 3x3 window.
@@ -124,13 +121,7 @@ fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
 fn a_red_wall_beyond_the_radius_still_bounces_red_onto_the_floor() {
     let Some(gpu) = gpu() else { return };
     let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let floor = b.material(Material::plain("floor", [0.8; 3]));
-    let wall = b.material(Material::plain("wall", [0.9, 0.05, 0.05]));
-    b.quad(floor, [v(0.0, 0.0, 2.0), v(4.0, 0.0, 2.0), v(4.0, 0.0, -2.0), v(0.0, 0.0, -2.0)]);
-    b.quad(wall, [v(0.0, 0.0, -2.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 2.0), v(0.0, 2.0, -2.0)]);
-    let mut scene = Scene::new(b.build("red_wall").unwrap(), 0, 1);
-    scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
+    let scene = common::red_wall_scene();
     let sky = Skybox::constant(Vec3::ZERO);
     let camera = looking(v(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
     // R = 0.1; the floor point lies 0.4 = 4R from the wall.

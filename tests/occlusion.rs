@@ -4,13 +4,13 @@
 
 mod common;
 
-use common::{gpu, looking, renderer, shoot};
-use glam::{Vec3, Vec4Swizzles};
+use common::{gpu, looking, red_wall_scene, renderer, shoot};
+use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::render::readback::{read_r16f, read_rgba16f};
 use ssdo::render::{Mode, Renderer, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
-use ssdo::scene::{Material, Model, OrbitCamera, PointLight, Scene, Skybox};
+use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 
 const W: u32 = 160;
 const H: u32 = 120;
@@ -21,10 +21,7 @@ fn settings(mode: Mode) -> Settings {
 
 /// Pixel coordinates of world point `p`.
 fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
-    let clip = camera.view_to_clip(W as f32 / H as f32) * camera.world_to_view() * p.extend(1.0);
-    let ndc = clip.xy() / clip.w;
-    assert!(clip.w > 0.0 && ndc.abs().max_element() < 0.95, "{p} is not well inside the view");
-    (((ndc.x * 0.5 + 0.5) * W as f32) as usize, ((0.5 - ndc.y * 0.5) * H as f32) as usize)
+    common::project_to(camera, (W, H), p)
 }
 
 fn at<T: Copy>(buffer: &[T], (x, y): (usize, usize)) -> T {
@@ -155,18 +152,6 @@ fn inside_corner_is_more_occluded_than_open_floor() {
 }
 
 /// A white floor (x from 0 to 4) meeting a red wall at x = 0, lit by one white light.
-fn red_wall_scene() -> Scene {
-    let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let floor = b.material(Material::plain("floor", [0.8; 3]));
-    let wall = b.material(Material::plain("wall", [0.9, 0.05, 0.05]));
-    b.quad(floor, [v(0.0, 0.0, 2.0), v(4.0, 0.0, 2.0), v(4.0, 0.0, -2.0), v(0.0, 0.0, -2.0)]);
-    b.quad(wall, [v(0.0, 0.0, -2.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 2.0), v(0.0, 2.0, -2.0)]);
-    let mut scene = Scene::new(b.build("red_wall").unwrap(), 0, 1);
-    scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
-    scene
-}
-
 #[test]
 fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let Some(gpu) = gpu() else { return };

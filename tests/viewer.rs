@@ -65,6 +65,27 @@ fn ssdo() -> Command {
     command
 }
 
+/// Starts the viewer on `display` at the test's window size, and waits for its window.
+fn start_viewer(display: &str, shots: &Path, extra: &[&str]) -> (Guard, String) {
+    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
+    let viewer = Guard(
+        ssdo()
+            .args(["view", "--size", &size, "--screenshot-dir", shots.to_str().unwrap()])
+            .args(extra)
+            .env("DISPLAY", display)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("the viewer starts"),
+    );
+    let mut window = String::new();
+    wait_for("the viewer's window", Duration::from_secs(60), || {
+        window = xdotool(display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
+        !window.is_empty()
+    });
+    (viewer, window)
+}
+
 #[test]
 fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     if !have("Xvfb") || !have("xdotool") {
@@ -92,21 +113,7 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("Xvfb", Duration::from_secs(10), || Path::new(&socket).exists());
 
     let shots = tempfile::tempdir().unwrap();
-    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
-    let mut viewer = Guard(
-        ssdo()
-            .args(["view", "--size", &size, "--mode", "off", "--screenshot-dir", shots.path().to_str().unwrap()])
-            .env("DISPLAY", &display)
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("the viewer starts"),
-    );
-    let mut window = String::new();
-    wait_for("the viewer's window", Duration::from_secs(60), || {
-        window = xdotool(&display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
-        !window.is_empty()
-    });
+    let (mut viewer, window) = start_viewer(&display, shots.path(), &["--mode", "off"]);
     xdotool(&display, &["windowfocus", "--sync", &window]);
     // Tab moves egui's keyboard focus into the panel (onto a button, not a text field): the keys
     // below must still reach the view.
@@ -129,20 +136,7 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     // A window destroyed from outside (not closed by its user) ends the viewer cleanly too,
     // not with a panic on the next frame.
     let shots2 = tempfile::tempdir().unwrap();
-    let mut viewer = Guard(
-        ssdo()
-            .args(["view", "--size", &size, "--screenshot-dir", shots2.path().to_str().unwrap()])
-            .env("DISPLAY", &display)
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("the viewer starts"),
-    );
-    let mut window = String::new();
-    wait_for("the second viewer's window", Duration::from_secs(60), || {
-        window = xdotool(&display, &["search", "--name", "^ssdo"]).lines().next().unwrap_or("").to_owned();
-        !window.is_empty()
-    });
+    let (mut viewer, window) = start_viewer(&display, shots2.path(), &[]);
     // Once it is drawing (a screenshot proves it), not while it is still starting up.
     xdotool(&display, &["windowfocus", "--sync", &window]);
     xdotool(&display, &["key", "--clearmodifiers", "F12"]);

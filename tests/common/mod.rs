@@ -2,11 +2,12 @@
 
 #![allow(dead_code)]
 
-use glam::Vec3;
+use glam::{Vec3, Vec4Swizzles};
 use ssdo::gpu::{Gpu, NO_ADAPTER_HELP};
 use ssdo::render::capture::{capture, CAPTURE_FORMAT};
 use ssdo::render::{Renderer, Settings};
-use ssdo::scene::{OrbitCamera, Scene, Skybox};
+use ssdo::scene::builtin::MeshBuilder;
+use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};
 
 /// A headless device, or `None` (test skipped) when there is no adapter outside CI. Under
 /// `CI=true` a missing adapter fails the test with the install hint.
@@ -51,4 +52,27 @@ pub fn mean_rgb(image: &image::RgbaImage, x0: u32, y0: u32, w: u32, h: u32) -> V
         }
     }
     sum / (w * h) as f32
+}
+
+/// Pixel coordinates of world point `p` in a `size` image from `camera`; it must lie well inside.
+pub fn project_to(camera: &OrbitCamera, size: (u32, u32), p: Vec3) -> (usize, usize) {
+    let (w, h) = (size.0 as f32, size.1 as f32);
+    let clip = camera.view_to_clip(w / h) * camera.world_to_view() * p.extend(1.0);
+    let ndc = clip.xy() / clip.w;
+    assert!(clip.w > 0.0 && ndc.abs().max_element() < 0.95, "{p} is not well inside the view");
+    (((ndc.x * 0.5 + 0.5) * w) as usize, ((0.5 - ndc.y * 0.5) * h) as usize)
+}
+
+/// A white floor beside a red wall (the plane x = 0) lit by one white light: the colour-bleeding
+/// scene.
+pub fn red_wall_scene() -> Scene {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let wall = b.material(Material::plain("wall", [0.9, 0.05, 0.05]));
+    b.quad(floor, [v(0.0, 0.0, 2.0), v(4.0, 0.0, 2.0), v(4.0, 0.0, -2.0), v(0.0, 0.0, -2.0)]);
+    b.quad(wall, [v(0.0, 0.0, -2.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 2.0), v(0.0, 2.0, -2.0)]);
+    let mut scene = Scene::new(b.build("red_wall").unwrap(), 0, 1);
+    scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
+    scene
 }
