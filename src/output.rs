@@ -5,18 +5,12 @@ use std::path::{Path, PathBuf};
 
 use crate::{Error, Result};
 
-/// Writes `bytes` to `path` atomically (temporary file, then rename), creating parent folders.
+/// Writes `bytes` to `path` atomically (temporary file, then rename), creating parent folders:
+/// a batch of one.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| Error::output(parent, format!("cannot create folder: {e}")))?;
-    }
-    let tmp = temporary_name(path);
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::output(path, format!("cannot write: {e}")));
-    }
-    Ok(())
+    let mut batch = Batch::default();
+    batch.stage(path, bytes)?;
+    batch.commit().map(|_| ())
 }
 
 fn temporary_name(path: &Path) -> PathBuf {
