@@ -15,7 +15,8 @@ pub fn output_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
     output_texture_as(gpu, size, CAPTURE_FORMAT)
 }
 
-fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> wgpu::Texture {
+/// A texture the renderer (or a copy pass) draws into and readback copies from.
+pub(crate) fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("capture_output"),
         size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },

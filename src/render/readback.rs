@@ -80,16 +80,8 @@ fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
     use crate::render::passes::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
     let device = &gpu.device;
     let format = wgpu::TextureFormat::R32Uint;
-    let target = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("depth_bits"),
-        size: depth.size(),
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let size = depth.size();
+    let target = super::capture::output_texture_as(gpu, (size.width, size.height), format);
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("depth_copy_layout"),
         entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2)],
