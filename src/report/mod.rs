@@ -15,10 +15,11 @@
 //! independent traces, whose difference gives its own noise floor.
 
 pub mod metrics;
+mod plot;
 pub mod scenes;
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use glam::Vec3;
@@ -325,7 +326,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     && mode == Mode::Both
                     && r_index == 0
                 {
-                    write_maps(&options.out, &truth, &ao, &ref_image, &gpu_image, &flip_map)?;
+                    plot::write_maps(&options.out, &truth, &ao, &ref_image, &gpu_image, &flip_map)?;
                 }
                 rows.push(Row {
                     mode,
@@ -371,52 +372,6 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         ambient,
         default_radius,
     })
-}
-
-/// Error maps of the default Both configuration: AO error, the two displayed images, FLIP.
-fn write_maps(
-    out: &Path,
-    reference: &reference::Reference,
-    ao: &Option<Vec<f32>>,
-    ref_image: &image::RgbImage,
-    gpu_image: &image::RgbImage,
-    flip_map: &image::RgbImage,
-) -> Result<()> {
-    let (w, h) = (reference.width, reference.height);
-    let save = |name: &str, img: &image::RgbImage| {
-        let rgba = image::DynamicImage::ImageRgb8(img.clone()).to_rgba8();
-        output::save_png(&out.join(name), &rgba)
-    };
-    if let Some(ao) = ao {
-        // Signed AO error: red where the GPU is darker than the truth, blue where lighter.
-        let map = image::RgbImage::from_fn(w, h, |x, y| {
-            let i = (y * w + x) as usize;
-            if !reference.valid[i] {
-                return image::Rgb([40, 40, 40]);
-            }
-            let e = ((ao[i] - reference.ao[i]) * 4.0).clamp(-1.0, 1.0);
-            let v = (255.0 * e.abs()) as u8;
-            if e < 0.0 {
-                image::Rgb([255, 255 - v, 255 - v])
-            } else {
-                image::Rgb([255 - v, 255 - v, 255])
-            }
-        });
-        save("error_ao_both_default.png", &map)?;
-        let reference_ao = image::RgbImage::from_fn(w, h, |x, y| {
-            let i = (y * w + x) as usize;
-            let v = (reference.ao[i].clamp(0.0, 1.0) * 255.0) as u8;
-            if reference.valid[i] {
-                image::Rgb([v, v, v])
-            } else {
-                image::Rgb([40, 40, 40])
-            }
-        });
-        save("reference_ao.png", &reference_ao)?;
-    }
-    save("reference_both_default.png", ref_image)?;
-    save("gpu_both_default.png", gpu_image)?;
-    save("error_flip_both_default.png", flip_map)
 }
 
 fn cell(v: Option<f64>, digits: usize) -> String {
@@ -538,123 +493,6 @@ impl Report {
             );
         }
         out
-    }
-
-    /// Log-log plot of HDR RMSE against the truth, against milliseconds: every mode on one chart,
-    /// one line per mode × variant through its sample counts (blur on, the first radius), every
-    /// other row as a faint point, and the Pareto front as a dashed black line.
-    pub fn plot(&self, path: &Path) -> Result<()> {
-        use plotters::prelude::*;
-        let (w, h) = (1024u32, 680u32);
-        let mut buffer = vec![0u8; (w * h * 3) as usize];
-        let font_result =
-            plotters::style::register_font("sans-serif", FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT);
-        if font_result.is_err() {
-            return Err(Error::output(path, "the plot font could not be loaded"));
-        }
-        let fail = |e: &dyn std::fmt::Display| Error::output(path, format!("plotting failed: {e}"));
-        {
-            let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| fail(&e))?;
-            let rows = &self.rows;
-            let (min_ms, max_ms) = rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.ms), b.max(r.ms)));
-            let (min_e, max_e) =
-                rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.hdr_rmse), b.max(r.hdr_rmse)));
-            let floor = |v: f64| v.max(1e-9).log10();
-            let mut chart = ChartBuilder::on(&root)
-                .caption("HDR RMSE against the one ray-traced truth, against frame time", ("sans-serif", 22))
-                .margin(16)
-                .x_label_area_size(48)
-                .y_label_area_size(72)
-                .build_cartesian_2d(floor(min_ms * 0.8)..floor(max_ms * 1.25), floor(min_e * 0.8)..floor(max_e * 1.25))
-                .map_err(|e| fail(&e))?;
-            chart
-                .configure_mesh()
-                .x_labels(12)
-                .y_labels(12)
-                .x_label_formatter(&|v| format!("{:.1}", 10f64.powf(*v)))
-                .y_label_formatter(&|v| format!("{:.4}", 10f64.powf(*v)))
-                .x_desc(format!(
-                    "frame time, ms ({})",
-                    if self.software { "lavapipe / llvmpipe, a CPU rasteriser" } else { "GPU" }
-                ))
-                .y_desc("RMSE of linear HDR radiance")
-                .label_style(("sans-serif", 16))
-                .draw()
-                .map_err(|e| fail(&e))?;
-            let colours =
-                [RGBColor(120, 120, 120), RGBColor(31, 119, 180), RGBColor(255, 127, 14), RGBColor(44, 160, 44)];
-            // Every row, faint: the other radii and blur settings.
-            chart
-                .draw_series(rows.iter().map(|r| {
-                    let m = Mode::ALL.iter().position(|m| *m == r.mode).unwrap_or(0);
-                    Circle::new((floor(r.ms), floor(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
-                }))
-                .map_err(|e| fail(&e))?;
-            let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
-            for (m, mode) in Mode::ALL.into_iter().enumerate() {
-                for variant in Variant::ALL {
-                    // Through the sample counts in order (timings are noisy; samples are not).
-                    let mut line: Vec<&Row> = rows
-                        .iter()
-                        .filter(|r| {
-                            r.mode == mode
-                                && r.variant == variant
-                                && !r.pyramid
-                                && (mode == Mode::Off || (r.blur && r.radius == first_radius))
-                        })
-                        .collect();
-                    if line.is_empty() {
-                        continue;
-                    }
-                    line.sort_by_key(|r| r.samples * 1000 + r.steps);
-                    let points: Vec<(f64, f64)> = line.iter().map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
-                    let colour = colours[m];
-                    let style = match variant {
-                        Variant::March => colour.stroke_width(3),
-                        Variant::Points => colour.mix(0.8).stroke_width(2),
-                        Variant::Classic => colour.mix(0.5).stroke_width(1),
-                    };
-                    let label = format!("{} {}", mode.title(), variant);
-                    chart
-                        .draw_series(LineSeries::new(points.clone(), style))
-                        .map_err(|e| fail(&e))?
-                        .label(label)
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
-                    let marker = if variant == Variant::default() { 5 } else { 3 };
-                    chart
-                        .draw_series(points.iter().map(|p| Circle::new(*p, marker, colour.filled())))
-                        .map_err(|e| fail(&e))?;
-                }
-            }
-            // The Pareto front, as a staircase through its rows in time order.
-            let front: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.pareto).map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
-            let mut stairs = Vec::new();
-            for (k, p) in front.iter().enumerate() {
-                if k > 0 {
-                    stairs.push((p.0, front[k - 1].1));
-                }
-                stairs.push(*p);
-            }
-            chart
-                .draw_series(DashedLineSeries::new(stairs, 6, 4, BLACK.stroke_width(2)))
-                .map_err(|e| fail(&e))?
-                .label("Pareto front")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
-            chart.draw_series(front.iter().map(|p| Cross::new(*p, 7, BLACK.stroke_width(2)))).map_err(|e| fail(&e))?;
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 15))
-                .draw()
-                .map_err(|e| fail(&e))?;
-            root.present().map_err(|e| fail(&e))?;
-        }
-        let image = image::RgbImage::from_raw(w, h, buffer).expect("plot buffer has its size");
-        output::save_png(path, &image::DynamicImage::ImageRgb8(image).to_rgba8())
     }
 
     /// Writes report.csv, report.md and report.png into `out`.
