@@ -197,7 +197,7 @@ pub struct Renderer {
     rig: LightRig,
     /// Default sampling radius of the current scene.
     scene_radius: f32,
-    /// The sky's E(n)/π as spherical harmonics (`Skybox::irradiance_sh`), in its own radiance.
+    /// The sky's E(n)/π as spherical harmonics (`Skybox::irradiance`), in its own radiance.
     sky_sh: [Vec3; 9],
     frame: FrameData,
     occlusion_data: OcclusionData,
@@ -252,7 +252,7 @@ impl Renderer {
             lights: scene.lights.clone(),
             rig: scene.rig,
             scene_radius: scene.default_radius(),
-            sky_sh: sky.irradiance_sh(),
+            sky_sh: sky.irradiance,
             occlusion_data: OcclusionData::new(device),
             lighting: LightingPass::new(device, &frame.layout, &targets)?,
             occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
@@ -390,7 +390,7 @@ impl Renderer {
     /// Replaces the sky; on error the old sky stays.
     pub fn set_sky(&mut self, gpu: &Gpu, sky: &Skybox) -> Result<()> {
         self.sky = SkyGpu::upload(gpu, &self.sky_layout, sky)?;
-        self.sky_sh = sky.irradiance_sh();
+        self.sky_sh = sky.irradiance;
         Ok(())
     }
 

@@ -35,6 +35,9 @@ pub struct Skybox {
     /// Six faces of `size * size` linear RGB texels, rows top to bottom.
     pub faces: Vec<Vec<[f32; 3]>>,
     pub warnings: Vec<String>,
+    /// E(n)/π as 9 spherical-harmonic coefficients ([`Skybox::irradiance_sh`]), computed once
+    /// when the sky is made — on the viewer's loading thread, not its render thread.
+    pub irradiance: [Vec3; 9],
 }
 
 /// The world direction through face `face` at cube coordinates `s`, `t` in [-1, 1]
@@ -201,7 +204,8 @@ impl Skybox {
         }
         let name =
             dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| dir.display().to_string());
-        Ok(Self { name, size: size.min(STORED_FACE_SIDE), faces, warnings })
+        Ok(Self { name, size: size.min(STORED_FACE_SIDE), faces, warnings, irradiance: [Vec3::ZERO; 9] }
+            .with_irradiance())
     }
 
     /// A sky computed from a function of the (unit) world direction.
@@ -217,7 +221,7 @@ impl Skybox {
                     .collect()
             })
             .collect();
-        Self { name: name.into(), size, faces, warnings: Vec::new() }
+        Self { name: name.into(), size, faces, warnings: Vec::new(), irradiance: [Vec3::ZERO; 9] }.with_irradiance()
     }
 
     /// A sky of the same radiance in every direction (the white-furnace test's sky).
@@ -254,6 +258,12 @@ impl Skybox {
     pub fn mean(&self) -> Vec3 {
         let (sum, weight) = self.texels().fold((Vec3::ZERO, 0.0), |(s, w), (_, l, dw)| (s + l * dw, w + dw));
         sum / weight.max(f32::MIN_POSITIVE)
+    }
+
+    /// Fills in [`Skybox::irradiance`].
+    fn with_irradiance(mut self) -> Self {
+        self.irradiance = self.irradiance_sh();
+        self
     }
 
     /// The sky's irradiance over π for every normal, E(n)/π, as 9 spherical-harmonic coefficients
