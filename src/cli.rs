@@ -63,6 +63,13 @@ pub(crate) fn parse_view(s: &str) -> std::result::Result<View, String> {
 
 #[derive(Args)]
 pub(crate) struct SceneArgs {
+    /// model: the model framed by the orbit camera; room: the model lying on the floor of a closed
+    /// room that fills the screen, seen by a fixed camera (the classic SSAO chapter's set-up)
+    #[arg(long = "scene", default_value = "model", value_parser = parse_layout)]
+    pub(crate) layout: scene::Layout,
+    /// With --scene room and no --model: the built-in figure's triangle count [default: 50000]
+    #[arg(long)]
+    pub(crate) triangles: Option<usize>,
     /// OBJ model to load [default: models/cornell/cornell.obj]
     #[arg(long)]
     pub(crate) model: Option<PathBuf>,
@@ -93,6 +100,10 @@ pub(crate) struct SceneArgs {
     /// Scale the model by this factor (defaults scale with it)
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub(crate) scale: f32,
+}
+
+pub(crate) fn parse_layout(s: &str) -> std::result::Result<scene::Layout, String> {
+    s.parse::<scene::Layout>().map_err(|e| e.to_string())
 }
 
 pub(crate) fn parse_far(s: &str) -> std::result::Result<f32, String> {
@@ -321,14 +332,15 @@ impl SceneArgs {
     pub(crate) fn load(&self) -> Result<(Scene, scene::Skybox)> {
         // Beyond these, positions lose the precision the depth buffer and the march need.
         in_range("scale", self.scale, 1e-6, 1e6)?;
-        let model =
-            crate::with_spinner("loading the model", || scene::load_model(self.model.as_deref()))?.scaled(self.scale);
+        let model = crate::with_spinner("loading the model", || {
+            self.layout.load(self.model.as_deref(), self.scale, self.triangles)
+        })?;
         let sky = crate::with_spinner("loading the sky", || scene::load_skybox(self.skybox.as_deref()))?;
         Ok((Scene::new(model, self.lights, self.seed), sky))
     }
 
     pub(crate) fn camera(&self, scene: &Scene) -> Result<OrbitCamera> {
-        let mut camera = OrbitCamera::framing(&scene.model.bounds);
+        let mut camera = self.layout.camera(&scene.model.bounds);
         if let Some(yaw) = self.yaw {
             camera.yaw_deg = in_range("yaw", yaw, -36000.0, 36000.0)?;
         }

@@ -279,6 +279,8 @@ fn run_view(args: ViewArgs) -> Result<()> {
         lights: scene.lights,
         seed: scene.seed,
         scale: scene.scale,
+        layout: scene.layout,
+        triangles: scene.triangles,
         settings,
         size,
         screenshot_dir,

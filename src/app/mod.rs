@@ -35,6 +35,10 @@ pub struct ViewerOptions {
     pub seed: u64,
     /// Scales the model (the stability cases' `--scale`).
     pub scale: f32,
+    /// Where the model is placed: as it is, or in the benchmark room (also for models loaded later).
+    pub layout: scene::Layout,
+    /// The room's built-in figure's size (`--triangles`).
+    pub triangles: Option<usize>,
     pub settings: Settings,
     /// Window size in physical pixels (panel included).
     pub size: (u32, u32),
@@ -46,7 +50,7 @@ pub struct ViewerOptions {
 /// Opens the window and runs until it is closed.
 pub fn run(options: ViewerOptions) -> Result<()> {
     // Load before opening the window: a bad file is an error on the command line, not a window.
-    let model = scene::load_model(options.model.as_deref())?.scaled(options.scale);
+    let model = options.layout.load(options.model.as_deref(), options.scale, options.triangles)?;
     let sky = scene::load_skybox(options.skybox.as_deref())?;
     let scene = Scene::new(model, options.lights, options.seed);
     let camera = (options.camera)(&scene)?;
@@ -120,6 +124,8 @@ struct Viewer {
     egui_renderer: egui_wgpu::Renderer,
     panel: PanelState,
     screenshot_dir: PathBuf,
+    /// Where models are placed (`--scene`), the first and every one loaded later.
+    layout: scene::Layout,
     /// Cursor position in physical pixels.
     cursor: (f64, f64),
     /// When egui asked to be drawn again (an animation, a tooltip's delay).
@@ -232,6 +238,7 @@ impl Viewer {
             egui_renderer,
             panel,
             screenshot_dir: options.screenshot_dir.clone(),
+            layout: options.layout,
             cursor: (0.0, 0.0),
             egui_repaint: None,
             timing_refresh: None,
@@ -467,9 +474,16 @@ impl Viewer {
                 },
                 Loaded::Model(path, Ok(model)) => {
                     let warnings = model.warnings.len();
+                    let model = match self.layout.arrange(model) {
+                        Ok(model) => model,
+                        Err(e) => {
+                            self.panel.say(format!("{e}; keeping model {}", self.panel.model_name), true);
+                            continue;
+                        }
+                    };
                     self.scene = Scene::new(model, self.panel.lights, self.panel.seed);
                     self.renderer.set_scene(&self.gpu, &self.scene);
-                    self.home = OrbitCamera::framing(&self.scene.model.bounds);
+                    self.home = self.layout.camera(&self.scene.model.bounds);
                     self.camera = self.home;
                     self.panel.model_name = self.scene.model.name.clone();
                     self.panel

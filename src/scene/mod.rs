@@ -5,6 +5,7 @@ pub mod builtin;
 pub mod camera;
 pub mod lights;
 pub mod model;
+pub mod room;
 pub mod skybox;
 
 use std::path::Path;
@@ -14,6 +15,7 @@ use glam::Vec3;
 pub use camera::OrbitCamera;
 pub use lights::{LightRig, PointLight};
 pub use model::{Material, Model, Vertex};
+pub use room::Layout;
 pub use skybox::Skybox;
 
 use crate::Result;
