@@ -25,6 +25,26 @@ fn finite4(v: vec4<f32>) -> bool {
 }
 
 
+// The classic 4x4 box: the sampling pass wrote every pixel (the sky as unoccluded), so no depth
+// is read per neighbour; only non-finite values are left out.
+fn box_blur(pixel: vec2<i32>) -> vec4<f32> {
+    let last = vec2<i32>(frame.viewport.xy) - 1;
+    var sum = vec4<f32>(0.0);
+    var total = 0.0;
+    for (var y = -2; y < 2; y += 1) {
+        for (var x = -2; x < 2; x += 1) {
+            let value = textureLoad(input, clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), last), 0);
+            let ok = finite4(value);
+            sum += select(vec4<f32>(0.0), value, ok);
+            total += select(0.0, 1.0, ok);
+        }
+    }
+    if total > 0.0 {
+        return sum / total;
+    }
+    return textureLoad(input, pixel, 0);
+}
+
 fn blur(position: vec2<f32>) -> vec4<f32> {
     let pixel = vec2<i32>(position);
     let depth = load_depth(pixel);
@@ -32,7 +52,10 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
         // A sky pixel: no occlusion, no DO.
         return select(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(1.0, 0.0, 0.0, 1.0), AO_ONLY);
     }
-    let n = textureLoad(g_normal, pixel, 0).xyz;
+    if !BILATERAL {
+        return box_blur(pixel);
+    }
+    let n = load_normal(pixel);
     let p = view_position(position, depth);
     let size = vec2<i32>(frame.viewport.xy);
     // Never 0: a radius of 0 still blurs flat surfaces.
@@ -51,7 +74,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
             if BILATERAL {
                 let q = view_position(vec2<f32>(t) + 0.5, d);
                 let plane = abs(dot(n, q - p));
-                let n_t = textureLoad(g_normal, t, 0).xyz;
+                let n_t = load_normal(t);
                 let agree = max(dot(n, n_t), 0.0);
                 w = max(1.0 - plane / tolerance, 0.0) * agree * agree * agree * agree;
             }

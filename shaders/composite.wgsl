@@ -70,7 +70,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     var color: vec3<f32>;
     var normal = vec4<f32>(0.0);
     if LIGHT_LOOP || (!CLASSIC && !HAS_DO) {
-        normal = textureLoad(g_normal, pixel, 0);
+        normal = load_surface(pixel);
     }
     if CLASSIC {
         color = ambient * albedo.rgb * ao;

@@ -1,12 +1,14 @@
 // G-buffer pass: rasterises the model once and stores what every mode shares.
 //   albedo target (Rgba8UnormSrgb): rgb diffuse albedo, a specular strength
-//   normal target (Rgba16Float):    xyz view-space unit normal, w Blinn-Phong shininess
+//   normal target (R32Uint):        view-space unit normal and Blinn-Phong shininess, packed
+//                                   (common/surface_pack.wgsl)
 //   depth (Depth32Float, reverse-Z): position is reconstructed from it, not stored.
 // Faces are two-sided: the normal that reaches the G-buffer is turned to the side of the surface
 // the camera sees, whatever the triangle's winding (see `camera_side`), so single-sided walls,
 // leaves seen from behind and meshes wound against their normals are lit from the visible side.
 
 #include "common/uniforms.wgsl"
+#include "common/surface_pack.wgsl"
 
 struct MaterialParams {
     // rgb diffuse albedo, a specular strength
@@ -65,7 +67,7 @@ fn camera_side(n: vec3<f32>, p: vec3<f32>, plane: vec3<f32>, front: bool) -> vec
 
 struct GBufferOut {
     @location(0) albedo: vec4<f32>,
-    @location(1) normal: vec4<f32>,
+    @location(1) normal: u32,
 }
 
 @fragment
@@ -81,6 +83,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     let n = camera_side(safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0)), in.view_position, plane, front);
     var out: GBufferOut;
     out.albedo = vec4<f32>(albedo, specular);
-    out.normal = vec4<f32>(n, material.params.x);
+    out.normal = pack_surface(n, material.params.x);
     return out;
 }

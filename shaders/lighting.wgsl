@@ -23,7 +23,7 @@ fn fs_main(in: FullscreenOut) -> LightingOut {
         return out;
     }
     let albedo = textureLoad(g_albedo, pixel, 0);
-    let normal = textureLoad(g_normal, pixel, 0);
+    let normal = load_surface(pixel);
     let p = view_position(in.position.xy, depth);
     let light = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
     out.hdr = vec4<f32>(light.diffuse + light.specular, 1.0);

@@ -105,7 +105,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     if depth <= 0.0 {
         return out;
     }
-    let n = textureLoad(g_normal, pixel, 0).xyz;
+    let n = load_normal(pixel);
     let radius = occ.params.x;
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
     let p = view_position(position, depth) + n * occ.params.y;
@@ -246,7 +246,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                     near_mask |= bits;
                 }
                 if COMPUTE_DO && INDIRECT && fresh != 0u {
-                    let n_s = textureLoad(g_normal, texel, 0).xyz;
+                    let n_s = load_normal(texel);
                     // Only a sender facing the receiver sends its light this way.
                     if dot(n_s, -front) > 0.0 {
                         // The measure of the sectors it occludes first, group by group.

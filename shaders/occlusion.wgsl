@@ -81,7 +81,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     if depth <= 0.0 {
         return out;
     }
-    let n = textureLoad(g_normal, pixel, 0).xyz;
+    let n = load_normal(pixel);
     let p = view_position(position, depth);
     let radius = occ.params.x;
     let bias = occ.params.y;
@@ -124,7 +124,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
             if COMPUTE_DO {
                 if has_surface && s.z >= q.z {
                     if INDIRECT {
-                        let n_s = textureLoad(g_normal, texel, 0).xyz;
+                        let n_s = load_normal(texel);
                         let albedo_s = textureLoad(g_albedo, texel, 0).rgb;
                         indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s * frame.sky.z;
                     }
@@ -141,7 +141,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                 let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
                 direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.params.w).rgb;
                 if INDIRECT && o > 0.0 {
-                    let n_s = textureLoad(g_normal, texel, 0).xyz;
+                    let n_s = load_normal(texel);
                     let to_receiver = p - s;
                     let d2 = max(dot(to_receiver, to_receiver), 1e-30);
                     let w = to_receiver * inverseSqrt(d2);

@@ -5,10 +5,11 @@
 
 #include "common/uniforms.wgsl"
 #include "common/fullscreen.wgsl"
+#include "common/surface_pack.wgsl"
 
 @group(1) @binding(0) var hdr: texture_2d<f32>;
 @group(1) @binding(1) var g_albedo: texture_2d<f32>;
-@group(1) @binding(2) var g_normal: texture_2d<f32>;
+@group(1) @binding(2) var g_normal: texture_2d<u32>;  // packed (surface_pack.wgsl)
 @group(1) @binding(3) var g_depth: texture_2d<f32>;  // depth32float as unfilterable float (GL-safe)
 @group(1) @binding(4) var ao_map: texture_2d<f32>;
 @group(1) @binding(5) var do_map: texture_2d<f32>;
@@ -45,8 +46,13 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             return textureLoad(g_albedo, pixel, 0).rgb;
         }
         case 2u: {
-            // Normals as colours, n · 0.5 + 0.5, shown as written (no sRGB curve).
-            return pow(textureLoad(g_normal, pixel, 0).xyz * 0.5 + 0.5, vec3<f32>(2.2));
+            // Normals as colours, n · 0.5 + 0.5, shown as written (no sRGB curve); the sky, which
+            // has no normal, mid-grey.
+            var n = vec3<f32>(0.0);
+            if textureLoad(g_depth, pixel, 0).r > 0.0 {
+                n = unpack_normal(textureLoad(g_normal, pixel, 0).r);
+            }
+            return pow(n * 0.5 + 0.5, vec3<f32>(2.2));
         }
         case 3u: {
             // Distance from the camera, linear: bright at the camera, black at twice the orbit

@@ -6,7 +6,7 @@ mod common;
 
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot};
 use glam::{Vec3, Vec4Swizzles};
-use ssdo::render::readback::{read_depth, read_rgba16f};
+use ssdo::render::readback::{read_depth, read_rgba16f, read_surfaces};
 use ssdo::render::{Settings, Step};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
 
@@ -22,11 +22,11 @@ fn plane_normal_and_depth_come_out_as_expected() {
     let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
     let camera = looking(Vec3::ZERO, 20.0, 30.0, 4.0);
     shoot(&gpu, &mut r, &camera);
-    let normals = read_rgba16f(&gpu, &r.targets().normal.texture).unwrap();
+    let normals = read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
     let expected = (camera.world_to_view() * Vec3::Y.extend(0.0)).xyz();
     let centre = normals[60 * 160 + 80];
     assert!((Vec3::new(centre[0], centre[1], centre[2]) - expected).length() < 2e-3, "{centre:?} vs {expected}");
-    assert_eq!(centre[3], 32.0, "shininess travels in w");
+    assert!((centre[3] - 32.0).abs() < 0.04 * 32.0, "shininess travels with the normal: {}", centre[3]);
     let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
     // Reverse-Z, infinite far: depth = near / (distance along the view axis). Intersect the ray
     // through the centre of pixel (80, 60) with the plane y = 0.

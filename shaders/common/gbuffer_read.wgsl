@@ -1,8 +1,11 @@
 // The G-buffer as the screen-space passes read it (bind group 1, bindings 0-2), and view-space
 // position reconstructed from reverse-Z depth.
 
+#include "common/surface_pack.wgsl"
+
 @group(1) @binding(0) var g_albedo: texture_2d<f32>;
-@group(1) @binding(1) var g_normal: texture_2d<f32>;
+// Normal and shininess packed in one u32 (see surface_pack.wgsl).
+@group(1) @binding(1) var g_normal: texture_2d<u32>;
 // Depth is bound as an unfilterable float texture rather than `texture_depth_2d`: WebGPU allows it
 // for depth32float, and wgpu's GL backend cannot translate `textureLoad` from a depth texture.
 @group(1) @binding(2) var g_depth: texture_2d<f32>;
@@ -10,6 +13,17 @@
 // Reverse-Z depth at `pixel`: 0 where nothing was drawn (the sky), larger nearer the camera.
 fn load_depth(pixel: vec2<i32>) -> f32 {
     return textureLoad(g_depth, pixel, 0).r;
+}
+
+// Unit view-space normal at `pixel`.
+fn load_normal(pixel: vec2<i32>) -> vec3<f32> {
+    return unpack_normal(textureLoad(g_normal, pixel, 0).r);
+}
+
+// Normal in xyz and shininess in w at `pixel`.
+fn load_surface(pixel: vec2<i32>) -> vec4<f32> {
+    let bits = textureLoad(g_normal, pixel, 0).r;
+    return vec4<f32>(unpack_normal(bits), unpack_shininess(bits));
 }
 
 // View-space position of the surface at `pixel` with depth `depth` (> 0). With

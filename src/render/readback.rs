@@ -61,6 +61,18 @@ pub fn read_rgba16f(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>>
     Ok(halves.chunks_exact(4).map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()]).collect())
 }
 
+/// The G-buffer's packed normal target as view-space normal (xyz) and shininess (w).
+pub fn read_surfaces(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>> {
+    let bytes = read_texture(gpu, texture)?;
+    Ok(bytemuck::cast_slice::<u8, u32>(&bytes)
+        .iter()
+        .map(|&bits| {
+            let (n, shininess) = super::targets::unpack_surface(bits);
+            [n.x, n.y, n.z, shininess]
+        })
+        .collect())
+}
+
 /// A texture of one half float per pixel (AO), as f32.
 pub fn read_r16f(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
     let bytes = read_texture(gpu, texture)?;

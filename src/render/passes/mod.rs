@@ -47,13 +47,24 @@ pub fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// Layout entries 0-2 of the full-screen passes: albedo, normal (unfilterable floats), depth.
+/// Layout entries 0-2 of the full-screen passes: albedo (unfilterable float), the packed normal
+/// (u32), depth.
 pub fn gbuffer_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
-    [
-        texture_entry(0, false, wgpu::TextureViewDimension::D2),
-        texture_entry(1, false, wgpu::TextureViewDimension::D2),
-        depth_entry(2),
-    ]
+    [texture_entry(0, false, wgpu::TextureViewDimension::D2), normal_entry(1), depth_entry(2)]
+}
+
+/// A layout entry for the G-buffer's packed normal target (`u32`, read with `textureLoad`).
+pub fn normal_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Uint,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
 }
 
 /// A layout entry for a uniform buffer read by fragment shaders.

@@ -52,7 +52,7 @@ impl TonemapPass {
         let float = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tonemap_layout"),
-            entries: &[float(0), float(1), float(2), depth_entry(3), float(4), float(5)],
+            entries: &[float(0), float(1), super::normal_entry(2), depth_entry(3), float(4), float(5)],
         });
         Ok(Self {
             module,
