@@ -9,17 +9,28 @@
 // The classic variant keeps the source chapters' composite: A·ρ·AO + DO (DO without ρ), no
 // sky irradiance. Which terms exist is decided when the pipeline is built (override constants),
 // so a mode or a scene that lacks a term pays nothing for it. After a lighting pass the composite
-// is blended additively onto the direct light that pass wrote; otherwise it runs the light loop.
+// adds the direct light that pass wrote; otherwise it runs the light loop.
+//
+// Two outputs. Into the HDR target (pre-exposed radiance; the skybox and tone-map passes follow)
+// when something reads HDR afterwards: the report, `--raw`, `--stats`, the debug views. Otherwise
+// (DISPLAY) straight into the output: the sky where nothing was drawn, exposure, tone curve and
+// sRGB here, in the output's viewport — no HDR write, no skybox or tone-map pass.
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
 #include "common/point_lights.wgsl"
 #include "common/fullscreen.wgsl"
+#include "common/tone_curve.wgsl"
 
 // AO alone (SSAO, r channel).
 @group(1) @binding(3) var ao_map: texture_2d<f32>;
 // DO in rgb, AO in a (SSDO, SSAO+SSDO).
 @group(1) @binding(4) var do_map: texture_2d<f32>;
+// The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
+@group(1) @binding(5) var direct_map: texture_2d<f32>;
+// The sky, for the background (DISPLAY only).
+@group(2) @binding(0) var sky_map: texture_cube<f32>;
+@group(2) @binding(1) var sky_sampler: sampler;
 
 // Run the point-light loop here (there are lights and no lighting pass ran).
 override LIGHT_LOOP: bool = true;
@@ -32,6 +43,12 @@ override AO_IN_DO: bool = false;
 override CLASSIC: bool = false;
 // The "lighting only" view: every surface white.
 override WHITE_ALBEDO: bool = false;
+// Draw tone-mapped colour straight into the output (see the top of the file).
+override DISPLAY: bool = false;
+// DISPLAY: the output format does the sRGB encoding itself.
+override OUTPUT_SRGB: bool = true;
+// DISPLAY after a lighting pass: read its direct light from `direct_map`.
+override DIRECT_INPUT: bool = false;
 
 // E(n)/π of the sky for world-space unit normal `n` (pre-exposed), from the 9 coefficients in
 // the order of `sh_basis` (src/scene/skybox.rs). Three bands can ring below 0 opposite a bright
@@ -46,12 +63,40 @@ fn sky_irradiance(n: vec3<f32>) -> vec3<f32> {
     return max(e, vec3<f32>(0.0));
 }
 
+// The sky's pre-exposed radiance seen through the centre of `pixel` (as the skybox pass draws it).
+fn sky_radiance(pixel: vec2<i32>) -> vec3<f32> {
+    let uv = (vec2<f32>(pixel) + 0.5) * frame.viewport.zw;
+    let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
+    let view_dir = vec3<f32>(ndc.x / frame.view_to_clip[0][0], ndc.y / frame.view_to_clip[1][1], -1.0);
+    let world_dir = (frame.view_to_world * vec4<f32>(view_dir, 0.0)).xyz;
+    return textureSampleLevel(sky_map, sky_sampler, world_dir, 0.0).rgb * frame.sky.x;
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
-    let pixel = vec2<i32>(in.position.xy);
+    if DISPLAY {
+        // The fragment's position is in the output; the targets are addressed from the image's
+        // own top-left corner.
+        let size = frame.viewport.xy;
+        let pixel = vec2<i32>(min(in.position.xy - frame.output_origin.xy, size - 1.0));
+        var color = radiance(pixel, vec2<f32>(pixel) + 0.5);
+        color = tone_map(color * frame.camera.z);
+        if !OUTPUT_SRGB {
+            color = linear_to_srgb(color);
+        }
+        return vec4<f32>(color, 1.0);
+    }
+    return vec4<f32>(radiance(vec2<i32>(in.position.xy), in.position.xy), 1.0);
+}
+
+// Pre-exposed radiance leaving `pixel` (centre `position`) towards the camera.
+fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     let depth = load_depth(pixel);
     if depth <= 0.0 {
-        return vec4<f32>(0.0);
+        if DISPLAY {
+            return sky_radiance(pixel);
+        }
+        return vec3<f32>(0.0);
     }
     var albedo = textureLoad(g_albedo, pixel, 0);
     if WHITE_ALBEDO {
@@ -84,9 +129,12 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         color = albedo.rgb * (sky_irradiance(world_normal) + ambient) * ao;
     }
     if LIGHT_LOOP {
-        let p = view_position(in.position.xy, depth);
+        let p = view_position(position, depth);
         let direct = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
         color += direct.diffuse + direct.specular;
     }
-    return vec4<f32>(color, 1.0);
+    if DIRECT_INPUT {
+        color += textureLoad(direct_map, pixel, 0).rgb;
+    }
+    return color;
 }

@@ -6,6 +6,7 @@
 #include "common/uniforms.wgsl"
 #include "common/fullscreen.wgsl"
 #include "common/surface_pack.wgsl"
+#include "common/tone_curve.wgsl"
 
 @group(1) @binding(0) var hdr: texture_2d<f32>;
 @group(1) @binding(1) var g_albedo: texture_2d<f32>;
@@ -22,22 +23,6 @@ override HAS_AO: bool = false;
 override HAS_DO: bool = false;
 // AO travels in the DO buffer's alpha.
 override AO_IN_DO: bool = false;
-
-fn aces(x: vec3<f32>) -> vec3<f32> {
-    let y = max(x, vec3<f32>(0.0));
-    return clamp((y * (2.51 * y + 0.03)) / (y * (2.43 * y + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
-}
-
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let low = c * 12.92;
-    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(high, low, c <= vec3<f32>(0.0031308));
-}
-
-fn tone_map(radiance: vec3<f32>) -> vec3<f32> {
-    // A huge value maps to white; the curve's rational form would give inf/inf = NaN.
-    return select(aces(radiance), vec3<f32>(1.0), radiance > vec3<f32>(1e4));
-}
 
 // The displayed colour (linear, before sRGB encoding) of `pixel`.
 fn shade(pixel: vec2<i32>) -> vec3<f32> {

@@ -111,6 +111,8 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     let size = (args.size.0, args.size.1);
     gpu.check_size(size.0, size.1)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
+    // --raw and --stats read the linear HDR image back; otherwise the frame tone-maps in place.
+    renderer.keep_hdr(&gpu, args.raw || args.stats);
     let mut panels = Vec::new();
     let mut stats_json = serde_json::Map::new();
     // Every file of the run lands together, or none does; leftovers of killed runs go first.

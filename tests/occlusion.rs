@@ -62,7 +62,7 @@ fn render(gpu: &Gpu, r: &mut Renderer, camera: &OrbitCamera, blurred: bool) -> B
         (None, Some(d)) if r.plan().decl.ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
         _ => None,
     };
-    Buffers { ao, directional, hdr: read_rgba16f(gpu, &t.hdr.texture).unwrap() }
+    Buffers { ao, directional, hdr: read_rgba16f(gpu, &t.hdr().unwrap().texture).unwrap() }
 }
 
 fn open_plane(albedo: f32) -> Scene {

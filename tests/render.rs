@@ -107,7 +107,7 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     assert!(under.x > far.x + 40.0, "redder than far away: {under} vs {far}");
     assert!((far.x - far.y).abs() < 12.0, "grey far from it: {far}");
     // Irradiance falls as 1/d²: check the HDR value straight against the formula.
-    let hdr = read_rgba16f(&gpu, &r.targets().hdr.texture).unwrap();
+    let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
     let (hx, hy) = project(Vec3::new(1.5, 0.0, 0.0));
     let got = hdr[hy as usize * 160 + hx as usize][0];
     let to_light = Vec3::new(-1.0, 0.3, 0.0) - Vec3::new(1.5, 0.0, 0.0);
@@ -145,7 +145,7 @@ fn default_scene_renders_finite_with_every_part_visible() {
     let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
     let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
     let image = shoot(&gpu, &mut r, &camera);
-    let hdr = read_rgba16f(&gpu, &r.targets().hdr.texture).unwrap();
+    let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
     assert!(hdr.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)), "HDR finite and non-negative");
     // Clearly red and clearly blue (the sky's light pales both walls a little).
     let (r8, g8, b8) =

@@ -187,6 +187,7 @@ fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
     for case in cases(&gpu, dir.path()) {
         let mut renderer =
             Renderer::new(&gpu, &case.scene, &case.sky, case.size, CAPTURE_FORMAT, case.settings).unwrap();
+        renderer.keep_hdr(&gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::ALL {
                 renderer.settings = Settings { mode, variant, ..case.settings };

@@ -68,7 +68,7 @@ fn buffers(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, mode: M
     let t = r.targets();
     match view {
         View::Ao => read_rgba16f(gpu, &t.raw.directional.as_ref().unwrap().texture).unwrap(),
-        _ => read_rgba16f(gpu, &t.hdr.texture).unwrap(),
+        _ => read_rgba16f(gpu, &t.hdr().unwrap().texture).unwrap(),
     }
 }
 
@@ -161,7 +161,7 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
             let settings = Settings { mode: Mode::Ssdo, ambient: 0.0, blur: false, ..Settings::default() };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), settings);
             shoot(&gpu, &mut r, &camera);
-            let hdr = read_rgba16f(&gpu, &r.targets().hdr.texture).unwrap();
+            let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
             let p = hdr[(H as usize / 2) * W as usize + W as usize / 2];
             let got = Vec3::new(p[0], p[1], p[2]);
             let want = albedo * sky_radiance;

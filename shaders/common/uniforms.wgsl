@@ -18,6 +18,9 @@ struct Frame {
     shading: vec4<f32>,
     // light count, frame index, unused, unused
     counts: vec4<u32>,
+    // xy: the pixel of the output where this image starts (the viewer's 3D view beside its
+    // panel), zw unused. Passes that draw straight into the output subtract it.
+    output_origin: vec4<f32>,
     // The sky's irradiance E(n)/π for a world-space normal: 9 spherical-harmonic coefficients
     // (rgb), scaled by the sky scale and strength and pre-exposed (Skybox::irradiance_sh).
     sky_sh: array<vec4<f32>, 9>,

@@ -19,6 +19,8 @@ pub struct FrameInputs {
     pub shading: [f32; 4],
     /// The sky's E(n)/π as spherical harmonics, in radiance (scaled, not yet pre-exposed).
     pub sky_sh: [Vec3; 9],
+    /// Where the image starts in the output target (the viewer's panel is beside it).
+    pub output_origin: (u32, u32),
 }
 
 pub struct FrameData {
@@ -126,6 +128,7 @@ impl FrameData {
             sky: [inputs.sky_scale * inputs.pre_exposure, inputs.sky_mips as f32, inputs.pre_exposure, 0.0],
             shading: inputs.shading,
             counts: [lights.len() as u32, self.frame_index, 0, 0],
+            output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32, 0.0, 0.0],
             sky_sh: inputs.sky_sh.map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));

@@ -220,6 +220,8 @@ pub struct Renderer {
     tonemap: TonemapPass,
     /// Format of what `encode` draws into.
     output: wgpu::TextureFormat,
+    /// Keep the HDR image for reading back after the frame (see [`Renderer::keep_hdr`]).
+    keep_hdr: bool,
     timer: Option<GpuTimer>,
 }
 
@@ -236,8 +238,7 @@ impl Renderer {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
         let features = SceneFeatures { lights: scene.lights.len() };
-        let plan =
-            Plan::new(settings.mode, features, settings.blur, settings.variant.marches() && settings.depth_pyramid);
+        let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan);
@@ -257,11 +258,12 @@ impl Renderer {
             lighting: LightingPass::new(device, &frame.layout, &targets)?,
             occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
             blur: BlurPass::new(device, &frame.layout)?,
-            composite: CompositePass::new(device, &frame.layout)?,
+            composite: CompositePass::new(device, &frame.layout, &sky_layout, output)?,
             skybox: SkyboxPass::new(device, &frame.layout, &sky_layout)?,
-            light_cubes: LightCubesPass::new(device, &frame.layout)?,
+            light_cubes: LightCubesPass::new(device, &frame.layout, output)?,
             tonemap: TonemapPass::new(device, &frame.layout, output)?,
             output,
+            keep_hdr: false,
             plan,
             frame,
             sky_layout,
@@ -299,15 +301,29 @@ impl Renderer {
     /// Brings the plan, targets and pipelines in line with the settings and lights: only what a
     /// change affects is rebuilt. Called by [`Renderer::encode`]; call it to read the new plan.
     pub fn apply(&mut self, gpu: &Gpu) {
-        let s = &self.settings;
-        let pyramid = s.variant.marches() && s.depth_pyramid;
-        let plan = Plan::new(s.mode, SceneFeatures { lights: self.lights.len() }, s.blur, pyramid);
+        let plan = Self::plan_for(&self.settings, SceneFeatures { lights: self.lights.len() }, self.keep_hdr);
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
         } else if (self.settings.variant, self.settings.view) != self.prepared {
             self.prepare_passes(gpu);
         }
+    }
+
+    /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
+    /// frame) unless HDR is kept or a debug view needs the tone-map pass.
+    fn plan_for(settings: &Settings, features: SceneFeatures, keep_hdr: bool) -> Plan {
+        let pyramid = settings.variant.marches() && settings.depth_pyramid;
+        let display = !keep_hdr && settings.view == View::Final;
+        Plan::new(settings.mode, features, settings.blur, pyramid, display)
+    }
+
+    /// Keeps the linear HDR image of each frame in `targets().hdr` for reading back (the report,
+    /// `--raw`, `--stats`, tests). Off by default: the final image is then tone-mapped by the
+    /// composite straight into the output, with no HDR write, skybox or tone-map pass.
+    pub fn keep_hdr(&mut self, gpu: &Gpu, keep: bool) {
+        self.keep_hdr = keep;
+        self.apply(gpu);
     }
 
     fn rebuild_targets(&mut self, gpu: &Gpu) {
@@ -326,6 +342,7 @@ impl Renderer {
         self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused, &self.unused_pyramid);
         self.blur.prepare(device, t, plan, variant, &self.occlusion_data);
         self.composite.prepare(device, t, plan, variant, view == View::LightingOnly, &self.unused);
+        self.light_cubes.prepare(device, t);
         self.tonemap.prepare(device, t, plan, view, &self.unused);
         self.prepared = (variant, view);
     }
@@ -478,6 +495,7 @@ impl Renderer {
             pre_exposure: self.pre_exposure(),
             shading: [s.ao_strength, s.ao_power, 0.0, 0.0],
             sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
+            output_origin: origin,
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.samples() {
@@ -516,11 +534,14 @@ impl Renderer {
                 // Denoise AO/DO.
                 Step::Blur => self.blur.encode(encoder, ts, t, frame),
                 // Ambient·AO + DO (+ direct light) into HDR.
-                Step::Composite => self.composite.encode(encoder, ts, t, frame),
+                Step::Composite => self.composite.encode(encoder, ts, t, frame, sky, output, origin),
                 // Sky behind everything.
                 Step::Skybox => self.skybox.encode(encoder, ts, t, frame, &self.sky),
                 // Lights as emissive cubes.
-                Step::LightCubes => self.light_cubes.encode(encoder, ts, t, frame, self.lights.len() as u32),
+                Step::LightCubes => {
+                    let display = self.plan.display.then_some((output, origin));
+                    self.light_cubes.encode(encoder, ts, t, frame, self.lights.len() as u32, display)
+                }
                 // HDR to display.
                 Step::Tonemap => self.tonemap.encode(encoder, ts, t, frame, output, origin),
             }

@@ -70,7 +70,7 @@ fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<V
         };
         stats.push(BufferStats::of("ao", ao.into_iter()));
     }
-    let hdr = read_rgba16f(gpu, &renderer.targets().hdr.texture)?;
+    let hdr = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?;
     let hdr_stats = BufferStats::of("hdr", hdr.iter().flat_map(|p| [p[0], p[1], p[2]]).map(|v| v / pre));
     if decl.directional_occlusion {
         for (view, name) in [(View::DoDirect, "do_direct"), (View::DoIndirect, "do_indirect")] {
@@ -89,7 +89,7 @@ fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<V
 pub fn hdr_image(gpu: &Gpu, renderer: &Renderer) -> Result<image::Rgba32FImage> {
     let (w, h) = renderer.size();
     let pre = renderer.pre_exposure();
-    let hdr = read_rgba16f(gpu, &renderer.targets().hdr.texture)?;
+    let hdr = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?;
     let data: Vec<f32> = hdr.iter().flat_map(|p| [p[0] / pre, p[1] / pre, p[2] / pre, 1.0]).collect();
     Ok(image::Rgba32FImage::from_raw(w, h, data).expect("HDR readback has the renderer's size"))
 }

@@ -160,8 +160,8 @@ pub struct Targets {
     /// xyz view-space normal, w shininess
     pub normal: Target,
     pub depth: Target,
-    /// Linear HDR radiance before tone mapping.
-    pub hdr: Target,
+    /// Linear HDR radiance before tone mapping (not in a display plan without a lighting pass).
+    pub hdr: Option<Target>,
     /// Diffuse radiance of each surface under the point lights: SSDO's bounce source.
     pub bounce: Option<Target>,
     /// What the sampling pass writes.
@@ -179,12 +179,19 @@ impl Targets {
             albedo: Target::new(device, "gbuffer_albedo", size, ALBEDO_FORMAT),
             normal: Target::new(device, "gbuffer_normal", size, NORMAL_FORMAT),
             depth: Target::new(device, "gbuffer_depth", size, DEPTH_FORMAT),
-            hdr: Target::new(device, "hdr_color", size, HDR_FORMAT),
+            hdr: plan.keeps_hdr().then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
             bounce: plan.indirect().then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
             raw: OcclusionTargets::new(device, plan, size, false),
             blurred: plan.blur.then(|| OcclusionTargets::new(device, plan, size, true)),
             pyramid: plan.has(super::modes::Step::DepthPyramid).then(|| Pyramid::new(device, size)),
         }
+    }
+
+    /// The HDR target, where the plan keeps one (see `Renderer::keep_hdr`).
+    pub fn hdr(&self) -> crate::Result<&Target> {
+        self.hdr.as_ref().ok_or_else(|| {
+            crate::Error::Gpu("this frame kept no HDR image: call Renderer::keep_hdr(true) before rendering".into())
+        })
     }
 
     /// The AO/DO buffers the composite reads: blurred when the plan blurs.
@@ -194,8 +201,13 @@ impl Targets {
 
     /// Every allocated target with its size in bytes.
     pub fn allocations(&self) -> Vec<(&'static str, u64)> {
-        let fixed = [&self.albedo, &self.normal, &self.depth, &self.hdr].into_iter();
-        let optional = self.bounce.iter().chain(self.raw.all()).chain(self.blurred.iter().flat_map(|b| b.all()));
+        let fixed = [&self.albedo, &self.normal, &self.depth].into_iter();
+        let optional = self
+            .hdr
+            .iter()
+            .chain(self.bounce.iter())
+            .chain(self.raw.all())
+            .chain(self.blurred.iter().flat_map(|b| b.all()));
         let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();
         if let Some(p) = &self.pyramid {
             list.push(("depth_pyramid", p.bytes));

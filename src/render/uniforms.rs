@@ -24,6 +24,8 @@ pub struct FrameUniforms {
     pub shading: [f32; 4],
     /// light count, frame index, unused, unused
     pub counts: [u32; 4],
+    /// xy: where the image starts in the output target; zw unused.
+    pub output_origin: [f32; 4],
     /// The sky's irradiance E(n)/π for a world-space normal: 9 spherical-harmonic coefficients
     /// (rgb; w unused), scaled by the sky scale and strength and pre-exposed.
     pub sky_sh: [[f32; 4]; 9],
@@ -71,7 +73,7 @@ pub struct OcclusionUniforms {
 /// Largest kernel the occlusion pass takes.
 pub const MAX_SAMPLES: usize = 256;
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 4 * 64 + 6 * 16 + 9 * 16);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 4 * 64 + 7 * 16 + 9 * 16);
 const _: () = assert!(std::mem::size_of::<OcclusionUniforms>() == (MAX_SAMPLES + 16 + 3) * 16);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 48);
 const _: () = assert!(std::mem::size_of::<MaterialParams>() == 32);

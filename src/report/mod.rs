@@ -174,6 +174,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let base = Settings::default();
     let ambient = base.ambient;
     let mut renderer = Renderer::new(gpu, &scene, &sky, options.size, CAPTURE_FORMAT, base)?;
+    renderer.keep_hdr(gpu, true);
     let timestamps = renderer.enable_timing(gpu);
     let default_radius = renderer.radius();
 
@@ -266,7 +267,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     (None, Some(d)) if mode.declaration().ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
                     _ => None,
                 };
-                let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr.texture)?
+                let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?
                     .into_iter()
                     .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)
                     .collect();

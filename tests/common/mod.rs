@@ -23,7 +23,10 @@ pub fn gpu() -> Option<Gpu> {
 }
 
 pub fn renderer(gpu: &Gpu, scene: &Scene, sky: &Skybox, size: (u32, u32), settings: Settings) -> Renderer {
-    Renderer::new(gpu, scene, sky, size, CAPTURE_FORMAT, settings).expect("renderer builds")
+    let mut r = Renderer::new(gpu, scene, sky, size, CAPTURE_FORMAT, settings).expect("renderer builds");
+    // The tests read the linear HDR image back.
+    r.keep_hdr(gpu, true);
+    r
 }
 
 pub fn shoot(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> image::RgbaImage {

@@ -112,13 +112,14 @@ pub enum Step {
     Occlusion,
     /// Depth- and normal-aware (or classic box) blur of the sampling pass's output.
     Blur,
-    /// Ambient, occlusion and point lighting into the HDR target.
+    /// Ambient, occlusion and point lighting into the HDR target; in a display plan also the
+    /// sky, exposure and tone curve, straight into the output.
     Composite,
-    /// Sky where nothing was drawn.
+    /// Sky where nothing was drawn (HDR plans).
     Skybox,
     /// The point lights as emissive cubes.
     LightCubes,
-    /// HDR to the display format.
+    /// HDR to the display format (HDR plans).
     Tonemap,
 }
 
@@ -155,6 +156,10 @@ pub struct Plan {
     pub decl: ModeDecl,
     pub features: SceneFeatures,
     pub blur: bool,
+    /// Nothing reads HDR after the frame (the final image is shown or saved as it is): the
+    /// composite draws the sky and tone-maps straight into the output, and there is no skybox or
+    /// tone-map pass, and no HDR target unless a lighting pass writes its direct light there.
+    pub display: bool,
     pub steps: Vec<Step>,
 }
 
@@ -162,7 +167,8 @@ impl Plan {
     /// The steps of `mode` for a scene with `features`; `blur` denoises the sampling output.
     /// `pyramid`: the sampling pass marches the depth buffer and its far steps, taken only where
     /// DO is computed, read a depth pyramid (the march variant with `depth_pyramid` on).
-    pub fn new(mode: Mode, features: SceneFeatures, blur: bool, pyramid: bool) -> Self {
+    /// `display`: see [`Plan::display`].
+    pub fn new(mode: Mode, features: SceneFeatures, blur: bool, pyramid: bool, display: bool) -> Self {
         let decl = *mode.declaration();
         let lights = features.lights > 0;
         let mut steps = vec![Step::GBuffer];
@@ -178,12 +184,17 @@ impl Plan {
                 steps.push(Step::Blur);
             }
         }
-        steps.extend([Step::Composite, Step::Skybox]);
+        steps.push(Step::Composite);
+        if !display {
+            steps.push(Step::Skybox);
+        }
         if lights {
             steps.push(Step::LightCubes);
         }
-        steps.push(Step::Tonemap);
-        Self { mode, decl, features, blur: blur && decl.samples(), steps }
+        if !display {
+            steps.push(Step::Tonemap);
+        }
+        Self { mode, decl, features, blur: blur && decl.samples(), display, steps }
     }
 
     /// The names of the steps, in order.
@@ -196,6 +207,11 @@ impl Plan {
         self.has(Step::Lighting)
     }
 
+    /// Whether the HDR target exists: an HDR plan, or a lighting pass writing its direct light.
+    pub fn keeps_hdr(&self) -> bool {
+        !self.display || self.has(Step::Lighting)
+    }
+
     pub fn has(&self, step: Step) -> bool {
         self.steps.contains(&step)
     }
@@ -203,5 +219,26 @@ impl Plan {
     /// Whether the composite runs the point-light loop itself (lights, but no lighting pass).
     pub fn light_loop(&self) -> bool {
         self.features.lights > 0 && !self.has(Step::Lighting)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_lighting_pass() {
+        let lit = SceneFeatures { lights: 8 };
+        for mode in Mode::ALL {
+            let hdr = Plan::new(mode, lit, true, false, false);
+            let display = Plan::new(mode, lit, true, false, true);
+            assert!(hdr.has(Step::Skybox) && hdr.has(Step::Tonemap) && hdr.keeps_hdr());
+            assert!(!display.has(Step::Skybox) && !display.has(Step::Tonemap));
+            assert_eq!(display.keeps_hdr(), display.has(Step::Lighting), "{mode}");
+            let without = |p: &Plan| p.steps.iter().filter(|s| !matches!(s, Step::Skybox | Step::Tonemap)).count();
+            assert_eq!(without(&hdr), display.steps.len(), "{mode}: the same passes otherwise");
+        }
+        let dark = Plan::new(Mode::Ssdo, SceneFeatures { lights: 0 }, true, false, true);
+        assert!(!dark.keeps_hdr(), "no lights, no lighting pass, no HDR target");
     }
 }

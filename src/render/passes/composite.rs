@@ -1,7 +1,9 @@
-//! Composite: ambient·albedo·AO + DO + direct point lighting into the linear HDR target.
-//! The pipeline is specialised to the plan (override constants): without lights there is no
-//! light loop in the shader, without AO no AO read, and so on. After a lighting pass it blends
-//! additively onto the direct light that pass wrote instead of clearing.
+//! Composite: ambient·albedo·AO + DO + direct point lighting into the linear HDR target, or, in a
+//! display plan, with the sky and the tone curve straight into the output (no HDR write, no
+//! skybox or tone-map pass). The pipeline is specialised to the plan (override constants):
+//! without lights there is no light loop in the shader, without AO no AO read, and so on. After a
+//! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
+//! (display).
 
 use super::super::kernel::Variant;
 use super::super::modes::{Plan, Step};
@@ -21,6 +23,7 @@ struct Key {
     directional: bool,
     classic: bool,
     white_albedo: bool,
+    display: bool,
 }
 
 impl Key {
@@ -32,6 +35,7 @@ impl Key {
             directional: plan.decl.directional_occlusion,
             classic: variant == Variant::Classic,
             white_albedo,
+            display: plan.display,
         }
     }
 }
@@ -40,23 +44,33 @@ pub struct CompositePass {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     frame_layout: wgpu::BindGroupLayout,
+    sky_layout: wgpu::BindGroupLayout,
+    /// The output's format (display plans draw into it).
+    output: wgpu::TextureFormat,
     pipeline: KeyedPipeline<Key>,
     bind_group: Option<wgpu::BindGroup>,
 }
 
 impl CompositePass {
-    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
+    pub fn new(
+        device: &wgpu::Device,
+        frame_layout: &wgpu::BindGroupLayout,
+        sky_layout: &wgpu::BindGroupLayout,
+        output: wgpu::TextureFormat,
+    ) -> Result<Self> {
         let module = shaders::module(device, "composite.wgsl")?;
         let [a, n, d] = gbuffer_entries();
         let input = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("composite_layout"),
-            entries: &[a, n, d, input(3), input(4)],
+            entries: &[a, n, d, input(3), input(4), input(5)],
         });
         Ok(Self {
             module,
             layout,
             frame_layout: frame_layout.clone(),
+            sky_layout: sky_layout.clone(),
+            output,
             pipeline: KeyedPipeline::new(),
             bind_group: None,
         })
@@ -74,10 +88,12 @@ impl CompositePass {
         unused: &wgpu::TextureView,
     ) {
         let key = Key::of(plan, variant, white_albedo);
-        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
+        let (module, frame_layout, layout, sky_layout) =
+            (&self.module, &self.frame_layout, &self.layout, &self.sky_layout);
+        let output = self.output;
         self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;
-            let blend = key.additive.then_some(wgpu::BlendState {
+            let blend = (key.additive && !key.display).then_some(wgpu::BlendState {
                 color: wgpu::BlendComponent {
                     src_factor: wgpu::BlendFactor::One,
                     dst_factor: wgpu::BlendFactor::One,
@@ -91,9 +107,9 @@ impl CompositePass {
                     label: "composite_pipeline",
                     module,
                     entry: "fs_main",
-                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
+                    bind_group_layouts: &[Some(frame_layout), Some(layout), Some(sky_layout)],
                     targets: &[Some(wgpu::ColorTargetState {
-                        format: HDR_FORMAT,
+                        format: if key.display { output } else { HDR_FORMAT },
                         blend,
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
@@ -105,6 +121,9 @@ impl CompositePass {
                         ("AO_IN_DO", f(key.directional)),
                         ("CLASSIC", f(key.classic)),
                         ("WHITE_ALBEDO", f(key.white_albedo)),
+                        ("DISPLAY", f(key.display)),
+                        ("OUTPUT_SRGB", f(output.is_srgb())),
+                        ("DIRECT_INPUT", f(key.display && key.additive)),
                     ],
                 },
             )
@@ -116,6 +135,9 @@ impl CompositePass {
             &targets.depth.view,
             view_or(&occlusion.ao, unused),
             view_or(&occlusion.directional, unused),
+            // The lighting pass's direct light, read in a display plan (blended onto otherwise,
+            // where it is the attachment and cannot also be bound).
+            if plan.display { view_or(&targets.hdr, unused) } else { unused },
         ];
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("composite_bind_group"),
@@ -124,22 +146,34 @@ impl CompositePass {
         }));
     }
 
+    /// Records into HDR, or in a display plan into `output` at `origin` (the top-left corner of
+    /// the 3D view when the output is larger than the targets: a window with a side panel).
+    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
         targets: &Targets,
         frame: &wgpu::BindGroup,
+        sky: &wgpu::BindGroup,
+        output: &wgpu::TextureView,
+        origin: (u32, u32),
     ) {
         let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else { return };
+        let (w, h) = targets.size;
+        let (attachment, viewport) = match (key.display, &targets.hdr) {
+            (false, Some(hdr)) => (color_attachment(&hdr.view, !key.additive), None),
+            (true, _) => (color_attachment(output, true), Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32])),
+            (false, None) => unreachable!("an HDR plan always has its HDR target"),
+        };
         FullscreenPass {
             label: "composite_pass",
-            attachments: &[color_attachment(&targets.hdr.view, !key.additive)],
+            attachments: &[attachment],
             depth: None,
             timestamps,
             pipeline,
-            bind_groups: &[(0, frame), (1, bind_group)],
-            viewport: None,
+            bind_groups: &[(0, frame), (1, bind_group), (2, sky)],
+            viewport,
         }
         .record(encoder);
     }

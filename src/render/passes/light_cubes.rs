@@ -1,11 +1,13 @@
 //! The point lights as small emissive cubes in their own colours: one instanced draw, depth
-//! tested (reverse-Z, `GreaterEqual`) against the G-buffer depth. Not in the plan when the scene
-//! has no lights.
+//! tested (reverse-Z, `GreaterEqual`) against the G-buffer depth — by the depth attachment when
+//! they are drawn into HDR, by the shader (`fs_display`) when a display plan draws them
+//! tone-mapped straight into the output, which can be larger than the G-buffer. Not in the plan
+//! when the scene has no lights.
 
 use wgpu::util::DeviceExt;
 
 use super::super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
-use super::color_attachment;
+use super::{color_attachment, depth_entry};
 use crate::{shaders, Result};
 
 /// The 36 corners of a unit cube's 12 triangles (±1 on each axis).
@@ -22,20 +24,57 @@ fn cube_corners() -> Vec<[f32; 3]> {
 }
 
 pub struct LightCubesPass {
+    /// Into HDR, with the depth attachment.
     pipeline: wgpu::RenderPipeline,
+    /// Into the output, tone-mapped, testing depth in the shader.
+    display: wgpu::RenderPipeline,
+    depth_layout: wgpu::BindGroupLayout,
+    /// The G-buffer depth for `display`, rebuilt with the targets.
+    depth_group: Option<wgpu::BindGroup>,
     corners: wgpu::Buffer,
 }
 
 impl LightCubesPass {
-    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
+    pub fn new(
+        device: &wgpu::Device,
+        frame_layout: &wgpu::BindGroupLayout,
+        output: wgpu::TextureFormat,
+    ) -> Result<Self> {
         let module = shaders::module(device, "light_cubes.wgsl")?;
+        let depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("light_cubes_depth_layout"),
+            entries: &[depth_entry(0)],
+        });
+        let pipeline = Self::pipeline(device, &module, &[Some(frame_layout)], HDR_FORMAT, None);
+        let display = Self::pipeline(device, &module, &[Some(frame_layout), Some(&depth_layout)], output, Some(()));
+        let corners = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("light_cubes_corners"),
+            contents: bytemuck::cast_slice(&cube_corners()),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        Ok(Self { pipeline, display, depth_layout, depth_group: None, corners })
+    }
+
+    /// `display`: the pipeline that draws into the output and tests depth itself.
+    fn pipeline(
+        device: &wgpu::Device,
+        module: &wgpu::ShaderModule,
+        layouts: &[Option<&wgpu::BindGroupLayout>],
+        format: wgpu::TextureFormat,
+        display: Option<()>,
+    ) -> wgpu::RenderPipeline {
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("light_cubes_pipeline_layout"),
-            bind_group_layouts: &[Some(frame_layout)],
+            bind_group_layouts: layouts,
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("light_cubes_pipeline"),
+        let constants = [("OUTPUT_SRGB", if format.is_srgb() { 1.0 } else { 0.0 })];
+        let fragment_options = wgpu::PipelineCompilationOptions {
+            constants: if display.is_some() { &constants } else { &[] },
+            ..Default::default()
+        };
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(if display.is_some() { "light_cubes_display_pipeline" } else { "light_cubes_pipeline" }),
             layout: Some(&layout),
             vertex: wgpu::VertexState {
                 module: &module,
@@ -48,7 +87,7 @@ impl LightCubesPass {
                 })],
             },
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
+            depth_stencil: display.is_none().then(|| wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(true),
                 depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
@@ -57,20 +96,23 @@ impl LightCubesPass {
             }),
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(HDR_FORMAT.into())],
+                module,
+                entry_point: Some(if display.is_some() { "fs_display" } else { "fs_main" }),
+                compilation_options: fragment_options,
+                targets: &[Some(format.into())],
             }),
             multiview_mask: None,
             cache: None,
-        });
-        let corners = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("light_cubes_corners"),
-            contents: bytemuck::cast_slice(&cube_corners()),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        Ok(Self { pipeline, corners })
+        })
+    }
+
+    /// Binds the G-buffer depth of `targets` for the display pipeline.
+    pub fn prepare(&mut self, device: &wgpu::Device, targets: &Targets) {
+        self.depth_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("light_cubes_depth_bind_group"),
+            layout: &self.depth_layout,
+            entries: &super::view_entries(&[&targets.depth.view]),
+        }));
     }
 
     pub fn encode(
@@ -80,20 +122,39 @@ impl LightCubesPass {
         targets: &Targets,
         frame: &wgpu::BindGroup,
         lights: u32,
+        display: Option<(&wgpu::TextureView, (u32, u32))>,
     ) {
+        // `display`: a display plan's output and the image's origin in it; otherwise into HDR.
+        let (color, depth) = match (display, &targets.hdr) {
+            (None, Some(hdr)) => (
+                &hdr.view,
+                Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth.view,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+            ),
+            (Some((output, _)), _) => (output, None),
+            (None, None) => panic!("light cubes drawn into HDR in a plan that has no HDR target"),
+        };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("light_cubes_pass"),
-            color_attachments: &[color_attachment(&targets.hdr.view, false)],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth.view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            }),
+            color_attachments: &[color_attachment(color, false)],
+            depth_stencil_attachment: depth,
             timestamp_writes: timestamps,
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
+        match (display, &self.depth_group) {
+            (None, _) => pass.set_pipeline(&self.pipeline),
+            (Some((_, origin)), Some(group)) => {
+                let (w, h) = targets.size;
+                pass.set_viewport(origin.0 as f32, origin.1 as f32, w as f32, h as f32, 0.0, 1.0);
+                pass.set_pipeline(&self.display);
+                pass.set_bind_group(1, group, &[]);
+            }
+            (Some(_), None) => panic!("light cubes drawn into the output before `prepare` bound the depth"),
+        }
         pass.set_bind_group(0, frame, &[]);
         pass.set_vertex_buffer(0, self.corners.slice(..));
         pass.draw(0..36, 0..lights);

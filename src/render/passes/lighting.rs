@@ -56,7 +56,7 @@ impl LightingPass {
         let bounce = targets.bounce.as_ref().map(|t| &t.view);
         FullscreenPass {
             label: "lighting_pass",
-            attachments: &cleared_attachments(&[Some(&targets.hdr.view), bounce]),
+            attachments: &cleared_attachments(&[super::super::targets::view_of(&targets.hdr), bounce]),
             depth: None,
             timestamps,
             pipeline: &self.pipeline,

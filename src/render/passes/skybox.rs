@@ -155,9 +155,10 @@ impl SkyboxPass {
         frame: &wgpu::BindGroup,
         sky: &SkyGpu,
     ) {
+        let hdr = targets.hdr.as_ref().expect("the skybox pass runs only in plans with an HDR target");
         FullscreenPass {
             label: "skybox_pass",
-            attachments: &[color_attachment(&targets.hdr.view, false)],
+            attachments: &[color_attachment(&hdr.view, false)],
             depth: Some(&targets.depth.view),
             timestamps,
             pipeline: &self.pipeline,

@@ -98,7 +98,7 @@ impl TonemapPass {
         });
         let occlusion = targets.occlusion();
         let views = [
-            &targets.hdr.view,
+            view_or(&targets.hdr, unused),
             &targets.albedo.view,
             &targets.normal.view,
             &targets.depth.view,

@@ -1,0 +1,83 @@
+//! Display plans: with nothing reading HDR after the frame, the composite draws the sky and
+//! tone-maps straight into the output (no HDR write, no skybox or tone-map pass) and the light
+//! cubes test depth in their shader. The image must be the one the HDR path makes, and it must
+//! land at the origin it is given in a larger output (the viewer's window beside its panel).
+
+mod common;
+
+use common::{gpu, renderer, shoot};
+use ssdo::render::capture::{output_texture, CAPTURE_FORMAT};
+use ssdo::render::readback::read_texture;
+use ssdo::render::{Mode, Settings, Step, Variant};
+use ssdo::scene::{self, OrbitCamera, Scene};
+
+const SIZE: (u32, u32) = (160, 120);
+
+fn default_scene() -> (Scene, scene::Skybox, OrbitCamera) {
+    let scene = Scene::new(scene::load_model(None).unwrap(), 8, 1);
+    let sky = scene::load_skybox(None).unwrap();
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    (scene, sky, camera)
+}
+
+/// Largest channel difference, and how many pixels differ by more than `tolerance`.
+fn compare(a: &image::RgbaImage, b: &image::RgbaImage, tolerance: u8) -> (u8, usize) {
+    let mut worst = 0;
+    let mut over = 0;
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        let d = p.0.iter().zip(q.0).map(|(x, y)| x.abs_diff(y)).max().unwrap();
+        worst = worst.max(d);
+        over += (d > tolerance) as usize;
+    }
+    (worst, over)
+}
+
+#[test]
+fn display_frames_match_the_hdr_path_in_every_mode_and_variant() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = default_scene();
+    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings::default());
+    for variant in Variant::ALL {
+        for mode in Mode::ALL {
+            r.settings = Settings { mode, variant, ..Settings::default() };
+            r.keep_hdr(&gpu, true);
+            let hdr = shoot(&gpu, &mut r, &camera);
+            assert!(r.plan().has(Step::Tonemap) && r.targets().hdr.is_some());
+            r.keep_hdr(&gpu, false);
+            let display = shoot(&gpu, &mut r, &camera);
+            let plan = r.plan();
+            assert!(!plan.has(Step::Tonemap) && !plan.has(Step::Skybox), "{variant} {mode}: {:?}", plan.steps);
+            assert_eq!(r.targets().hdr.is_some(), plan.has(Step::Lighting), "{variant} {mode}: HDR only for lighting");
+            // The HDR path rounds radiance to half floats before its tone map: one step of 255 at most.
+            let (worst, over) = compare(&hdr, &display, 1);
+            println!("{variant} {mode}: largest difference {worst}/255, {over} pixels over 1");
+            assert!(worst <= 1, "{variant} {mode}: {over} pixels differ by up to {worst}/255");
+            assert!(display.pixels().any(|p| p.0[0] > 40), "{variant} {mode}: the display frame is not black");
+        }
+    }
+}
+
+#[test]
+fn display_frames_land_at_their_origin_in_a_larger_output() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = default_scene();
+    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings { mode: Mode::Both, ..Settings::default() });
+    r.keep_hdr(&gpu, false);
+    let alone = shoot(&gpu, &mut r, &camera);
+    let origin = (37u32, 21u32);
+    let big = (SIZE.0 + 60, SIZE.1 + 30);
+    let texture = output_texture(&gpu, big);
+    let view = texture.create_view(&Default::default());
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    r.encode_at(&gpu, &mut encoder, &camera, &view, origin);
+    gpu.queue.submit([encoder.finish()]);
+    assert_eq!(texture.format(), CAPTURE_FORMAT);
+    let bytes = read_texture(&gpu, &texture).unwrap();
+    let placed = image::RgbaImage::from_raw(big.0, big.1, bytes).unwrap();
+    let inside = image::imageops::crop_imm(&placed, origin.0, origin.1, SIZE.0, SIZE.1).to_image();
+    let (worst, over) = compare(&alone, &inside, 1);
+    assert!(worst <= 1, "the image at its origin differs by up to {worst}/255 ({over} pixels over 1)");
+    // Outside the image the output is cleared, not drawn over.
+    assert_eq!(placed.get_pixel(0, 0).0, [0, 0, 0, 0]);
+    assert_eq!(placed.get_pixel(big.0 - 1, big.1 - 1).0, [0, 0, 0, 0]);
+}
