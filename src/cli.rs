@@ -285,6 +285,10 @@ pub(crate) struct BenchArgs {
     /// Print JSON instead of a table
     #[arg(long)]
     pub(crate) json: bool,
+    /// Time the HDR path (what the report, --raw and --stats take): the composite writes HDR and
+    /// the sky and the tone map are passes of their own
+    #[arg(long)]
+    pub(crate) hdr: bool,
 }
 
 impl ViewArgs {

@@ -188,6 +188,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     let size = (args.size.0, args.size.1);
     gpu.check_size(size.0, size.1)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
+    renderer.keep_hdr(&gpu, args.hdr);
     let timestamps = renderer.enable_timing(&gpu);
     let target = output_texture(&gpu, size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
