@@ -77,8 +77,9 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     var albedo = material.diffuse.rgb;
     var specular = material.diffuse.a;
     if TEXTURED {
-        albedo *= textureSampleLevel(diffuse_map, material_sampler, in.uv, 0.0).rgb;
-        specular *= textureSampleLevel(specular_map, material_sampler, in.uv, 0.0).r;
+        // Trilinear: the maps carry mip chains (src/render/passes/gbuffer.rs, `mip_chain`).
+        albedo *= textureSample(diffuse_map, material_sampler, in.uv).rgb;
+        specular *= textureSample(specular_map, material_sampler, in.uv).r;
     }
     let n = camera_side(safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0)), in.view_position, plane, front);
     var out: GBufferOut;

@@ -39,7 +39,9 @@ fn capture_writes_the_png_and_no_temporary_files() {
         ssdo(&["capture", "--mode", "off", "--size", "161x97", "--out", out.path().to_str().unwrap(), "--print-plan"]);
     assert!(result.status.success(), "{}", stderr(&result));
     let stdout = String::from_utf8_lossy(&result.stdout);
-    assert!(stdout.contains("pass gbuffer") && stdout.contains("pass tonemap"), "{stdout}");
+    // A capture without --raw or --stats tone-maps in the composite: no skybox, tonemap or HDR.
+    assert!(stdout.contains("pass gbuffer") && stdout.contains("pass composite"), "{stdout}");
+    assert!(!stdout.contains("pass tonemap") && !stdout.contains("hdr_color"), "{stdout}");
     let files: Vec<_> = std::fs::read_dir(out.path())
         .unwrap()
         .flatten()
