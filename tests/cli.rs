@@ -142,6 +142,36 @@ fn bench_json_has_every_mode_and_pass() {
 }
 
 #[test]
+fn the_room_benches_on_both_paths_and_its_flags_are_checked() {
+    for (args, needle) in [
+        (vec!["bench", "--scene", "cellar"], "cellar"),
+        (vec!["bench", "--triangles", "5000"], "--triangles 5000"),
+        (vec!["bench", "--scene", "room", "--triangles", "0"], "--triangles 0"),
+        (vec!["bench", "--scene", "room", "--model", "models/cornell/cornell.obj", "--triangles", "10"], "--triangles 10"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(stderr(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+    if !has_adapter() {
+        return;
+    }
+    let room = ["bench", "--scene", "room", "--triangles", "2000", "--lights", "1", "--size", "64x48", "--frames", "1"];
+    let passes = |extra: &[&str]| {
+        let result = ssdo(&[&room[..], &["--json", "--variant", "classic"], extra].concat());
+        assert!(result.status.success(), "{extra:?}: {}", stderr(&result));
+        let json: serde_json::Value = serde_json::from_slice(&result.stdout).expect("stdout is JSON");
+        json["modes"]["ssao"]["passes"].as_object().cloned().unwrap_or_default()
+    };
+    let (display, hdr) = (passes(&[]), passes(&["--hdr"]));
+    // Without timestamp queries there are no per-pass times to look at.
+    if !display.is_empty() {
+        assert!(display.contains_key("composite") && !display.contains_key("tonemap"), "{display:?}");
+        assert!(hdr.contains_key("tonemap") && hdr.contains_key("skybox"), "{hdr:?}");
+    }
+}
+
+#[test]
 fn sampling_settings_are_validated() {
     for (args, needle) in [
         (vec!["capture", "--samples", "0"], "--samples 0"),
