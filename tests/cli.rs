@@ -147,7 +147,10 @@ fn the_room_benches_on_both_paths_and_its_flags_are_checked() {
         (vec!["bench", "--scene", "cellar"], "cellar"),
         (vec!["bench", "--triangles", "5000"], "--triangles 5000"),
         (vec!["bench", "--scene", "room", "--triangles", "0"], "--triangles 0"),
-        (vec!["bench", "--scene", "room", "--model", "models/cornell/cornell.obj", "--triangles", "10"], "--triangles 10"),
+        (
+            vec!["bench", "--scene", "room", "--model", "models/cornell/cornell.obj", "--triangles", "10"],
+            "--triangles 10",
+        ),
     ] {
         let result = ssdo(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));

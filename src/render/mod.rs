@@ -32,6 +32,7 @@ use passes::lighting::LightingPass;
 use passes::occlusion::{OcclusionData, OcclusionPass, SamplingParams};
 use passes::skybox::{sky_layout, SkyGpu, SkyboxPass};
 use passes::tonemap::TonemapPass;
+use passes::{Pass, Preparation, Recording};
 use targets::Targets;
 use timing::GpuTimer;
 
@@ -335,16 +336,56 @@ impl Renderer {
     /// Rebuilds the passes' bind groups for the targets, and their pipelines where the plan or
     /// variant asks for a different one.
     fn prepare_passes(&mut self, gpu: &Gpu) {
-        let (device, t, plan) = (&gpu.device, &self.targets, &self.plan);
         let (variant, view) = (self.settings.variant, self.settings.view);
-        self.lighting.resize(device, t);
-        self.pyramid.prepare(device, t);
-        self.occlusion.prepare(device, t, plan, variant, &self.occlusion_data, &self.unused, &self.unused_pyramid);
-        self.blur.prepare(device, t, plan, variant, &self.occlusion_data);
-        self.composite.prepare(device, t, plan, variant, view == View::LightingOnly, &self.unused);
-        self.light_cubes.prepare(device, t);
-        self.tonemap.prepare(device, t, plan, view, &self.unused);
+        let preparation = Preparation {
+            targets: &self.targets,
+            plan: &self.plan,
+            variant,
+            view,
+            data: &self.occlusion_data,
+            unused: &self.unused,
+            unused_pyramid: &self.unused_pyramid,
+        };
+        let passes: [&mut dyn Pass; 9] = [
+            &mut self.gbuffer,
+            &mut self.pyramid,
+            &mut self.lighting,
+            &mut self.occlusion,
+            &mut self.blur,
+            &mut self.composite,
+            &mut self.skybox,
+            &mut self.light_cubes,
+            &mut self.tonemap,
+        ];
+        for pass in passes {
+            pass.prepare(&gpu.device, &preparation);
+        }
         self.prepared = (variant, view);
+    }
+
+    /// The pass that records `step`.
+    fn pass(&self, step: Step) -> &dyn Pass {
+        match step {
+            // Geometry once: albedo, normal, depth.
+            Step::GBuffer => &self.gbuffer,
+            // The closest depth per block, for the march's far steps.
+            Step::DepthPyramid => &self.pyramid,
+            // Point lights: displayed direct light, and the radiance SSDO bounces.
+            Step::Lighting => &self.lighting,
+            // AO and/or DO from one set of samples.
+            Step::Occlusion => &self.occlusion,
+            // Denoise AO/DO.
+            Step::Blur => &self.blur,
+            // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky
+            // behind and the tone curve, into the output).
+            Step::Composite => &self.composite,
+            // Sky behind everything (HDR plans).
+            Step::Skybox => &self.skybox,
+            // Lights as emissive cubes.
+            Step::LightCubes => &self.light_cubes,
+            // HDR to display (HDR plans).
+            Step::Tonemap => &self.tonemap,
+        }
     }
 
     pub fn set_mode(&mut self, gpu: &Gpu, mode: Mode) {
@@ -518,33 +559,20 @@ impl Renderer {
             };
             self.occlusion_data.update(&gpu.queue, &params);
         }
-        let (frame, sky, t) = (&self.frame.bind_group, &self.sky.bind_group, &self.targets);
-        for (index, step) in self.plan.steps.iter().enumerate() {
-            let ts = self.timer.as_ref().map(|timer| timer.writes(index));
+        for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));
-            match step {
-                // Geometry once: albedo, normal, depth.
-                Step::GBuffer => self.gbuffer.encode(encoder, ts, t, frame, &self.scene),
-                // The closest depth per block, for the march's far steps.
-                Step::DepthPyramid => self.pyramid.encode(encoder, ts, t),
-                // Point lights: displayed direct light, and the radiance SSDO bounces.
-                Step::Lighting => self.lighting.encode(encoder, ts, t, frame),
-                // AO and/or DO from one set of hemisphere samples.
-                Step::Occlusion => self.occlusion.encode(encoder, ts, t, frame, sky),
-                // Denoise AO/DO.
-                Step::Blur => self.blur.encode(encoder, ts, t, frame),
-                // Ambient·AO + DO (+ direct light) into HDR.
-                Step::Composite => self.composite.encode(encoder, ts, t, frame, sky, output, origin),
-                // Sky behind everything.
-                Step::Skybox => self.skybox.encode(encoder, ts, t, frame, &self.sky),
-                // Lights as emissive cubes.
-                Step::LightCubes => {
-                    let display = self.plan.display.then_some((output, origin));
-                    self.light_cubes.encode(encoder, ts, t, frame, self.lights.len() as u32, display)
-                }
-                // HDR to display.
-                Step::Tonemap => self.tonemap.encode(encoder, ts, t, frame, output, origin),
-            }
+            self.pass(step).record(Recording {
+                encoder,
+                timestamps: self.timer.as_ref().map(|timer| timer.writes(index)),
+                targets: &self.targets,
+                plan: &self.plan,
+                frame: &self.frame.bind_group,
+                sky: &self.sky,
+                scene: &self.scene,
+                lights: self.lights.len() as u32,
+                output,
+                origin,
+            });
             encoder.pop_debug_group();
         }
         if let Some(timer) = &mut self.timer {

@@ -2,13 +2,12 @@
 //! distance and normal agreement) in the default variant, the classic box blur otherwise.
 
 use super::super::kernel::Variant;
-use super::super::modes::Plan;
-use super::super::targets::Targets;
-use super::occlusion::{OcclusionData, Outputs};
+use super::occlusion::Outputs;
 use super::{
     color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
     FullscreenPass, KeyedPipeline,
 };
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,16 +40,12 @@ impl BlurPass {
             bind_group: None,
         })
     }
+}
 
+impl Pass for BlurPass {
     /// Builds what the plan needs (nothing when it does not blur).
-    pub fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        targets: &Targets,
-        plan: &Plan,
-        variant: Variant,
-        data: &OcclusionData,
-    ) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, plan, variant, data, .. } = *p;
         let Some(input) = targets.raw.output().filter(|_| plan.blur) else {
             self.pipeline.clear();
             self.bind_group = None;
@@ -84,17 +79,12 @@ impl BlurPass {
         }));
     }
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-    ) {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, .. } = rec;
         let output = targets.blurred.as_ref().and_then(|b| b.output());
         let (Some((_, pipeline)), Some(bind_group), Some(output)) = (self.pipeline.get(), &self.bind_group, output)
         else {
-            return;
+            unreachable!("the blur recorded before `prepare` or in a plan that does not blur")
         };
         FullscreenPass {
             label: "blur_pass",

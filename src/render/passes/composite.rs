@@ -7,11 +7,13 @@
 
 use super::super::kernel::Variant;
 use super::super::modes::{Plan, Step};
-use super::super::targets::{view_or, Targets, HDR_FORMAT};
+use super::super::targets::{view_or, HDR_FORMAT};
+use super::super::View;
 use super::{
     color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc, FullscreenPass,
     KeyedPipeline,
 };
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 /// The shader variant a plan needs.
@@ -75,18 +77,14 @@ impl CompositePass {
             bind_group: None,
         })
     }
+}
 
+impl Pass for CompositePass {
     /// Builds the pipeline the plan needs (if it changed) and the bind group for `targets`.
     /// `white_albedo` is the "lighting only" view: every surface white.
-    pub fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        targets: &Targets,
-        plan: &Plan,
-        variant: Variant,
-        white_albedo: bool,
-        unused: &wgpu::TextureView,
-    ) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, plan, variant, unused, view, .. } = *p;
+        let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
         let (module, frame_layout, layout, sky_layout) =
             (&self.module, &self.frame_layout, &self.layout, &self.sky_layout);
@@ -146,20 +144,12 @@ impl CompositePass {
         }));
     }
 
-    /// Records into HDR, or in a display plan into `output` at `origin` (the top-left corner of
-    /// the 3D view when the output is larger than the targets: a window with a side panel).
-    #[allow(clippy::too_many_arguments)]
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        sky: &wgpu::BindGroup,
-        output: &wgpu::TextureView,
-        origin: (u32, u32),
-    ) {
-        let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else { return };
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, sky, output, origin, .. } = rec;
+        let sky = &sky.bind_group;
+        let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else {
+            unreachable!("the composite recorded before `prepare`")
+        };
         let (w, h) = targets.size;
         let (attachment, viewport) = match (key.display, &targets.hdr) {
             (false, Some(hdr)) => (color_attachment(&hdr.view, !key.additive), None),

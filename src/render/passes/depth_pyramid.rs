@@ -2,8 +2,9 @@
 //! level from the one before, one small full-screen pass per level. Built only by plans whose
 //! sampling pass marches far (the march variant in SSDO and SSAO+SSDO).
 
-use super::super::targets::{Targets, PYRAMID_FORMAT};
+use super::super::targets::PYRAMID_FORMAT;
 use super::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 pub struct DepthPyramidPass {
@@ -62,9 +63,12 @@ impl DepthPyramidPass {
             unused_level: unused(device, PYRAMID_FORMAT),
         })
     }
+}
 
+impl Pass for DepthPyramidPass {
     /// Bind groups for the targets' pyramid (none when the plan has no pyramid).
-    pub fn prepare(&mut self, device: &wgpu::Device, targets: &Targets) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, .. } = *p;
         self.groups.clear();
         let Some(pyramid) = &targets.pyramid else { return };
         for level in 0..pyramid.levels.len() {
@@ -81,13 +85,9 @@ impl DepthPyramidPass {
         }
     }
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-    ) {
-        let Some(pyramid) = &targets.pyramid else { return };
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, .. } = rec;
+        let Some(pyramid) = &targets.pyramid else { unreachable!("the depth pyramid recorded in a plan without one") };
         // The step's timestamps frame the whole chain: the first level's pass begins it and
         // the last one's ends it.
         let last = self.groups.len().saturating_sub(1);

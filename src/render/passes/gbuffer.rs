@@ -7,8 +7,9 @@
 
 use wgpu::util::DeviceExt;
 
-use super::super::targets::{Targets, ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
+use super::super::targets::{ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
 use super::super::uniforms::MaterialParams;
+use super::{Pass, Recording};
 use crate::gpu::Gpu;
 use crate::scene::model::TextureImage;
 use crate::scene::{Model, Vertex};
@@ -300,15 +301,11 @@ impl GBufferPass {
         }
         SceneGpu { vertices, indices, draws, textured, bytes }
     }
+}
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        scene: &SceneGpu,
-    ) {
+impl Pass for GBufferPass {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, scene, .. } = rec;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer_pass"),
             color_attachments: &[

@@ -6,8 +6,9 @@
 
 use wgpu::util::DeviceExt;
 
-use super::super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
+use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{color_attachment, depth_entry};
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 /// The 36 corners of a unit cube's 12 triangles (±1 on each axis).
@@ -77,7 +78,7 @@ impl LightCubesPass {
             label: Some(if display.is_some() { "light_cubes_display_pipeline" } else { "light_cubes_pipeline" }),
             layout: Some(&layout),
             vertex: wgpu::VertexState {
-                module: &module,
+                module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
                 buffers: &[Some(wgpu::VertexBufferLayout {
@@ -105,9 +106,12 @@ impl LightCubesPass {
             cache: None,
         })
     }
+}
 
+impl Pass for LightCubesPass {
     /// Binds the G-buffer depth of `targets` for the display pipeline.
-    pub fn prepare(&mut self, device: &wgpu::Device, targets: &Targets) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, .. } = *p;
         self.depth_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("light_cubes_depth_bind_group"),
             layout: &self.depth_layout,
@@ -115,15 +119,9 @@ impl LightCubesPass {
         }));
     }
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        lights: u32,
-        display: Option<(&wgpu::TextureView, (u32, u32))>,
-    ) {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, lights, plan, output, origin, .. } = rec;
+        let display = plan.display.then_some((output, origin));
         // `display`: a display plan's output and the image's origin in it; otherwise into HDR.
         let (color, depth) = match (display, &targets.hdr) {
             (None, Some(hdr)) => (

@@ -3,6 +3,7 @@
 
 use super::super::targets::{Targets, BOUNCE_FORMAT, HDR_FORMAT};
 use super::{cleared_attachments, fullscreen_pipeline, gbuffer_entries, view_entries, FullscreenDesc, FullscreenPass};
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 pub struct LightingPass {
@@ -41,18 +42,16 @@ impl LightingPass {
             entries: &view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]),
         })
     }
+}
 
-    pub fn resize(&mut self, device: &wgpu::Device, targets: &Targets) {
+impl Pass for LightingPass {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, .. } = *p;
         self.bind_group = Self::bind_group(device, &self.layout, targets);
     }
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-    ) {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, .. } = rec;
         let bounce = targets.bounce.as_ref().map(|t| &t.view);
         FullscreenPass {
             label: "lighting_pass",

@@ -1,6 +1,13 @@
-//! The passes of a frame. Each has the same shape: `new` builds layouts, pipelines and samplers
-//! once; `resize` rebuilds only what depends on the targets (bind groups); `encode` records one
-//! labelled pass. The helpers here keep the pipeline and attachment boilerplate in one place.
+//! The passes of a frame. Each has the same shape, the [`Pass`] trait: `new` (its own) builds
+//! what lives as long as the renderer — layouts, shader modules, samplers, pipelines that depend
+//! on nothing else; [`Pass::prepare`] rebuilds what depends on the targets and the plan — bind
+//! groups always, a pipeline specialised to a key (`KeyedPipeline`) when the plan, variant or view
+//! asks for another; [`Pass::record`] records the pass into a frame from one [`Recording`]. The
+//! helpers below keep the pipeline and attachment boilerplate in one place.
+//!
+//! To add a pass: a module here with a struct, its `new` and `impl Pass`; a `Step` in
+//! `modes/mod.rs` placed by `Plan::new`; the targets it writes in `targets.rs`; a field of
+//! `Renderer` and its line in `Renderer::pass`.
 
 pub mod blur;
 pub mod composite;
@@ -11,6 +18,56 @@ pub mod lighting;
 pub mod occlusion;
 pub mod skybox;
 pub mod tonemap;
+
+use super::kernel::Variant;
+use super::modes::Plan;
+use super::targets::Targets;
+use super::View;
+use occlusion::OcclusionData;
+
+/// Everything a pass records one step of a frame from.
+pub struct Recording<'a> {
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    /// Where the step's GPU time is written (`None` when not timing).
+    pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
+    pub targets: &'a Targets,
+    pub plan: &'a Plan,
+    /// Bind group 0: the frame uniforms and the lights.
+    pub frame: &'a wgpu::BindGroup,
+    pub sky: &'a skybox::SkyGpu,
+    pub scene: &'a gbuffer::SceneGpu,
+    pub lights: u32,
+    /// What the frame is drawn into, and where the image starts in it (the viewer's panel is
+    /// beside it).
+    pub output: &'a wgpu::TextureView,
+    pub origin: (u32, u32),
+}
+
+/// What a pass's bind groups and pipeline are built for.
+#[derive(Clone, Copy)]
+pub struct Preparation<'a> {
+    pub targets: &'a Targets,
+    pub plan: &'a Plan,
+    pub variant: Variant,
+    pub view: View,
+    /// The sampling pass's parameters (kernel, rotations, radius...).
+    pub data: &'a OcclusionData,
+    /// Bound where an input does not exist in the plan (1x1, never read).
+    pub unused: &'a wgpu::TextureView,
+    /// The same for the depth pyramid's integer format.
+    pub unused_pyramid: &'a wgpu::TextureView,
+}
+
+/// One pass of the frame (see the module's documentation).
+pub trait Pass {
+    /// Rebuilds what depends on the targets and the plan. Passes that hold nothing of the kind
+    /// keep this default.
+    fn prepare(&mut self, _device: &wgpu::Device, _p: &Preparation<'_>) {}
+
+    /// Records the pass. Only steps of the plan are recorded, and only after `prepare`: a pass
+    /// recorded otherwise is a bug, and says so.
+    fn record(&self, rec: Recording<'_>);
+}
 
 /// A bind-group-layout entry for a float texture read by fragment shaders.
 pub fn texture_entry(

@@ -5,12 +5,13 @@
 
 use super::super::kernel::{self, Variant};
 use super::super::modes::Plan;
-use super::super::targets::{Targets, AO_FORMAT, DO_FORMAT};
+use super::super::targets::{AO_FORMAT, DO_FORMAT};
 use super::super::uniforms::{OcclusionUniforms, MAX_SAMPLES};
 use super::{
     color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
     FullscreenPass, KeyedPipeline,
 };
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 /// Sampling parameters for one frame.
@@ -157,18 +158,12 @@ impl OcclusionPass {
             bind_group: None,
         })
     }
+}
 
+impl Pass for OcclusionPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
-    pub fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        targets: &Targets,
-        plan: &Plan,
-        variant: Variant,
-        data: &OcclusionData,
-        unused: &wgpu::TextureView,
-        unused_pyramid: &wgpu::TextureView,
-    ) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, plan, variant, data, unused, unused_pyramid, .. } = *p;
         if !plan.decl.samples() {
             self.pipeline.clear();
             self.bind_group = None;
@@ -216,18 +211,13 @@ impl OcclusionPass {
         }));
     }
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        sky: &wgpu::BindGroup,
-    ) {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
+        let sky = &sky.bind_group;
         let (Some((_, pipeline)), Some(bind_group), Some(output)) =
             (self.pipeline.get(), &self.bind_group, targets.raw.output())
         else {
-            return;
+            unreachable!("the sampling pass recorded before `prepare` or in a plan without it")
         };
         FullscreenPass {
             label: "occlusion_pass",

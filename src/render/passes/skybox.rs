@@ -3,8 +3,9 @@
 //! a sample's solid angle). Half floats end at 65504, so a brighter sky is stored divided by a
 //! scale that the shaders multiply back in f32.
 
-use super::super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
+use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{color_attachment, fullscreen_pipeline, sampler_entry, texture_entry, FullscreenDesc, FullscreenPass};
+use super::{Pass, Recording};
 use crate::gpu::Gpu;
 use crate::scene::Skybox;
 use crate::{shaders, Result};
@@ -146,15 +147,11 @@ impl SkyboxPass {
         );
         Ok(Self { pipeline })
     }
+}
 
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        sky: &SkyGpu,
-    ) {
+impl Pass for SkyboxPass {
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
         let hdr = targets.hdr.as_ref().expect("the skybox pass runs only in plans with an HDR target");
         FullscreenPass {
             label: "skybox_pass",

@@ -4,12 +4,13 @@
 //! are variants of this pass, so showing one costs no extra pass.
 
 use super::super::modes::Plan;
-use super::super::targets::{view_or, Targets};
+use super::super::targets::view_or;
 use super::super::View;
 use super::{
     color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc, FullscreenPass,
     KeyedPipeline,
 };
+use super::{Pass, Preparation, Recording};
 use crate::{shaders, Result};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,16 +64,12 @@ impl TonemapPass {
             bind_group: None,
         })
     }
+}
 
+impl Pass for TonemapPass {
     /// Builds the pipeline for the plan and view (if it changed) and the bind group for `targets`.
-    pub fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        targets: &Targets,
-        plan: &Plan,
-        view: View,
-        unused: &wgpu::TextureView,
-    ) {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, plan, view, unused, .. } = *p;
         let key = Key::of(plan, view);
         let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
         self.pipeline.ensure(key, |key| {
@@ -112,18 +109,11 @@ impl TonemapPass {
         }));
     }
 
-    /// Draws into `output`, at `origin` (the top-left corner of the 3D view) when the output is
-    /// larger than the targets (a window with a side panel).
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
-        targets: &Targets,
-        frame: &wgpu::BindGroup,
-        output: &wgpu::TextureView,
-        origin: (u32, u32),
-    ) {
-        let (Some((_, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else { return };
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, output, origin, .. } = rec;
+        let (Some((_, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else {
+            unreachable!("the tone map recorded before `prepare`")
+        };
         let (w, h) = targets.size;
         FullscreenPass {
             label: "tonemap_pass",
