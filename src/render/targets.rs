@@ -2,7 +2,7 @@
 //! plan needs a different set; passes own pipelines and rebuild only their bind groups. A target
 //! that the current plan does not read or write is not allocated at all.
 
-use super::modes::Plan;
+use super::modes::{Plan, TargetSet};
 
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// View-space normal and shininess packed in one u32 (`shaders/common/surface_pack.wgsl`).
@@ -131,13 +131,12 @@ pub struct OcclusionTargets {
 }
 
 impl OcclusionTargets {
-    fn new(device: &wgpu::Device, plan: &Plan, size: (u32, u32), blurred: bool) -> Self {
+    fn new(device: &wgpu::Device, set: &TargetSet, size: (u32, u32), blurred: bool) -> Self {
         let name = |raw: &'static str, blur: &'static str| if blurred { blur } else { raw };
         let make = |wanted: bool, name: &'static str, format| wanted.then(|| Target::new(device, name, size, format));
-        let directional = plan.decl.directional_occlusion;
         Self {
-            ao: make(plan.decl.ambient_occlusion && !directional, name("ao_raw", "ao_blurred"), AO_FORMAT),
-            directional: make(directional, name("do_raw", "do_blurred"), DO_FORMAT),
+            ao: make(set.ao, name("ao_raw", "ao_blurred"), AO_FORMAT),
+            directional: make(set.directional, name("do_raw", "do_blurred"), DO_FORMAT),
         }
     }
 
@@ -157,7 +156,7 @@ pub struct Targets {
     pub size: (u32, u32),
     /// rgb albedo, a specular strength
     pub albedo: Target,
-    /// xyz view-space normal, w shininess
+    /// View-space normal and shininess, packed (`pack_surface`)
     pub normal: Target,
     pub depth: Target,
     /// Linear HDR radiance before tone mapping (not in a display plan without a lighting pass).
@@ -173,17 +172,19 @@ pub struct Targets {
 }
 
 impl Targets {
+    /// Allocates the plan's [`TargetSet`] and the G-buffer.
     pub fn new(device: &wgpu::Device, size: (u32, u32), plan: &Plan) -> Self {
+        let set = plan.target_set();
         Self {
             size,
             albedo: Target::new(device, "gbuffer_albedo", size, ALBEDO_FORMAT),
             normal: Target::new(device, "gbuffer_normal", size, NORMAL_FORMAT),
             depth: Target::new(device, "gbuffer_depth", size, DEPTH_FORMAT),
-            hdr: plan.keeps_hdr().then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
-            bounce: plan.indirect().then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
-            raw: OcclusionTargets::new(device, plan, size, false),
-            blurred: plan.blur.then(|| OcclusionTargets::new(device, plan, size, true)),
-            pyramid: plan.has(super::modes::Step::DepthPyramid).then(|| Pyramid::new(device, size)),
+            hdr: set.hdr.then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
+            bounce: set.bounce.then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
+            raw: OcclusionTargets::new(device, &set, size, false),
+            blurred: set.blurred.then(|| OcclusionTargets::new(device, &set, size, true)),
+            pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
         }
     }
 

@@ -1,11 +1,20 @@
-//! Render modes. Each mode is a small module that *declares* what it needs; [`Plan::new`] turns
-//! that declaration and the scene's features into the list of steps the frame runs. Nothing a
-//! mode or scene does not need is in the plan, and so nothing for it is allocated or run.
-
-mod both;
-mod off;
-mod ssao;
-mod ssdo;
+//! Render modes, and what each allocates and runs: this file answers it. A mode *declares* what
+//! it needs ([`ModeDecl`], the table in [`Mode::declaration`]); [`Plan::new`] turns that and the
+//! scene's features into the steps the frame runs, and [`Plan::target_set`] into the screen
+//! targets it allocates (`targets.rs` allocates exactly that set). Nothing a mode or a scene does
+//! not need is in the plan, and so nothing for it is allocated or run. `--print-plan` prints both.
+//!
+//! | mode | steps (with lights, blur on, display plan) | targets besides the G-buffer |
+//! |---|---|---|
+//! | Off | gbuffer, composite, light_cubes | — |
+//! | SSAO | gbuffer, ssao, blur, composite, light_cubes | `ao_raw`, `ao_blurred` |
+//! | SSDO | gbuffer, lighting, ssdo, blur, composite, light_cubes | `hdr_color`, `bounce_radiance`, `do_raw`, `do_blurred` |
+//! | SSAO+SSDO | gbuffer, lighting, ssao_ssdo, blur, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//!
+//! Without lights there is no lighting pass, bounce or light cubes (and no HDR target in a display
+//! plan); an HDR plan (the report, `--raw`, `--stats`, a debug view) adds `hdr_color`, the skybox
+//! and the tone map; `--no-blur` drops the blur and its targets; the march with `--depth-pyramid`
+//! adds the pyramid in the DO modes.
 
 use std::fmt;
 use std::str::FromStr;
@@ -44,13 +53,26 @@ impl Mode {
         }
     }
 
-    /// What this mode needs.
+    /// What this mode needs: the one place a mode is defined.
     pub fn declaration(self) -> &'static ModeDecl {
+        const fn decl(mode: Mode, ambient_occlusion: bool, directional_occlusion: bool) -> ModeDecl {
+            ModeDecl { mode, ambient_occlusion, directional_occlusion }
+        }
+        // Off: the sky's irradiance, the ambient term and the point lights, unoccluded.
+        const OFF: ModeDecl = decl(Mode::Off, false, false);
+        // SSAO: the sky and ambient terms darkened by screen-space ambient occlusion (the classic
+        // hemisphere-kernel technique, or the march's near steps).
+        const SSAO: ModeDecl = decl(Mode::Ssao, true, false);
+        // SSDO: directional occlusion (Ritschel, Grosch & Seidel 2009) — the sky from the open
+        // directions plus one bounce from nearby surfaces — instead of the unoccluded sky.
+        const SSDO: ModeDecl = decl(Mode::Ssdo, false, true);
+        // SSAO+SSDO: SSDO with AO on the constant ambient term, both from one set of samples.
+        const BOTH: ModeDecl = decl(Mode::Both, true, true);
         match self {
-            Mode::Off => &off::DECL,
-            Mode::Ssao => &ssao::DECL,
-            Mode::Ssdo => &ssdo::DECL,
-            Mode::Both => &both::DECL,
+            Mode::Off => &OFF,
+            Mode::Ssao => &SSAO,
+            Mode::Ssdo => &SSDO,
+            Mode::Both => &BOTH,
         }
     }
 
@@ -97,6 +119,23 @@ impl ModeDecl {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SceneFeatures {
     pub lights: usize,
+}
+
+/// Which screen targets a plan allocates besides the G-buffer (see `targets.rs` for formats).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TargetSet {
+    /// Linear HDR radiance (`hdr_color`).
+    pub hdr: bool,
+    /// Diffuse radiance under the point lights, SSDO's bounce source (`bounce_radiance`).
+    pub bounce: bool,
+    /// AO alone (`ao_raw`): SSAO.
+    pub ao: bool,
+    /// DO + AO (`do_raw`): SSDO and SSAO+SSDO.
+    pub directional: bool,
+    /// A blurred copy of whichever of the two the plan has.
+    pub blurred: bool,
+    /// The closest-depth pyramid of the march's far steps.
+    pub pyramid: bool,
 }
 
 /// One step of a frame, in the order the frame runs them.
@@ -212,6 +251,19 @@ impl Plan {
         !self.display || self.has(Step::Lighting)
     }
 
+    /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth).
+    pub fn target_set(&self) -> TargetSet {
+        let samples = self.decl.samples();
+        TargetSet {
+            hdr: self.keeps_hdr(),
+            bounce: self.has(Step::Lighting),
+            ao: samples && !self.decl.directional_occlusion,
+            directional: self.decl.directional_occlusion,
+            blurred: self.blur,
+            pyramid: self.has(Step::DepthPyramid),
+        }
+    }
+
     pub fn has(&self, step: Step) -> bool {
         self.steps.contains(&step)
     }
@@ -225,6 +277,25 @@ impl Plan {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
+        let lit = SceneFeatures { lights: 8 };
+        // (mode, steps, (hdr, bounce, ao, directional))
+        let rows = [
+            (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
+            (Mode::Ssao, "gbuffer, ssao, blur, composite, light_cubes", (false, false, true, false)),
+            (Mode::Ssdo, "gbuffer, lighting, ssdo, blur, composite, light_cubes", (true, true, false, true)),
+            (Mode::Both, "gbuffer, lighting, ssao_ssdo, blur, composite, light_cubes", (true, true, false, true)),
+        ];
+        for (mode, steps, targets) in rows {
+            let plan = Plan::new(mode, lit, true, false, true);
+            assert_eq!(plan.step_names().join(", "), steps, "{mode}");
+            let t = plan.target_set();
+            assert_eq!((t.hdr, t.bounce, t.ao, t.directional), targets, "{mode}");
+            assert_eq!((t.blurred, t.pyramid), (plan.decl.samples(), false), "{mode}");
+        }
+    }
 
     #[test]
     fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_lighting_pass() {
