@@ -77,7 +77,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     let p = view_position(position, depth);
     let size = vec2<i32>(frame.viewport.xy);
     // Never 0: a radius of 0 still blurs flat surfaces.
-    let tolerance = max(0.25 * occ.params.x, 1e-30);
+    let tolerance = max(0.25 * occ.radius, 1e-30);
 
     var sum = vec4<f32>(0.0);
     var total = 0.0;

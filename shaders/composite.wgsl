@@ -69,7 +69,7 @@ fn sky_radiance(pixel: vec2<i32>) -> vec3<f32> {
     let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
     let view_dir = vec3<f32>(ndc.x / frame.view_to_clip[0][0], ndc.y / frame.view_to_clip[1][1], -1.0);
     let world_dir = (frame.view_to_world * vec4<f32>(view_dir, 0.0)).xyz;
-    return textureSampleLevel(sky_map, sky_sampler, world_dir, 0.0).rgb * frame.sky.x;
+    return textureSampleLevel(sky_map, sky_sampler, world_dir, 0.0).rgb * frame.sky_scale;
 }
 
 @fragment
@@ -78,9 +78,9 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         // The fragment's position is in the output; the targets are addressed from the image's
         // own top-left corner.
         let size = frame.viewport.xy;
-        let pixel = vec2<i32>(min(in.position.xy - frame.output_origin.xy, size - 1.0));
+        let pixel = vec2<i32>(min(in.position.xy - frame.output_origin, size - 1.0));
         var color = radiance(pixel, vec2<f32>(pixel) + 0.5);
-        color = tone_map(color * frame.camera.z);
+        color = tone_map(color * frame.display_scale);
         if !OUTPUT_SRGB {
             color = linear_to_srgb(color);
         }
@@ -109,9 +109,9 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     var ao = 1.0;
     if HAS_AO {
         let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, AO_IN_DO), 0.0, 1.0);
-        ao = mix(1.0, pow(raw, frame.shading.y), frame.shading.x);
+        ao = mix(1.0, pow(raw, frame.ao_power), frame.ao_strength);
     }
-    let ambient = frame.sky.z * frame.ambient.rgb;
+    let ambient = frame.pre_exposure * frame.ambient;
     var color: vec3<f32>;
     var normal = vec4<f32>(0.0);
     if LIGHT_LOOP || (!CLASSIC && !HAS_DO) {

@@ -10,11 +10,17 @@
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
 
+// Mirrors `MaterialParams` in src/render/uniforms.rs.
 struct MaterialParams {
-    // rgb diffuse albedo, a specular strength
-    diffuse: vec4<f32>,
-    // shininess, unused x3
-    params: vec4<f32>,
+    // diffuse albedo (linear)
+    albedo: vec3<f32>,
+    // specular strength
+    specular: f32,
+    // Blinn-Phong exponent
+    shininess: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
 }
 
 @group(1) @binding(0) var<uniform> material: MaterialParams;
@@ -74,8 +80,8 @@ struct GBufferOut {
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     // Derivatives first, in uniform control flow.
     let plane = cross(dpdx(in.view_position), dpdy(in.view_position));
-    var albedo = material.diffuse.rgb;
-    var specular = material.diffuse.a;
+    var albedo = material.albedo;
+    var specular = material.specular;
     if TEXTURED {
         // Trilinear: the maps carry mip chains (src/render/passes/gbuffer.rs, `mip_chain`).
         albedo *= textureSample(diffuse_map, material_sampler, in.uv).rgb;
@@ -84,6 +90,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     let n = camera_side(safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0)), in.view_position, plane, front);
     var out: GBufferOut;
     out.albedo = vec4<f32>(albedo, specular);
-    out.normal = pack_surface(n, material.params.x);
+    out.normal = pack_surface(n, material.shininess);
     return out;
 }

@@ -22,10 +22,10 @@ struct CubeOut {
 @vertex
 fn vs_main(@location(0) corner: vec3<f32>, @builtin(instance_index) index: u32) -> CubeOut {
     let light = lights[index];
-    let world = light.world_position.xyz + corner * light.color.w;
+    let world = light.world_position + corner * light.cube_half_size;
     var out: CubeOut;
     out.clip = frame.view_to_clip * (frame.world_to_view * vec4<f32>(world, 1.0));
-    out.color = light.color.rgb * (CUBE_EMISSION * frame.sky.z);
+    out.color = light.color * (CUBE_EMISSION * frame.pre_exposure);
     return out;
 }
 
@@ -39,11 +39,11 @@ fn fs_main(in: CubeOut) -> @location(0) vec4<f32> {
 // the farther one show; light cubes are a few pixels wide and rarely overlap.
 @fragment
 fn fs_display(in: CubeOut) -> @location(0) vec4<f32> {
-    let pixel = vec2<i32>(in.clip.xy - frame.output_origin.xy);
+    let pixel = vec2<i32>(in.clip.xy - frame.output_origin);
     if in.clip.z < textureLoad(g_depth, pixel, 0).r {
         discard;
     }
-    var color = tone_map(in.color * frame.camera.z);
+    var color = tone_map(in.color * frame.display_scale);
     if !OUTPUT_SRGB {
         color = linear_to_srgb(color);
     }

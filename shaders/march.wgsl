@@ -106,14 +106,14 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
         return out;
     }
     let n = load_normal(pixel);
-    let radius = occ.params.x;
+    let radius = occ.radius;
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
-    let p = view_position(position, depth) + n * occ.params.y;
+    let p = view_position(position, depth) + n * occ.bias;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
-    let slices = max(u32(occ.march.x), 1u);
-    let steps = max(u32(occ.march.y), 1u);
-    let reach = max(occ.march.z, radius);
-    let thickness = max(occ.march.w, 0.0);
+    let slices = max(u32(occ.slices), 1u);
+    let steps = max(u32(occ.steps), 1u);
+    let reach = max(occ.reach, radius);
+    let thickness = max(occ.thickness, 0.0);
     let size = frame.viewport.xy;
     // Pixels per view unit at the receiver's depth.
     let pixels_per_unit = 0.5 * size.y * frame.view_to_clip[1][1] / max(-p.z, 1e-30);
@@ -276,14 +276,14 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                     let theta = a + 0.5 * width;
                     let omega = v * cos(theta) + t * sin(theta);
                     let world = (frame.view_to_world * vec4<f32>(omega, 0.0)).xyz;
-                    direct += w * visible * textureSampleLevel(sky_map, sky_sampler, world, occ.params.w).rgb;
+                    direct += w * visible * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
                 }
             }
         }
     }
     if total > 0.0 {
         out.ao = 1.0 - occluded_near / total;
-        out.direct = direct / total * frame.sky.x;
+        out.direct = direct / total * frame.sky_scale;
         out.indirect = indirect / total;
     }
     return out;
@@ -299,5 +299,5 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate(in.position.xy);
-    return vec4<f32>(o.direct * occ.strengths.x + o.indirect * occ.strengths.y, select(1.0, o.ao, COMPUTE_AO));
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
 }

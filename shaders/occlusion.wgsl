@@ -83,9 +83,9 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     }
     let n = load_normal(pixel);
     let p = view_position(position, depth);
-    let radius = occ.params.x;
-    let bias = occ.params.y;
-    let count = min(u32(occ.params.z), MAX_SAMPLES);
+    let radius = occ.radius;
+    let bias = occ.bias;
+    let count = min(u32(occ.sample_count), MAX_SAMPLES);
     let tbn = tangent_frame(n, pixel);
     let size = vec2<i32>(frame.viewport.xy);
 
@@ -126,7 +126,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
                     if INDIRECT {
                         let n_s = load_normal(texel);
                         let albedo_s = textureLoad(g_albedo, texel, 0).rgb;
-                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s * frame.sky.z;
+                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s * frame.pre_exposure;
                     }
                 } else {
                     let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
@@ -139,7 +139,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
             weight += cos_r;
             if COMPUTE_DO {
                 let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
-                direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.params.w).rgb;
+                direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
                 if INDIRECT && o > 0.0 {
                     let n_s = load_normal(texel);
                     let to_receiver = p - s;
@@ -157,11 +157,11 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     if CLASSIC {
         let inv_n = 1.0 / f32(max(count, 1u));
         out.ao = 1.0 - occluded * inv_n;
-        out.direct = direct * inv_n * frame.sky.x;
+        out.direct = direct * inv_n * frame.sky_scale;
         out.indirect = indirect * inv_n;
     } else if weight > 0.0 {
         out.ao = 1.0 - occluded / weight;
-        out.direct = direct / weight * frame.sky.x;
+        out.direct = direct / weight * frame.sky_scale;
         out.indirect = indirect / f32(valid);
     }
     return out;
@@ -177,5 +177,5 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate(in.position.xy);
-    return vec4<f32>(o.direct * occ.strengths.x + o.indirect * occ.strengths.y, select(1.0, o.ao, COMPUTE_AO));
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
 }

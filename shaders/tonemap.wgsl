@@ -47,7 +47,7 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
                 return vec3<f32>(0.0);
             }
             let z = frame.view_to_clip[3][2] / max(d + frame.view_to_clip[2][2], 1e-30);
-            return vec3<f32>(pow(clamp(1.0 - z / (2.0 * frame.ambient.w), 0.0, 1.0), 2.2));
+            return vec3<f32>(pow(clamp(1.0 - z / (2.0 * frame.orbit_distance), 0.0, 1.0), 2.2));
         }
         case 4u: {
             var ao = 1.0;
@@ -61,10 +61,10 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             if HAS_DO {
                 light = textureLoad(do_map, pixel, 0).rgb;
             }
-            return tone_map(light * frame.camera.z);
+            return tone_map(light * frame.display_scale);
         }
         default: {
-            return tone_map(textureLoad(hdr, pixel, 0).rgb * frame.camera.z);
+            return tone_map(textureLoad(hdr, pixel, 0).rgb * frame.display_scale);
         }
     }
 }

@@ -1,8 +1,8 @@
 //! WGSL checks that need no GPU: every shader parses and validates with naga (the same
 //! front end wgpu uses), every file under shaders/ is embedded, and the uniform structs have the
-//! same size in Rust and WGSL.
+//! same members at the same offsets in Rust and WGSL.
 
-use ssdo::render::uniforms::{FrameUniforms, GpuLight, MaterialParams};
+use ssdo::render::uniforms::{FrameUniforms, GpuLight, MaterialParams, OcclusionParams};
 use ssdo::shaders;
 
 fn parse(name: &str) -> naga::Module {
@@ -49,21 +49,87 @@ fn includes_are_resolved_once() {
     assert_eq!(source.matches("struct Frame {").count(), 1, "uniforms.wgsl included twice");
 }
 
-fn wgsl_size(module: &naga::Module, name: &str) -> u32 {
+/// The WGSL struct `name` as naga lays it out: its size and each member's (name, offset).
+fn wgsl_layout(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
     let mut layouter = naga::proc::Layouter::default();
     layouter.update(module.to_ctx()).unwrap();
-    let (handle, _) = module
+    let (handle, ty) = module
         .types
         .iter()
         .find(|(_, t)| t.name.as_deref() == Some(name))
         .unwrap_or_else(|| panic!("no struct {name}"));
-    layouter[handle].size
+    let naga::TypeInner::Struct { members, .. } = &ty.inner else { panic!("{name} is not a struct") };
+    let members = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize)).collect();
+    (layouter[handle].size as usize, members)
+}
+
+/// Checks a Rust struct against its WGSL mirror: the same size, and the same members (names
+/// included) at the same offsets.
+macro_rules! same_layout {
+    ($module:expr, $wgsl:literal, $rust:ty { $($field:ident),* $(,)? }) => {{
+        let (size, members) = wgsl_layout($module, $wgsl);
+        assert_eq!(size, std::mem::size_of::<$rust>(), "{}: size", $wgsl);
+        let rust: Vec<(String, usize)> =
+            vec![$((stringify!($field).to_string(), std::mem::offset_of!($rust, $field))),*];
+        assert_eq!(members, rust, "{} against {}: members and offsets", $wgsl, stringify!($rust));
+    }};
 }
 
 #[test]
-fn uniform_structs_match_wgsl() {
+fn uniform_structs_match_wgsl_member_for_member() {
     let gbuffer = parse("gbuffer.wgsl");
-    assert_eq!(wgsl_size(&gbuffer, "Frame") as usize, std::mem::size_of::<FrameUniforms>());
-    assert_eq!(wgsl_size(&gbuffer, "Light") as usize, std::mem::size_of::<GpuLight>());
-    assert_eq!(wgsl_size(&gbuffer, "MaterialParams") as usize, std::mem::size_of::<MaterialParams>());
+    same_layout!(
+        &gbuffer,
+        "Frame",
+        FrameUniforms {
+            world_to_view,
+            view_to_clip,
+            clip_to_view,
+            view_to_world,
+            viewport,
+            near,
+            far,
+            display_scale,
+            min_light_distance2,
+            ambient,
+            orbit_distance,
+            sky_scale,
+            sky_mips,
+            pre_exposure,
+            ao_strength,
+            ao_power,
+            light_count,
+            frame_index,
+            _pad0,
+            output_origin,
+            _pad1,
+            sky_sh,
+        }
+    );
+    same_layout!(
+        &gbuffer,
+        "Light",
+        GpuLight { world_position, intensity, view_position, _pad0, color, cube_half_size }
+    );
+    same_layout!(&gbuffer, "MaterialParams", MaterialParams { albedo, specular, shininess, _pad0, _pad1, _pad2 });
+    same_layout!(
+        &parse("occlusion.wgsl"),
+        "OcclusionParams",
+        OcclusionParams {
+            kernel,
+            rotations,
+            radius,
+            bias,
+            sample_count,
+            sky_mip,
+            sky_strength,
+            indirect_strength,
+            _pad0,
+            _pad1,
+            slices,
+            steps,
+            reach,
+            thickness,
+        }
+    );
 }

@@ -1,6 +1,9 @@
 // The G-buffer as the screen-space passes read it (bind group 1, bindings 0-2), and view-space
 // position reconstructed from reverse-Z depth.
 
+// Each include declares what it uses: `frame` (bind group 0) comes from uniforms.wgsl. Bindings
+// 0-2 of group 1 are fixed here; `gbuffer_entries()` in src/render/passes/mod.rs lays them out.
+#include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
 
 @group(1) @binding(0) var g_albedo: texture_2d<f32>;

@@ -1,5 +1,5 @@
 // Sampling parameters shared by the occlusion pass (bind group 1, binding 3 there). Mirrors
-// `OcclusionUniforms` in src/render/uniforms.rs.
+// `OcclusionParams` in src/render/uniforms.rs field for field (checked in tests/shaders.rs).
 
 const MAX_SAMPLES: u32 = 256u;
 
@@ -9,12 +9,23 @@ struct OcclusionParams {
     // The 16 per-pixel rotations of a 4x4 tile: xy = (cos, sin) of the angle (default variant)
     // or a random tangent-plane vector (classic variant); zw unused.
     rotations: array<vec4<f32>, 16>,
-    // radius (view units), bias (view units), sample count, sky mip level
-    params: vec4<f32>,
-    // sky-light strength, indirect strength, unused, unused
-    strengths: vec4<f32>,
-    // The march (shaders/march.wgsl): slices, steps per side, reach (view units: how far the
-    // sky's visibility and the bounce are looked for), thickness (view units: how deep a surface
-    // in the depth buffer is taken to be)
-    march: vec4<f32>,
+    // sampling radius and depth bias, in view units
+    radius: f32,
+    bias: f32,
+    // samples per pixel (points and classic variants)
+    sample_count: f32,
+    // the sky cube map's mip level a sample's solid angle reads
+    sky_mip: f32,
+    // multiply SSDO's sky light and its bounce
+    sky_strength: f32,
+    indirect_strength: f32,
+    _pad0: f32,
+    _pad1: f32,
+    // The march (shaders/march.wgsl): slices and steps per side...
+    slices: f32,
+    steps: f32,
+    // ...reach (view units: how far the sky's visibility and the bounce are looked for) and
+    // thickness (view units: how deep a surface in the depth buffer is taken to be)
+    reach: f32,
+    thickness: f32,
 }

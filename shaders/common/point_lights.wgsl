@@ -3,6 +3,8 @@
 // finite). Returns outgoing radiance towards the camera at view-space `p`, split into the
 // diffuse part (which SSDO bounces) and the specular part.
 
+#include "common/uniforms.wgsl"
+
 struct PointLighting {
     diffuse: vec3<f32>,
     specular: vec3<f32>,
@@ -10,16 +12,16 @@ struct PointLighting {
 
 fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, shininess: f32) -> PointLighting {
     let to_eye = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
-    let min_d2 = frame.camera.w;
+    let min_d2 = frame.min_light_distance2;
     let spec_norm = (shininess + 8.0) / (8.0 * PI);
     var out: PointLighting;
-    for (var i = 0u; i < frame.counts.x; i += 1u) {
+    for (var i = 0u; i < frame.light_count; i += 1u) {
         let light = lights[i];
-        let to_light = light.view_position.xyz - p;
+        let to_light = light.view_position - p;
         let d2 = dot(to_light, to_light);
         let l = safe_normalize(to_light, n);
         let n_dot_l = max(dot(n, l), 0.0);
-        let irradiance = light.color.rgb * (frame.sky.z * light.world_position.w / max(d2, min_d2)) * n_dot_l;
+        let irradiance = light.color * (frame.pre_exposure * light.intensity / max(d2, min_d2)) * n_dot_l;
         let h = safe_normalize(l + to_eye, n);
         out.diffuse += irradiance * albedo / PI;
         out.specular += irradiance * (specular * spec_norm * pow(max(dot(n, h), 0.0), shininess));

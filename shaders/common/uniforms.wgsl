@@ -1,43 +1,59 @@
 // Per-frame data shared by every pass (bind group 0). Mirrors `FrameUniforms` and `GpuLight`
-// in src/render/uniforms.rs field for field.
+// in src/render/uniforms.rs field for field, names included (tests/shaders.rs checks every
+// member's offset against naga's layout of this file).
 
 struct Frame {
     world_to_view: mat4x4<f32>,
     view_to_clip: mat4x4<f32>,
     clip_to_view: mat4x4<f32>,
     view_to_world: mat4x4<f32>,
-    // width, height, 1/width, 1/height
+    // width, height, 1/width, 1/height of the image (not of the output it may be drawn into)
     viewport: vec4<f32>,
-    // near, far (0 = infinite), exposure / pre-exposure, smallest light distance squared
-    camera: vec4<f32>,
-    // ambient radiance (rgb), orbit distance of the camera (for the depth view)
-    ambient: vec4<f32>,
-    // sky radiance scale (pre-exposed), sky mip count, pre-exposure, unused
-    sky: vec4<f32>,
-    // AO strength, AO power, unused, unused
-    shading: vec4<f32>,
-    // light count, frame index, unused, unused
-    counts: vec4<u32>,
-    // xy: the pixel of the output where this image starts (the viewer's 3D view beside its
-    // panel), zw unused. Passes that draw straight into the output subtract it.
-    output_origin: vec4<f32>,
+    near: f32,
+    // 0: an infinite far plane
+    far: f32,
+    // exposure / pre-exposure: turns what a half-float buffer holds into displayed radiance
+    display_scale: f32,
+    // the point lights' irradiance is clamped at this distance, squared
+    min_light_distance2: f32,
+    // constant ambient radiance
+    ambient: vec3<f32>,
+    // the orbit camera's distance (the depth view's range)
+    orbit_distance: f32,
+    // multiplies the sky cube map's values into pre-exposed radiance
+    sky_scale: f32,
+    sky_mips: f32,
+    // see below
+    pre_exposure: f32,
+    ao_strength: f32,
+    ao_power: f32,
+    light_count: u32,
+    frame_index: u32,
+    _pad0: f32,
+    // the pixel of the output where this image starts (the viewer's 3D view beside its panel);
+    // passes that draw straight into the output subtract it
+    output_origin: vec2<f32>,
+    _pad1: vec2<f32>,
     // The sky's irradiance E(n)/π for a world-space normal: 9 spherical-harmonic coefficients
     // (rgb), scaled by the sky scale and strength and pre-exposed (Skybox::irradiance_sh).
     sky_sh: array<vec4<f32>, 9>,
 }
 
 struct Light {
-    // xyz world position, w radiant intensity
-    world_position: vec4<f32>,
-    // xyz view-space position, w unused
-    view_position: vec4<f32>,
-    // linear rgb colour, w half edge of the emissive cube
-    color: vec4<f32>,
+    world_position: vec3<f32>,
+    // radiant intensity
+    intensity: f32,
+    view_position: vec3<f32>,
+    _pad0: f32,
+    // linear rgb colour, largest channel 1
+    color: vec3<f32>,
+    // half the edge of the emissive cube drawn at the light
+    cube_half_size: f32,
 }
 
 // Pre-exposure: every radiance written to a half-float buffer (HDR, bounce, DO) is radiance ×
-// frame.sky.z, chosen on the CPU so the brightest radiance of the frame stays far below 65504;
-// the tone-map pass divides it back out (camera.z is exposure / pre-exposure).
+// frame.pre_exposure, chosen on the CPU so the brightest radiance of the frame stays far below
+// 65504; what displays it multiplies by frame.display_scale (exposure / pre-exposure).
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;
 

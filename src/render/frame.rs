@@ -15,8 +15,8 @@ pub struct FrameInputs {
     pub sky_mips: u32,
     /// Radiance in the half-float buffers is radiance × this (see `Renderer::pre_exposure`).
     pub pre_exposure: f32,
-    /// AO strength, AO power, unused, unused
-    pub shading: [f32; 4],
+    pub ao_strength: f32,
+    pub ao_power: f32,
     /// The sky's E(n)/π as spherical harmonics, in radiance (scaled, not yet pre-exposed).
     pub sky_sh: [Vec3; 9],
     /// Where the image starts in the output target (the viewer's panel is beside it).
@@ -118,17 +118,22 @@ impl FrameData {
             clip_to_view: mat(view_to_clip.inverse()),
             view_to_world: mat(world_to_view.inverse()),
             viewport: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
-            camera: [
-                camera.near,
-                camera.far.unwrap_or(0.0),
-                inputs.exposure / inputs.pre_exposure,
-                rig.min_distance.powi(2),
-            ],
-            ambient: [inputs.ambient.x, inputs.ambient.y, inputs.ambient.z, camera.distance],
-            sky: [inputs.sky_scale * inputs.pre_exposure, inputs.sky_mips as f32, inputs.pre_exposure, 0.0],
-            shading: inputs.shading,
-            counts: [lights.len() as u32, self.frame_index, 0, 0],
-            output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32, 0.0, 0.0],
+            near: camera.near,
+            far: camera.far.unwrap_or(0.0),
+            display_scale: inputs.exposure / inputs.pre_exposure,
+            min_light_distance2: rig.min_distance.powi(2),
+            ambient: inputs.ambient.into(),
+            orbit_distance: camera.distance,
+            sky_scale: inputs.sky_scale * inputs.pre_exposure,
+            sky_mips: inputs.sky_mips as f32,
+            pre_exposure: inputs.pre_exposure,
+            ao_strength: inputs.ao_strength,
+            ao_power: inputs.ao_power,
+            light_count: lights.len() as u32,
+            frame_index: self.frame_index,
+            _pad0: 0.0,
+            output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32],
+            _pad1: [0.0; 2],
             sky_sh: inputs.sky_sh.map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -141,9 +146,12 @@ impl FrameData {
         let gpu_lights: Vec<GpuLight> = lights
             .iter()
             .map(|l| GpuLight {
-                world_position: l.position.extend(l.intensity).into(),
-                view_position: (world_to_view * l.position.extend(1.0)).xyz().extend(0.0).into(),
-                color: l.color.extend(rig.cube_half_size).into(),
+                world_position: l.position.into(),
+                intensity: l.intensity,
+                view_position: (world_to_view * l.position.extend(1.0)).xyz().into(),
+                _pad0: 0.0,
+                color: l.color.into(),
+                cube_half_size: rig.cube_half_size,
             })
             .collect();
         if !gpu_lights.is_empty() {

@@ -383,7 +383,8 @@ impl Renderer {
             sky_scale: s.sky_scale * self.sky.encode_scale,
             sky_mips: self.sky.mip_levels,
             pre_exposure: self.pre_exposure(),
-            shading: [s.ao_strength, s.ao_power, 0.0, 0.0],
+            ao_strength: s.ao_strength,
+            ao_power: s.ao_power,
             sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
             output_origin: origin,
         };

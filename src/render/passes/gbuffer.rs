@@ -251,8 +251,10 @@ impl GBufferPass {
             .map(|part| {
                 let m = &model.materials[part.material];
                 let params = MaterialParams {
-                    diffuse: [m.diffuse[0], m.diffuse[1], m.diffuse[2], m.specular.iter().sum::<f32>() / 3.0],
-                    params: [m.shininess, 0.0, 0.0, 0.0],
+                    albedo: m.diffuse,
+                    specular: m.specular.iter().sum::<f32>() / 3.0,
+                    shininess: m.shininess,
+                    ..Default::default()
                 };
                 let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("material_{}_params", m.name)),

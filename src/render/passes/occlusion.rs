@@ -6,7 +6,7 @@
 use super::super::kernel::{self, Variant};
 use super::super::modes::Plan;
 use super::super::targets::{AO_FORMAT, DO_FORMAT};
-use super::super::uniforms::{OcclusionUniforms, MAX_SAMPLES};
+use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
 use super::{
     color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
     FullscreenPass, KeyedPipeline,
@@ -36,7 +36,7 @@ pub struct SamplingParams {
 /// The kernel and parameters uniform, shared by the sampling and blur passes.
 pub struct OcclusionData {
     pub buffer: wgpu::Buffer,
-    uniforms: Box<OcclusionUniforms>,
+    uniforms: Box<OcclusionParams>,
     kernel_key: Option<(Variant, usize)>,
 }
 
@@ -44,7 +44,7 @@ impl OcclusionData {
     pub fn new(device: &wgpu::Device) -> Self {
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("occlusion_params"),
-            size: std::mem::size_of::<OcclusionUniforms>() as u64,
+            size: std::mem::size_of::<OcclusionParams>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -61,9 +61,11 @@ impl OcclusionData {
             self.uniforms.rotations = kernel::rotations(params.variant);
             self.kernel_key = Some((params.variant, samples));
         }
-        self.uniforms.params = [params.radius, params.bias, samples as f32, params.sky_mip];
-        self.uniforms.strengths = [params.sky_strength, params.indirect_strength, 0.0, 0.0];
-        self.uniforms.march = [params.slices as f32, params.steps as f32, params.reach, params.thickness];
+        let u = self.uniforms.as_mut();
+        (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as f32, params.sky_mip);
+        (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
+        (u.slices, u.steps, u.reach, u.thickness) =
+            (params.slices as f32, params.steps as f32, params.reach, params.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
     }
 }
