@@ -14,5 +14,6 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod shaders;
+pub mod spec;
 
 pub use error::{Error, Result};

@@ -9,6 +9,7 @@ use clap::Parser;
 
 use ssdo::gpu::Gpu;
 use ssdo::render::capture::{capture, output_texture, CAPTURE_FORMAT};
+use ssdo::render::timing::BenchReport;
 use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 
@@ -105,7 +106,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::All => Mode::ALL.to_vec(),
     };
     let settings = args.render.settings(modes[0])?;
-    let (scene, sky) = args.scene.load()?;
+    let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     let size = (args.size.0, args.size.1);
@@ -164,6 +165,13 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     Ok(())
 }
 
+/// The scene and sky of `args`, with a spinner on the terminal while each loads.
+fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skybox)> {
+    let model = with_spinner("loading the model", || args.load_model())?;
+    let sky = with_spinner("loading the sky", || args.load_sky())?;
+    Ok((args.scene(model), sky))
+}
+
 fn print_plan(renderer: &Renderer) {
     let plan = renderer.plan();
     println!("plan {}:", plan.mode);
@@ -182,7 +190,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
         return Err(Error::Setting("--frames 0: measure at least one frame".into()));
     }
     let settings = args.render.settings(Mode::Off)?;
-    let (scene, sky) = args.scene.load()?;
+    let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     let size = (args.size.0, args.size.1);
@@ -192,71 +200,24 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     let timestamps = renderer.enable_timing(&gpu);
     let target = output_texture(&gpu, size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-    let mut results = Vec::new();
+    let mut modes = Vec::new();
     for mode in Mode::ALL {
         renderer.set_mode(&gpu, mode);
-        results.push((mode, ssdo::render::timing::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
+        modes.push((mode, ssdo::render::timing::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
     }
-    let frame = |m: Mode| results.iter().find(|(mode, _)| *mode == m).map_or(f64::NAN, |(_, r)| r.frame_ms);
-    let ratio_ssdo_ssao = frame(Mode::Ssdo) / frame(Mode::Ssao);
-    let ratio_both_ssdo = frame(Mode::Both) / frame(Mode::Ssdo);
-    let method = if timestamps {
-        "timestamp queries (GPU time per pass)"
-    } else {
-        "synchronised wall time per frame (no timestamp queries)"
+    let report = BenchReport {
+        device: gpu.describe(),
+        software: gpu.is_software(),
+        timestamps,
+        size,
+        frames: args.frames,
+        settings: renderer.settings,
+        modes,
     };
-    let s = &renderer.settings;
     if args.json {
-        let modes: serde_json::Map<String, serde_json::Value> = results
-            .iter()
-            .map(|(mode, r)| {
-                let passes: serde_json::Map<String, serde_json::Value> =
-                    r.passes.iter().map(|(n, ms)| (n.to_string(), serde_json::json!(ms))).collect();
-                (
-                    mode.name().to_string(),
-                    serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes }),
-                )
-            })
-            .collect();
-        let json = serde_json::json!({
-            "device": gpu.describe(),
-            "software": gpu.is_software(),
-            "timing": if timestamps { "timestamp" } else { "wall" },
-            "size": [size.0, size.1],
-            "frames": args.frames,
-            "variant": s.variant.name(),
-            "samples": s.samples,
-            "blur": s.blur,
-            "modes": modes,
-            "ratios": { "ssdo_over_ssao": ratio_ssdo_ssao, "both_over_ssdo": ratio_both_ssdo },
-        });
-        println!("{}", serde_json::to_string_pretty(&json).expect("JSON of numbers and strings"));
+        println!("{}", serde_json::to_string_pretty(&report.json()).expect("JSON of numbers and strings"));
     } else {
-        println!("device: {}{}", gpu.describe(), if gpu.is_software() { " — a CPU rasteriser, not a GPU" } else { "" });
-        println!("timing: {method}; median of {} frames after 2 warm-up frames", args.frames);
-        let count = if s.variant.marches() {
-            format!("{} slices × {} steps", s.slices, s.steps)
-        } else {
-            format!("{} samples", s.samples)
-        };
-        println!(
-            "size {}x{}, {} variant, {count}, blur {}",
-            size.0,
-            size.1,
-            s.variant,
-            if s.blur { "on" } else { "off" }
-        );
-        for (mode, r) in &results {
-            let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
-            println!(
-                "{:>5}: frame {:8.2} ms (wall {:8.2} ms)  {}",
-                mode.name(),
-                r.frame_ms,
-                r.wall_ms,
-                passes.join(", ")
-            );
-        }
-        println!("SSDO/SSAO frame-time ratio {ratio_ssdo_ssao:.3}; Both/SSDO {ratio_both_ssdo:.3}");
+        print!("{}", report.table());
     }
     Ok(())
 }
@@ -276,19 +237,7 @@ fn run_view(args: ViewArgs) -> Result<()> {
     }
     let settings = args.render.settings(args.mode)?;
     let ViewArgs { scene, screenshot_dir, .. } = args;
-    ssdo::app::run(ssdo::app::ViewerOptions {
-        model: scene.model.clone(),
-        skybox: scene.skybox.clone(),
-        lights: scene.lights,
-        seed: scene.seed,
-        scale: scene.scale,
-        layout: scene.layout,
-        triangles: scene.triangles,
-        settings,
-        size,
-        screenshot_dir,
-        camera: Box::new(move |s| scene.camera(s)),
-    })
+    ssdo::app::run(ssdo::app::ViewerOptions { scene, settings, size, screenshot_dir })
 }
 
 /// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` (installed with its drivers) only

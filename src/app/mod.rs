@@ -22,6 +22,7 @@ use crate::gpu::{instance_descriptor, Gpu};
 use crate::render::capture::capture;
 use crate::render::{Mode, Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
+use crate::spec::SceneArgs;
 use crate::{compare, output, Error, Result};
 use controls::CameraControls;
 use loader::{Loaded, Loader};
@@ -29,31 +30,20 @@ use ui::{Action, PanelState, PANEL_WIDTH};
 
 /// What the viewer starts with.
 pub struct ViewerOptions {
-    pub model: Option<PathBuf>,
-    pub skybox: Option<PathBuf>,
-    pub lights: usize,
-    pub seed: u64,
-    /// Scales the model (the stability cases' `--scale`).
-    pub scale: f32,
-    /// Where the model is placed: as it is, or in the benchmark room (also for models loaded later).
-    pub layout: scene::Layout,
-    /// The room's built-in figure's size (`--triangles`).
-    pub triangles: Option<usize>,
+    /// The model, sky, lights, layout and camera asked for (the same flags as `capture`). The
+    /// layout also places every model loaded later.
+    pub scene: SceneArgs,
     pub settings: Settings,
     /// Window size in physical pixels (panel included).
     pub size: (u32, u32),
     pub screenshot_dir: PathBuf,
-    /// Applies the command line's camera flags to the framing of the model.
-    pub camera: Box<dyn Fn(&Scene) -> Result<OrbitCamera>>,
 }
 
 /// Opens the window and runs until it is closed.
 pub fn run(options: ViewerOptions) -> Result<()> {
     // Load before opening the window: a bad file is an error on the command line, not a window.
-    let model = options.layout.load(options.model.as_deref(), options.scale, options.triangles)?;
-    let sky = scene::load_skybox(options.skybox.as_deref())?;
-    let scene = Scene::new(model, options.lights, options.seed);
-    let camera = (options.camera)(&scene)?;
+    let (scene, sky) = options.scene.load()?;
+    let camera = options.scene.camera(&scene)?;
     // No display is a setting of the environment, not a GPU fault.
     let event_loop = EventLoop::new().map_err(|e| {
         Error::Setting(format!(
@@ -212,8 +202,8 @@ impl Viewer {
             sky_path: String::new(),
             model_path: String::new(),
             sky_folders: loader::skybox_folders(),
-            lights: options.lights,
-            seed: options.seed,
+            lights: options.scene.lights,
+            seed: options.scene.seed,
             messages: Vec::new(),
             timings: Vec::new(),
             frame_ms: 0.0,
@@ -238,7 +228,7 @@ impl Viewer {
             egui_renderer,
             panel,
             screenshot_dir: options.screenshot_dir.clone(),
-            layout: options.layout,
+            layout: options.scene.layout,
             cursor: (0.0, 0.0),
             egui_repaint: None,
             timing_refresh: None,

@@ -1,0 +1,267 @@
+//! What a run asks for — the scene (model, sky, lights, layout), the camera and the render
+//! settings — as command-line flags, with their defaults, the range each is refused outside of
+//! (the range in the message) and the loading they lead to. The command line, the viewer and the
+//! bench share it; `src/cli.rs` only adds the commands around it.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::render::{Mode, Settings, Variant, View};
+use crate::scene::{self, OrbitCamera, Scene};
+use crate::{Error, Result};
+
+#[derive(Args)]
+pub struct SceneArgs {
+    /// model: the model framed by the orbit camera; room: the model lying on the floor of a closed
+    /// room that fills the screen, seen by a fixed camera (the classic SSAO chapter's set-up)
+    #[arg(long = "scene", default_value = "model", value_parser = parse_layout)]
+    pub layout: scene::Layout,
+    /// With --scene room and no --model: the built-in figure's triangle count [default: 50000]
+    #[arg(long)]
+    pub triangles: Option<usize>,
+    /// OBJ model to load [default: models/cornell/cornell.obj]
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// Skybox folder with six faces [default: skyboxes/day]
+    #[arg(long)]
+    pub skybox: Option<PathBuf>,
+    /// Number of random point lights
+    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS)]
+    pub lights: usize,
+    /// Seed for the lights' colours and positions
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Camera yaw around the model in degrees [default: 35]
+    #[arg(long, allow_negative_numbers = true)]
+    pub yaw: Option<f32>,
+    /// Camera elevation in degrees [default: 22]
+    #[arg(long, allow_negative_numbers = true)]
+    pub pitch: Option<f32>,
+    /// Camera distance from the model's centre [default: frames the model]
+    #[arg(long, allow_negative_numbers = true)]
+    pub distance: Option<f32>,
+    /// Near plane distance [default: a thousandth of the camera distance]
+    #[arg(long, allow_negative_numbers = true)]
+    pub near: Option<f32>,
+    /// Far plane distance, or inf [default: inf]
+    #[arg(long, value_parser = parse_far)]
+    pub far: Option<f32>,
+    /// Scale the model by this factor (defaults scale with it)
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub scale: f32,
+}
+
+pub fn parse_layout(s: &str) -> std::result::Result<scene::Layout, String> {
+    s.parse::<scene::Layout>().map_err(|e| e.to_string())
+}
+
+pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
+    if s.eq_ignore_ascii_case("inf") {
+        return Ok(f32::INFINITY);
+    }
+    s.parse::<f32>().map_err(|_| format!("'{s}' is not a number or inf"))
+}
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the source chapters' SSAO and SSDO)
+    #[arg(long, default_value = "default", value_parser = parse_variant)]
+    pub variant: Variant,
+    /// Samples per pixel of the points and classic variants, 1-256 [default: 16; classic 64]
+    #[arg(long)]
+    pub samples: Option<usize>,
+    /// The march: slices (directions around the view vector) per pixel, 1-32
+    #[arg(long, default_value_t = 2)]
+    pub slices: usize,
+    /// The march: steps along each side of a slice, 1-64 (half within the radius)
+    #[arg(long, default_value_t = 12)]
+    pub steps: usize,
+    /// The march's reach, in model units [default: 24 radii]
+    #[arg(long, allow_negative_numbers = true)]
+    pub reach: Option<f32>,
+    /// The march's surface thickness, in model units [default: 1 radius]
+    #[arg(long, allow_negative_numbers = true)]
+    pub thickness: Option<f32>,
+    /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see README)
+    #[arg(long)]
+    pub depth_pyramid: bool,
+    /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
+    #[arg(long, allow_negative_numbers = true)]
+    pub radius: Option<f32>,
+    /// Depth bias of the occlusion test, as a fraction of the radius
+    #[arg(long, default_value_t = 0.03, allow_negative_numbers = true)]
+    pub bias: f32,
+    /// How much of the AO is applied (0 to 1)
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub ao_strength: f32,
+    /// AO is raised to this power
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub ao_power: f32,
+    /// Multiplier on SSDO's sky light
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub sky_strength: f32,
+    /// Multiplier on SSDO's indirect bounce
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub indirect_strength: f32,
+    /// Leave the AO/DO noise unfiltered
+    #[arg(long)]
+    pub no_blur: bool,
+    /// Exposure applied before tone mapping
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Constant ambient radiance, on top of the sky [default: 0.1; classic 0.5]
+    #[arg(long, allow_negative_numbers = true)]
+    pub ambient: Option<f32>,
+    /// Multiplier on the sky's radiance
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub sky_scale: f32,
+    /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting
+    #[arg(long, default_value = "final", value_parser = parse_view)]
+    pub view: View,
+}
+
+pub fn parse_variant(s: &str) -> std::result::Result<Variant, String> {
+    s.parse::<Variant>().map_err(|e| e.to_string())
+}
+
+pub fn parse_view(s: &str) -> std::result::Result<View, String> {
+    s.parse::<View>().map_err(|e| e.to_string())
+}
+
+/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
+/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
+/// would turn black instead of white.
+pub const MAX_GAIN: f32 = 1e6;
+/// The largest length setting (radius, reach, thickness), in model units.
+pub const MAX_LENGTH: f32 = 1e9;
+
+pub fn non_negative(name: &str, value: f32) -> Result<f32> {
+    in_range(name, value, 0.0, MAX_LENGTH)
+}
+
+/// `value` if it is finite and within [lo, hi]; otherwise an error naming the flag and the range.
+pub fn in_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
+    if value.is_finite() && (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::Setting(format!("--{name} {}: must be a finite number from {} to {}", num(value), num(lo), num(hi))))
+    }
+}
+
+/// A number as people write it: 0.25, 1e6, 3.0e-5 (not 30 digits of a huge or tiny float).
+pub fn num(v: f32) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+impl SceneArgs {
+    /// The model: the file (or the default scene) scaled and placed by the layout, or the room's
+    /// built-in figure.
+    pub fn load_model(&self) -> Result<scene::Model> {
+        // Beyond these, positions lose the precision the depth buffer and the march need.
+        in_range("scale", self.scale, 1e-6, 1e6)?;
+        self.layout.load(self.model.as_deref(), self.scale, self.triangles)
+    }
+
+    /// The sky folder, or the default sky.
+    pub fn load_sky(&self) -> Result<scene::Skybox> {
+        scene::load_skybox(self.skybox.as_deref())
+    }
+
+    /// `model` with this run's lights.
+    pub fn scene(&self, model: scene::Model) -> Scene {
+        Scene::new(model, self.lights, self.seed)
+    }
+
+    /// The scene and its sky.
+    pub fn load(&self) -> Result<(Scene, scene::Skybox)> {
+        Ok((self.scene(self.load_model()?), self.load_sky()?))
+    }
+
+    pub fn camera(&self, scene: &Scene) -> Result<OrbitCamera> {
+        let mut camera = self.layout.camera(&scene.model.bounds);
+        if let Some(yaw) = self.yaw {
+            camera.yaw_deg = in_range("yaw", yaw, -36000.0, 36000.0)?;
+        }
+        if let Some(pitch) = self.pitch {
+            // ±90 would look along the orbit's up axis, where the view has no defined roll.
+            camera.pitch_deg = in_range("pitch", pitch, -89.0, 89.0)?;
+        }
+        if let Some(distance) = self.distance {
+            // From inside the model out to where it is a speck, in the model's own size.
+            let r = scene.model.bounds.radius().max(f32::MIN_POSITIVE);
+            let (lo, hi) = (1e-5 * r, 1e5 * r);
+            if !(distance.is_finite() && (lo..=hi).contains(&distance)) {
+                return Err(Error::Setting(format!(
+                    "--distance {}: must be from {lo:.3e} to {hi:.3e} for this model (1e-5 to 1e5 of its bounding radius)",
+                    num(distance)
+                )));
+            }
+            camera.distance = distance;
+            camera.near = camera.near.min(distance * 1e-3);
+        }
+        if let Some(near) = self.near {
+            // Reverse-Z keeps precision down to a tiny near plane, but not to a denormal one.
+            let lo = camera.distance * 1e-9;
+            if !(near.is_finite() && near >= lo) {
+                return Err(Error::Setting(format!(
+                    "--near {}: must be a finite number of at least {lo:.3e} (1e-9 of the camera distance)",
+                    num(near)
+                )));
+            }
+            camera.near = near;
+        }
+        if let Some(far) = self.far {
+            if !(far > camera.near) {
+                return Err(Error::Setting(format!("--far {far}: must be beyond the near plane ({})", camera.near)));
+            }
+            camera.far = far.is_finite().then_some(far);
+        }
+        Ok(camera)
+    }
+}
+
+impl RenderArgs {
+    pub fn settings(&self, mode: Mode) -> Result<Settings> {
+        let base = match self.variant {
+            Variant::March | Variant::Points => Settings::default(),
+            Variant::Classic => Settings::classic(),
+        };
+        let samples = self.samples.unwrap_or(base.samples);
+        if !(1..=256).contains(&samples) {
+            return Err(Error::Setting(format!("--samples {samples}: must be between 1 and 256")));
+        }
+        let radius = self.radius.map(|r| non_negative("radius", r)).transpose()?;
+        if !(1..=32).contains(&self.slices) || !(1..=64).contains(&self.steps) {
+            return Err(Error::Setting(format!(
+                "--slices {} --steps {}: slices must be 1-32 and steps 1-64",
+                self.slices, self.steps
+            )));
+        }
+        Ok(Settings {
+            mode,
+            variant: self.variant,
+            samples,
+            slices: self.slices,
+            steps: self.steps,
+            reach: self.reach.map(|r| non_negative("reach", r)).transpose()?,
+            thickness: self.thickness.map(|r| non_negative("thickness", r)).transpose()?,
+            depth_pyramid: self.depth_pyramid,
+            radius,
+            bias: non_negative("bias", self.bias)?,
+            ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
+            ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
+            sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
+            indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
+            blur: !self.no_blur,
+            exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
+            ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
+            sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,
+            view: self.view,
+        })
+    }
+}
