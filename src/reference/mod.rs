@@ -24,15 +24,26 @@
 //! pixels run in parallel. [`trace_pair`] traces twice with independent seeds, for the truth (their
 //! mean) and its noise floor (their difference).
 
-use glam::{Vec3, Vec3A, Vec4Swizzles};
+use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
-use rand::{rngs::StdRng, RngExt, SeedableRng};
-use rayon::prelude::*;
+use rand::{rngs::StdRng, RngExt};
 
-use crate::scene::{LightRig, Material, Model, OrbitCamera, PointLight, Skybox};
+use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
+
+mod image;
+pub use image::*;
+
+/// A direction around `n` with density cos θ / π.
+fn cosine_direction(n: Vec3, u1: f32, u2: f32) -> Vec3 {
+    let r = u1.sqrt();
+    let phi = std::f32::consts::TAU * u2;
+    let local = Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u1).max(0.0).sqrt());
+    let (t, b) = n.any_orthonormal_pair();
+    (t * local.x + b * local.y + n * local.z).normalize()
+}
 
 /// The model's triangles in a BVH, with what shading needs per triangle.
 pub struct ReferenceScene {
@@ -250,221 +261,6 @@ pub fn point_lighting(surface: &Surface, to_eye: Vec3, lights: &[PointLight], ri
         specular += irradiance * surface.specular * spec_norm * n.dot(h).max(0.0).powf(surface.shininess);
     }
     (diffuse, specular)
-}
-
-/// What the reference computes per pixel (linear, before albedo where the GPU's buffers are too).
-pub struct Reference {
-    pub width: u32,
-    pub height: u32,
-    /// A surface is visible and the GPU's depth agrees with the traced one.
-    pub valid: Vec<bool>,
-    pub albedo: Vec<Vec3>,
-    /// AO within the radius (a diagnostic: what AO estimates by definition).
-    pub ao: Vec<f32>,
-    /// Sky light with full visibility, E/π.
-    pub sky: Vec<Vec3>,
-    /// One bounce from any distance, E/π.
-    pub bounce: Vec<Vec3>,
-    /// Share of rays that escape: the constant ambient's visibility.
-    pub open: Vec<f32>,
-    /// Within-R sky and bounce (diagnostics), E/π.
-    pub sky_near: Vec<Vec3>,
-    pub bounce_near: Vec<Vec3>,
-    /// Direct point lighting (diffuse + specular), as displayed.
-    pub direct: Vec<Vec3>,
-    /// Mean Monte Carlo standard errors over the valid pixels.
-    pub ao_error: f64,
-    pub sky_error: f64,
-    pub bounce_error: f64,
-    /// Pixels left out: a surface on one side only, or at a different depth (silhouettes).
-    pub mismatched: usize,
-    /// Pixels left out because a light's emissive cube covers the surface.
-    pub covered: usize,
-}
-
-/// Parameters of a reference render.
-#[derive(Clone, Copy, Debug)]
-pub struct TraceSettings {
-    pub samples_per_pixel: u32,
-    pub seed: u64,
-    pub radius: f32,
-    /// Multiplies the sky (the renderer's sky scale).
-    pub sky_scale: f32,
-}
-
-/// A direction around `n` with density cos θ / π.
-fn cosine_direction(n: Vec3, u1: f32, u2: f32) -> Vec3 {
-    let r = u1.sqrt();
-    let phi = std::f32::consts::TAU * u2;
-    let local = Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u1).max(0.0).sqrt());
-    let (t, b) = n.any_orthonormal_pair();
-    (t * local.x + b * local.y + n * local.z).normalize()
-}
-
-struct PixelResult {
-    valid: bool,
-    /// A light's cube is in front of the surface.
-    covered: bool,
-    albedo: Vec3,
-    ao: (f32, f32),
-    sky: (Vec3, f32),
-    bounce: (Vec3, f32),
-    open: f32,
-    sky_near: Vec3,
-    bounce_near: Vec3,
-    direct: Vec3,
-}
-
-/// Traces the reference for `camera` at `size`. `gpu_depth` is the G-buffer's reverse-Z depth
-/// (row by row), against which each pixel's visible surface is checked; `progress` is called
-/// once per finished row.
-#[allow(clippy::too_many_arguments)]
-pub fn trace(
-    scene: &ReferenceScene,
-    lights: &[PointLight],
-    rig: &LightRig,
-    sky: &Skybox,
-    camera: &OrbitCamera,
-    size: (u32, u32),
-    gpu_depth: &[f32],
-    settings: &TraceSettings,
-    progress: &(dyn Fn() + Sync),
-) -> Reference {
-    let (w, h) = size;
-    let view_to_world = camera.world_to_view().inverse();
-    let projection = camera.view_to_clip(w as f32 / h as f32);
-    let eye = camera.eye();
-    let rows: Vec<Vec<PixelResult>> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let row = (0..w)
-                .map(|x| {
-                    let index = (y * w + x) as usize;
-                    let ndc = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0);
-                    let view_dir = Vec3::new(ndc.0 / projection.x_axis.x, ndc.1 / projection.y_axis.y, -1.0);
-                    let direction = (view_to_world * view_dir.extend(0.0)).xyz().normalize();
-                    let empty = PixelResult {
-                        valid: false,
-                        covered: false,
-                        albedo: Vec3::ZERO,
-                        ao: (1.0, 0.0),
-                        sky: (Vec3::ZERO, 0.0),
-                        bounce: (Vec3::ZERO, 0.0),
-                        open: 1.0,
-                        sky_near: Vec3::ZERO,
-                        bounce_near: Vec3::ZERO,
-                        direct: Vec3::ZERO,
-                    };
-                    let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
-                    // The lights' emissive cubes cover the surface here on the GPU's image (and its
-                    // depth); the reference has no such cubes, so the pixel measures nothing.
-                    let cube = lights.iter().any(|l| {
-                        ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance)
-                    });
-                    if cube {
-                        return PixelResult { covered: true, ..empty };
-                    }
-                    // The GPU's depth at this pixel as a distance along the same view axis.
-                    let depth = gpu_depth[index];
-                    let view_z = surface.distance * direction.dot((view_to_world * Vec3::NEG_Z.extend(0.0)).xyz());
-                    let gpu_z =
-                        if depth > 0.0 { (projection.w_axis.z) / (depth + projection.z_axis.z) } else { f32::INFINITY };
-                    if !((view_z - gpu_z).abs() <= 1e-3 * view_z) {
-                        return empty;
-                    }
-                    let mut rng =
-                        StdRng::seed_from_u64(settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-                    let e = scene.estimate(&surface, lights, rig, sky, settings, &mut rng);
-                    let (diffuse, specular) = point_lighting(&surface, -direction, lights, rig);
-                    PixelResult {
-                        valid: true,
-                        covered: false,
-                        albedo: surface.albedo,
-                        ao: (e.ao, e.ao_error),
-                        sky: (e.sky, e.sky_error),
-                        bounce: (e.bounce, e.bounce_error),
-                        open: e.open,
-                        sky_near: e.sky_near,
-                        bounce_near: e.bounce_near,
-                        direct: diffuse + specular,
-                    }
-                })
-                .collect();
-            progress();
-            row
-        })
-        .collect();
-    let pixels: Vec<PixelResult> = rows.into_iter().flatten().collect();
-    let valid_count = pixels.iter().filter(|p| p.valid).count().max(1) as f64;
-    let mean_error = |f: &dyn Fn(&PixelResult) -> f32| {
-        pixels.iter().filter(|p| p.valid).map(|p| f(p) as f64).sum::<f64>() / valid_count
-    };
-    let surfaces = gpu_depth.iter().filter(|d| **d > 0.0).count();
-    Reference {
-        width: w,
-        height: h,
-        ao_error: mean_error(&|p| p.ao.1),
-        sky_error: mean_error(&|p| p.sky.1),
-        bounce_error: mean_error(&|p| p.bounce.1),
-        covered: pixels.iter().filter(|p| p.covered).count(),
-        mismatched: surfaces.saturating_sub(pixels.iter().filter(|p| p.valid || p.covered).count()),
-        valid: pixels.iter().map(|p| p.valid).collect(),
-        albedo: pixels.iter().map(|p| p.albedo).collect(),
-        ao: pixels.iter().map(|p| p.ao.0).collect(),
-        sky: pixels.iter().map(|p| p.sky.0).collect(),
-        bounce: pixels.iter().map(|p| p.bounce.0).collect(),
-        open: pixels.iter().map(|p| p.open).collect(),
-        sky_near: pixels.iter().map(|p| p.sky_near).collect(),
-        bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
-        direct: pixels.iter().map(|p| p.direct).collect(),
-    }
-}
-
-impl Reference {
-    /// The truth at pixel `i`: linear radiance with exact visibility under the sky, one bounce,
-    /// the constant ambient `ambient` and the point lights — the same image for every mode.
-    pub fn radiance(&self, i: usize, ambient: f32) -> Vec3 {
-        self.albedo[i] * (self.sky[i] + self.bounce[i] + Vec3::splat(ambient * self.open[i])) + self.direct[i]
-    }
-
-    /// The within-R diagnostic image at pixel `i`: the same lighting with every occluder and
-    /// sender beyond the radius removed.
-    pub fn radiance_near(&self, i: usize, ambient: f32) -> Vec3 {
-        self.albedo[i] * (self.sky_near[i] + self.bounce_near[i] + Vec3::splat(ambient * self.ao[i])) + self.direct[i]
-    }
-
-    /// DO's truth at pixel `i` (sky light + bounce, before albedo), and its within-R diagnostic.
-    pub fn directional(&self, i: usize) -> Vec3 {
-        self.sky[i] + self.bounce[i]
-    }
-
-    pub fn directional_near(&self, i: usize) -> Vec3 {
-        self.sky_near[i] + self.bounce_near[i]
-    }
-
-    /// The mean of two independent traces of the same view (the truth with half the noise).
-    pub fn mean(a: &Reference, b: &Reference) -> Reference {
-        let avg3 = |x: &[Vec3], y: &[Vec3]| x.iter().zip(y).map(|(p, q)| 0.5 * (*p + *q)).collect();
-        let avg1 = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| 0.5 * (p + q)).collect();
-        Reference {
-            width: a.width,
-            height: a.height,
-            valid: a.valid.iter().zip(&b.valid).map(|(p, q)| *p && *q).collect(),
-            albedo: a.albedo.clone(),
-            ao: avg1(&a.ao, &b.ao),
-            sky: avg3(&a.sky, &b.sky),
-            bounce: avg3(&a.bounce, &b.bounce),
-            open: avg1(&a.open, &b.open),
-            sky_near: avg3(&a.sky_near, &b.sky_near),
-            bounce_near: avg3(&a.bounce_near, &b.bounce_near),
-            direct: a.direct.clone(),
-            ao_error: 0.5 * (a.ao_error + b.ao_error) / std::f64::consts::SQRT_2,
-            sky_error: 0.5 * (a.sky_error + b.sky_error) / std::f64::consts::SQRT_2,
-            bounce_error: 0.5 * (a.bounce_error + b.bounce_error) / std::f64::consts::SQRT_2,
-            mismatched: a.mismatched.max(b.mismatched),
-            covered: a.covered,
-        }
-    }
 }
 
 /// Distance along the ray (unit `direction`) to an axis-aligned cube of half edge `half` around

@@ -21,7 +21,7 @@ use glam::Vec3;
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::Result;
-use frame::{FrameData, FrameInputs};
+use frame::FrameData;
 pub use kernel::Variant;
 pub use modes::{Mode, Plan, SceneFeatures, Step, TargetSet};
 use passes::blur::BlurPass;
@@ -30,7 +30,7 @@ use passes::depth_pyramid::DepthPyramidPass;
 use passes::gbuffer::{GBufferPass, SceneGpu};
 use passes::light_cubes::LightCubesPass;
 use passes::lighting::LightingPass;
-use passes::occlusion::{OcclusionData, OcclusionPass, SamplingParams};
+use passes::occlusion::{OcclusionData, OcclusionPass};
 use passes::skybox::{sky_layout, SkyGpu, SkyboxPass};
 use passes::tonemap::TonemapPass;
 use passes::{Pass, Preparation, Recording};
@@ -260,40 +260,6 @@ impl Renderer {
         self.scene.textured
     }
 
-    /// The factor between radiance and what the half-float buffers (HDR, bounce, DO) hold.
-    ///
-    /// Half floats end at 65504; a sky of 1e5 or a thousand lights would overflow them. Each
-    /// frame scales radiance by `min(1, 4096 / peak)`, where `peak` bounds the frame's brightest
-    /// radiance (the sky's peak, the ambient, and every light's irradiance at its clamp
-    /// distance), and the tone mapper divides it back out. Readers of those buffers divide too.
-    pub fn pre_exposure(&self) -> f32 {
-        let s = &self.settings;
-        let sky = self.sky.peak * s.sky_scale * s.sky_strength.max(1.0);
-        let min_d2 = (self.rig.min_distance * self.rig.min_distance).max(f32::MIN_POSITIVE);
-        let lights: f32 = self.lights.iter().map(|l| l.intensity * l.color.max_element() / min_d2).sum();
-        let peak = sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0));
-        if peak.is_finite() && peak > 4096.0 {
-            4096.0 / peak
-        } else {
-            1.0
-        }
-    }
-
-    /// The sampling radius in use, in model units.
-    pub fn radius(&self) -> f32 {
-        self.settings.radius.unwrap_or(self.scene_radius)
-    }
-
-    /// The march's reach in use, in model units (never below the radius).
-    pub fn reach(&self) -> f32 {
-        self.settings.reach.unwrap_or(REACH_RADII * self.scene_radius).max(self.radius())
-    }
-
-    /// The march's surface thickness in use, in model units.
-    pub fn thickness(&self) -> f32 {
-        self.settings.thickness.unwrap_or(THICKNESS_RADII * self.scene_radius)
-    }
-
     /// Replaces the sky; on error the old sky stays.
     pub fn set_sky(&mut self, gpu: &Gpu, sky: &Skybox) -> Result<()> {
         self.sky = SkyGpu::upload(gpu, &self.sky_layout, sky)?;
@@ -375,40 +341,7 @@ impl Renderer {
         origin: (u32, u32),
     ) {
         self.apply(gpu);
-        let s = self.settings;
-        let inputs = FrameInputs {
-            size: self.targets.size,
-            exposure: s.exposure,
-            ambient: Vec3::splat(s.ambient),
-            sky_scale: s.sky_scale * self.sky.encode_scale,
-            sky_mips: self.sky.mip_levels,
-            pre_exposure: self.pre_exposure(),
-            ao_strength: s.ao_strength,
-            ao_power: s.ao_power,
-            sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
-            output_origin: origin,
-        };
-        self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
-        if self.plan.decl.samples() {
-            let radius = self.radius();
-            let samples = s.samples.clamp(1, uniforms::MAX_SAMPLES);
-            // The march reads the sky once per group of sectors: slices × 4 directions.
-            let directions = if s.variant.marches() { s.slices.clamp(1, 32) * 4 } else { samples };
-            let params = SamplingParams {
-                variant: s.variant,
-                samples,
-                slices: s.slices.clamp(1, 32),
-                steps: s.steps.clamp(1, 64),
-                reach: self.reach(),
-                thickness: self.thickness(),
-                radius,
-                bias: s.bias * radius,
-                sky_mip: kernel::sky_mip_level(self.sky.size, directions),
-                sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
-                indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
-            };
-            self.occlusion_data.update(&gpu.queue, &params);
-        }
+        self.upload_frame(gpu, camera, origin);
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));
             self.pass(step).record(Recording {

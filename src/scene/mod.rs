@@ -5,8 +5,10 @@ pub mod builtin;
 pub mod camera;
 pub mod lights;
 pub mod model;
+pub mod obj_text;
 pub mod room;
 pub mod skybox;
+pub mod texture;
 
 use std::path::Path;
 

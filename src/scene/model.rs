@@ -9,10 +9,13 @@
 //! warning with a fallback; anything else is one error naming the file and the problem.
 
 use std::cell::RefCell;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::Vec3;
 
+use super::obj_text::{decode_text, sanitize_mtl, sanitize_obj};
+use super::texture::{load_texture, TextureCache};
+pub use super::texture::{texture_file_name, TextureImage, TEXTURE_BUDGET_BYTES};
 use super::Bounds;
 use crate::{Error, Result};
 
@@ -23,45 +26,6 @@ pub struct Vertex {
     pub position: [f32; 3],
     pub normal: [f32; 3],
     pub uv: [f32; 2],
-}
-
-/// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every
-/// material that names the same file (by canonical path or by content) holds the same ones, and
-/// the G-buffer uploads them once.
-#[derive(Clone, Debug)]
-pub struct TextureImage {
-    pub width: u32,
-    pub height: u32,
-    pub rgba: std::sync::Arc<Vec<u8>>,
-}
-
-impl TextureImage {
-    /// The fallback for a texture that is missing or unreadable: a magenta/grey checker, so the
-    /// problem is visible on screen as well as in the log.
-    pub fn checker() -> Self {
-        let size = 8u32;
-        let rgba = (0..size * size)
-            .flat_map(
-                |i| if ((i % size) / 2 + (i / size) / 2) % 2 == 0 { [200, 40, 200, 255] } else { [90, 90, 90, 255] },
-            )
-            .collect();
-        Self { width: size, height: size, rgba: std::sync::Arc::new(rgba) }
-    }
-}
-
-/// The decoded RGBA8 bytes all of one model's textures may take together; a texture that would
-/// go beyond is halved until it fits, with a warning. A small file can decode to a huge image
-/// (a 128 KB PNG of 4096² 16-bit texels), and a material file can name it many times.
-pub const TEXTURE_BUDGET_BYTES: u64 = 1 << 30;
-
-/// The textures of one model load: each file decoded once, whichever names it.
-#[derive(Default)]
-struct TextureCache {
-    by_path: std::collections::HashMap<PathBuf, TextureImage>,
-    /// (length, hash) of the file's bytes: the same picture under another name.
-    by_content: std::collections::HashMap<(usize, u64), TextureImage>,
-    bytes: u64,
-    budget: u64,
 }
 
 /// Surface description: Blinn-Phong with optional diffuse and specular maps.
@@ -155,219 +119,6 @@ impl Model {
     }
 }
 
-/// Reads text that may be UTF-8, UTF-16 (with a byte-order mark) or Latin-1.
-pub fn decode_text(bytes: &[u8]) -> String {
-    let utf16 = |le: bool| {
-        let units: Vec<u16> = bytes[2..]
-            .chunks_exact(2)
-            .map(|c| if le { u16::from_le_bytes([c[0], c[1]]) } else { u16::from_be_bytes([c[0], c[1]]) })
-            .collect();
-        String::from_utf16_lossy(&units)
-    };
-    match bytes {
-        [0xFF, 0xFE, ..] => utf16(true),
-        [0xFE, 0xFF, ..] => utf16(false),
-        [0xEF, 0xBB, 0xBF, rest @ ..] => String::from_utf8_lossy(rest).into_owned(),
-        _ => match std::str::from_utf8(bytes) {
-            Ok(text) => text.to_owned(),
-            Err(_) => bytes.iter().map(|&b| b as char).collect(),
-        },
-    }
-}
-
-/// Pads colour statements that give one value (`Kd 0.5`, allowed by the format) to three, which
-/// is what they mean, and drops colour statements tobj 4.0.5 would panic on (no value, two
-/// values, or words that are not numbers). Returns the text and the number of lines dropped.
-fn sanitize_mtl(text: &str) -> (String, usize) {
-    let mut out = String::with_capacity(text.len() + 64);
-    let mut dropped = 0;
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        let keyword = words.next().unwrap_or("");
-        let values: Vec<&str> = words.collect();
-        if matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Tf") {
-            let numeric = values.iter().take(3).all(|v| v.parse::<f32>().is_ok());
-            match values.len() {
-                1 if numeric => out.push_str(&format!("{keyword} {0} {0} {0}\n", values[0])),
-                n if n >= 3 && numeric => {
-                    out.push_str(line);
-                    out.push('\n');
-                }
-                _ => dropped += 1,
-            }
-        } else {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
-    (out, dropped)
-}
-
-/// Drops face statements tobj would mishandle: a vertex reference of 0, one beyond the elements
-/// defined so far (negative references count back from the last one), or a face whose vertices
-/// disagree on which attributes they carry (`1/1 2//1`). tobj 4.0.5 overflows on some of these
-/// and silently misreads others. Returns the text to parse and how many faces were dropped.
-fn sanitize_obj(text: &str) -> (String, usize) {
-    let mut counts = [0i64; 3];
-    let mut dropped = 0;
-    let mut out = String::with_capacity(text.len());
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        let keyword = words.next().unwrap_or("");
-        match keyword {
-            "v" => counts[0] += 1,
-            "vt" => counts[1] += 1,
-            "vn" => counts[2] += 1,
-            "f" => {
-                let mut shape = None;
-                let valid = words.all(|vertex| {
-                    let parts: Vec<&str> = vertex.split('/').collect();
-                    let form: Vec<bool> = parts.iter().map(|p| !p.is_empty()).collect();
-                    let consistent = *shape.get_or_insert_with(|| form.clone()) == form;
-                    let in_range = parts.iter().zip(counts).all(|(p, count)| {
-                        p.is_empty()
-                            || p.parse::<i64>().is_ok_and(|i| i != 0 && (if i > 0 { i <= count } else { -i <= count }))
-                    });
-                    consistent && parts.len() <= 3 && !parts[0].is_empty() && in_range
-                });
-                if !valid {
-                    dropped += 1;
-                    continue;
-                }
-            }
-            _ => {}
-        }
-        out.push_str(line);
-        out.push('\n');
-    }
-    (out, dropped)
-}
-
-/// Splits a texture statement's argument into the file name, dropping the options exporters put
-/// before it (`-bm 0.5 -s 1 1 1 bricks.png`) and turning Windows separators into `/`.
-pub fn texture_file_name(argument: &str) -> Option<String> {
-    let words: Vec<&str> = argument.split_whitespace().collect();
-    let mut i = 0;
-    while i < words.len() && words[i].starts_with('-') && words[i].len() > 1 {
-        let max_args = match words[i] {
-            "-o" | "-s" | "-t" => 3,
-            "-mm" => 2,
-            _ => 1,
-        };
-        i += 1;
-        let mut taken = 0;
-        while taken < max_args && i < words.len() && (taken == 0 || words[i].parse::<f32>().is_ok()) {
-            i += 1;
-            taken += 1;
-        }
-    }
-    let name = words[i.min(words.len())..].join(" ").replace('\\', "/");
-    let name = name.trim_start_matches("./").to_string();
-    (!name.is_empty()).then_some(name)
-}
-
-/// Finds a texture file next to the MTL: as written, then by its file name alone, then ignoring
-/// letter case (files made on Windows often disagree with their MTL about case).
-fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
-    let direct = dir.join(name);
-    if direct.is_file() {
-        return Some(direct);
-    }
-    let file_name = Path::new(name).file_name()?.to_string_lossy().to_lowercase();
-    let base = dir.join(Path::new(name).parent().unwrap_or(Path::new("")));
-    for folder in [base, dir.to_path_buf()] {
-        let Ok(entries) = std::fs::read_dir(&folder) else { continue };
-        for entry in entries.flatten() {
-            if entry.file_name().to_string_lossy().to_lowercase() == file_name && entry.path().is_file() {
-                return Some(entry.path());
-            }
-        }
-    }
-    None
-}
-
-/// Decodes an image file whatever its extension says, within a size limit.
-pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
-    // A face of 16384² RGBA32F is 4 GiB decoded; compressed files are far smaller than that.
-    let bytes = read_bounded(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
-    decode_image(path, &bytes, max_side)
-}
-
-/// Decodes an image file's bytes (named `path` in errors), with the same limits.
-pub fn decode_image(path: &Path, bytes: &[u8], max_side: u32) -> Result<image::DynamicImage> {
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(max_side);
-    limits.max_image_height = Some(max_side);
-    limits.max_alloc = Some(4 * 1024 * 1024 * 1024);
-    reader.limits(limits);
-    reader.decode().map_err(|e| Error::input(path, format!("not a readable image: {e}")))
-}
-
-/// Largest texture side accepted when loading (textures are also checked against the device).
-pub const MAX_TEXTURE_SIDE: u32 = 16384;
-
-fn load_texture(dir: &Path, argument: &str, cache: &mut TextureCache, warnings: &mut Vec<String>) -> TextureImage {
-    use std::hash::{Hash, Hasher};
-    let Some(name) = texture_file_name(argument) else {
-        warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
-        return TextureImage::checker();
-    };
-    let Some(path) = find_texture(dir, &name) else {
-        warnings.push(format!("{}: texture not found; using a checker", dir.join(&name).display()));
-        return TextureImage::checker();
-    };
-    let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
-    if let Some(image) = cache.by_path.get(&canonical) {
-        return image.clone();
-    }
-    let bytes = match read_bounded(&path, 1 << 30) {
-        Ok(bytes) => bytes,
-        Err(problem) => {
-            warnings.push(format!("{}: {problem}; using a checker", path.display()));
-            return TextureImage::checker();
-        }
-    };
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    bytes.hash(&mut hasher);
-    let key = (bytes.len(), hasher.finish());
-    if let Some(image) = cache.by_content.get(&key) {
-        let image = image.clone();
-        cache.by_path.insert(canonical, image.clone());
-        return image;
-    }
-    let image = match decode_image(&path, &bytes, MAX_TEXTURE_SIDE) {
-        Ok(image) => image,
-        Err(e) => {
-            warnings.push(format!("{e}; using a checker"));
-            return TextureImage::checker();
-        }
-    };
-    let mut rgba = image.to_rgba8();
-    drop(image);
-    let room = cache.budget.saturating_sub(cache.bytes);
-    let (w0, h0) = rgba.dimensions();
-    let (mut w, mut h) = (w0, h0);
-    while (w as u64) * (h as u64) * 4 > room && (w > 1 || h > 1) {
-        (w, h) = ((w / 2).max(1), (h / 2).max(1));
-    }
-    if (w, h) != (w0, h0) {
-        warnings.push(format!(
-            "{}: downscaled from {w0}x{h0} to {w}x{h}: the model's textures would exceed the {} KiB texture budget",
-            path.display(),
-            cache.budget >> 10
-        ));
-        rgba = image::imageops::resize(&rgba, w, h, image::imageops::FilterType::Triangle);
-    }
-    cache.bytes += (w as u64) * (h as u64) * 4;
-    let texture = TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba.into_raw()) };
-    cache.by_path.insert(canonical, texture.clone());
-    cache.by_content.insert(key, texture.clone());
-    texture
-}
-
 fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
     match v {
         Some(c) if c.iter().all(|x| x.is_finite()) => c.map(|x| x.clamp(0.0, 1.0)),
@@ -409,7 +160,7 @@ pub fn check_file(path: &Path, limit: u64) -> std::result::Result<(), String> {
     Ok(())
 }
 
-fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
+pub(super) fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
     use std::io::Read;
     check_file(path, limit)?;
     let mut bytes = Vec::new();
@@ -483,7 +234,7 @@ pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
         }
         Vec::new()
     });
-    let mut cache = TextureCache { budget: texture_budget, ..Default::default() };
+    let mut cache = TextureCache::with_budget(texture_budget);
     let mut materials: Vec<Material> =
         tobj_materials.iter().map(|m| convert_material(m, &dir, &mut cache, &mut warnings)).collect();
     let default_material = materials.len();

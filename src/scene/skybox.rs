@@ -10,7 +10,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::model::read_image;
+use super::texture::read_image;
 use crate::{Error, Result};
 
 /// Face names in cube-layer order (+X, -X, +Y, -Y, +Z, -Z): the long name and the short one.

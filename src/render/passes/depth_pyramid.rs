@@ -38,7 +38,7 @@ impl DepthPyramidPass {
         let module = shaders::module(device, "depth_pyramid.wgsl")?;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth_pyramid_layout"),
-            entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2), uint_entry(1)],
+            entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2), super::uint_entry(1)],
         });
         let pipeline = |entry: &str| {
             fullscreen_pipeline(
@@ -110,19 +110,5 @@ impl Pass for DepthPyramidPass {
             }
             .record(encoder);
         }
-    }
-}
-
-/// A layout entry for an unsigned-integer texture (the pyramid's levels).
-pub fn uint_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Uint,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
     }
 }

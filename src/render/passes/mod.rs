@@ -112,6 +112,12 @@ pub fn gbuffer_entries() -> [wgpu::BindGroupLayoutEntry; 3] {
 
 /// A layout entry for the G-buffer's packed normal target (`u32`, read with `textureLoad`).
 pub fn normal_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    uint_entry(binding)
+}
+
+/// A layout entry for an unsigned-integer texture read with `textureLoad` (the packed normal, the
+/// depth pyramid's levels).
+pub fn uint_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -257,6 +263,12 @@ impl FullscreenPass<'_> {
 /// A pipeline built for one key (a plan's variant), rebuilt only when the key changes.
 pub struct KeyedPipeline<K> {
     built: Option<(K, wgpu::RenderPipeline)>,
+}
+
+impl<K: PartialEq + Copy> Default for KeyedPipeline<K> {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl<K: PartialEq + Copy> KeyedPipeline<K> {

@@ -148,7 +148,7 @@ impl OcclusionPass {
                 d,
                 uniform_entry(3),
                 texture_entry(4, false, wgpu::TextureViewDimension::D2),
-                super::depth_pyramid::uint_entry(5),
+                super::uint_entry(5),
             ],
         });
         Ok(Self {

@@ -1,0 +1,207 @@
+//! The viewer's actions and frames: what a key, a button or a finished load does, the comparison
+//! of the four modes, and drawing a frame (the 3D view, then the panel over it).
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use super::loader::Loaded;
+use super::ui::Action;
+use super::{timestamp, ui, Viewer, TIMING_REFRESH};
+use crate::render::capture::capture;
+use crate::render::Mode;
+use crate::scene::Scene;
+use crate::{compare, output, Result};
+
+impl Viewer {
+    pub(super) fn act(&mut self, action: Action) {
+        match action {
+            Action::Mode(mode) => {
+                self.renderer.settings.mode = mode;
+                self.window.set_title(&format!("ssdo — {}", mode.title()));
+            }
+            Action::LoadSky(path) => {
+                self.panel.say(format!("loading sky {}", path.display()), false);
+                self.loader.sky(path);
+            }
+            Action::LoadModel(path) => {
+                self.panel.say(format!("loading model {}", path.display()), false);
+                self.loader.model(path);
+            }
+            Action::Relight { lights, seed } => {
+                self.scene.relight(lights, seed);
+                self.renderer.set_lights(&self.gpu, self.scene.lights.clone());
+            }
+            Action::ResetCamera => self.camera = self.home,
+            Action::Screenshot => {
+                let path = self.screenshot_dir.join(format!(
+                    "screenshot-{}-{}.png",
+                    timestamp(),
+                    self.renderer.settings.mode.name()
+                ));
+                let result = capture(&self.gpu, &mut self.renderer, &self.camera)
+                    .and_then(|image| output::save_png(&path, &image));
+                match result {
+                    Ok(()) => self.panel.say(format!("saved {}", path.display()), false),
+                    Err(e) => self.panel.say(format!("screenshot failed: {e}"), true),
+                }
+            }
+            Action::Compare => match self.compare() {
+                Ok(path) => self.panel.say(format!("saved {}", path.display()), false),
+                Err(e) => self.panel.say(format!("comparison failed: {e}"), true),
+            },
+        }
+    }
+
+    /// The four modes of the current view, rendered offscreen at the 3D view's size.
+    fn compare(&mut self) -> Result<PathBuf> {
+        let mode = self.renderer.settings.mode;
+        let mut panels = Vec::new();
+        for m in Mode::ALL {
+            self.renderer.set_mode(&self.gpu, m);
+            let image = capture(&self.gpu, &mut self.renderer, &self.camera);
+            let caption = compare::caption(
+                &self.renderer.settings,
+                self.renderer.radius(),
+                &self.panel.sky_name,
+                self.scene.lights.len(),
+            );
+            match image {
+                Ok(image) => panels.push((caption, image)),
+                Err(e) => {
+                    self.renderer.set_mode(&self.gpu, mode);
+                    return Err(e);
+                }
+            }
+        }
+        self.renderer.set_mode(&self.gpu, mode);
+        let path = self.screenshot_dir.join(format!("compare-{}.png", timestamp()));
+        output::save_png(&path, &compare::grid(&panels))?;
+        Ok(path)
+    }
+
+    /// Applies finished loads: the old sky or model stays unless the new one is complete.
+    /// Returns whether anything arrived.
+    pub(super) fn apply_loads(&mut self) -> bool {
+        let finished = self.loader.finished();
+        let arrived = !finished.is_empty();
+        for loaded in finished {
+            match loaded {
+                Loaded::Sky(path, Ok(sky)) => match self.renderer.set_sky(&self.gpu, &sky) {
+                    Ok(()) => {
+                        self.panel.sky_name = sky.name.clone();
+                        self.panel.say(format!("sky {} loaded", path.display()), false);
+                    }
+                    Err(e) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
+                },
+                Loaded::Model(path, Ok(model)) => {
+                    let warnings = model.warnings.len();
+                    let model = match self.layout.arrange(model) {
+                        Ok(model) => model,
+                        Err(e) => {
+                            self.panel.say(format!("{e}; keeping model {}", self.panel.model_name), true);
+                            continue;
+                        }
+                    };
+                    self.scene = Scene::new(model, self.panel.lights, self.panel.seed);
+                    self.renderer.set_scene(&self.gpu, &self.scene);
+                    self.home = self.layout.camera(&self.scene.model.bounds);
+                    self.camera = self.home;
+                    self.panel.model_name = self.scene.model.name.clone();
+                    self.panel
+                        .say(format!("model {} loaded ({warnings} warnings, see the log)", path.display()), false);
+                }
+                Loaded::Sky(_, Err(e)) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
+                Loaded::Model(_, Err(e)) => {
+                    self.panel.say(format!("{e}; keeping model {}", self.panel.model_name), true)
+                }
+            }
+        }
+        self.panel.loading = self.loader.progress();
+        arrived
+    }
+
+    pub(super) fn redraw(&mut self) -> Result<()> {
+        let started = Instant::now();
+        self.apply_loads();
+        let size = self.window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(());
+        }
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
+            wgpu::CurrentSurfaceTexture::Outdated
+            | wgpu::CurrentSurfaceTexture::Lost
+            | wgpu::CurrentSurfaceTexture::Validation => {
+                self.surface.configure(&self.gpu.device, &self.config);
+                return Ok(());
+            }
+        };
+        let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
+
+        // The panel first: it may change settings for this frame.
+        let input = self.egui.take_egui_input(&self.window);
+        let default_radius = self.scene.default_radius();
+        let ctx = self.egui.egui_ctx().clone();
+        let mut actions = Vec::new();
+        let mut full = ctx
+            .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
+        let mut textures = std::mem::take(&mut full.textures_delta);
+        let delay = full.viewport_output.get(&egui::ViewportId::ROOT).map_or(Duration::MAX, |v| v.repaint_delay);
+        self.egui_repaint = Instant::now().checked_add(delay);
+        self.egui.handle_platform_output(&self.window, full.platform_output);
+        for action in actions {
+            self.act(action);
+        }
+
+        let mut encoder =
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer_frame") });
+        self.renderer.encode_at(&self.gpu, &mut encoder, &self.camera, &target, (self.panel_pixels(), 0));
+
+        let pixels_per_point = full.pixels_per_point;
+        let jobs = ctx.tessellate(full.shapes, pixels_per_point);
+        for (id, deltas) in textures.set.drain() {
+            for delta in &deltas {
+                self.egui_renderer.update_texture(&self.gpu.device, &self.gpu.queue, id, delta);
+            }
+        }
+        let screen =
+            egui_wgpu::ScreenDescriptor { size_in_pixels: [self.config.width, self.config.height], pixels_per_point };
+        let extra = self.egui_renderer.update_buffers(&self.gpu.device, &self.gpu.queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui_pass"),
+                color_attachments: &[crate::render::passes::color_attachment(&target, false)],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
+        self.renderer.timings_submitted();
+        for id in textures.free.drain() {
+            self.egui_renderer.free_texture(&id);
+        }
+        self.gpu.queue.present(frame);
+
+        // Timestamps of a frame or two ago, never waited for.
+        if let Some(steps) = self.renderer.poll_timings(&self.gpu)? {
+            let names: Vec<(&'static str, f64)> =
+                steps.iter().map(|(step, ms)| (step.name_in(self.renderer.plan().mode), *ms)).collect();
+            self.panel.record_timings(&names);
+        }
+        if !self.refreshing {
+            self.timing_refresh = Some(Instant::now() + TIMING_REFRESH);
+        }
+        self.refreshing = false;
+        let elapsed = started.elapsed().as_secs_f64() * 1e3;
+        self.panel.frame_ms =
+            if self.panel.frame_ms == 0.0 { elapsed } else { 0.8 * self.panel.frame_ms + 0.2 * elapsed };
+        if let Err(e) = self.gpu.check() {
+            self.panel.say(e.to_string(), true);
+        }
+        Ok(())
+    }
+}

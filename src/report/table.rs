@@ -1,0 +1,137 @@
+//! The report's outputs: the CSV, the Markdown table (sorted by time, the Pareto front marked)
+//! and the files written together.
+
+use std::fmt::Write as _;
+
+use super::{Report, ReportOptions, Row};
+use crate::render::{Mode, Variant};
+use crate::{output, Result};
+
+fn cell(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(String::new, |v| format!("{v:.digits$}"))
+}
+
+impl Row {
+    /// "16" samples, or "4×8" slices × steps for the march ("4×8 pyramid" with the pyramid).
+    pub(super) fn count_label(variant: Variant, samples: usize, steps: usize, pyramid: bool) -> String {
+        match (variant.marches(), pyramid) {
+            (true, false) => format!("{samples}×{steps}"),
+            (true, true) => format!("{samples}×{steps} pyramid"),
+            _ => samples.to_string(),
+        }
+    }
+
+    pub fn label(&self) -> String {
+        Self::count_label(self.variant, self.samples, self.steps, self.pyramid)
+    }
+}
+
+impl Report {
+    pub fn csv(&self) -> String {
+        let mut out = String::from(
+            "mode,variant,samples,steps,pyramid,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+        );
+        for r in &self.rows {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                r.mode.name(),
+                r.variant,
+                r.samples,
+                r.steps,
+                r.pyramid,
+                r.blur,
+                r.radius,
+                r.ms,
+                cell(r.ao_rmse, 6),
+                cell(r.do_rmse, 6),
+                cell(r.do_rmse_near, 6),
+                cell(r.bounce_ratio, 3),
+                r.hdr_rmse,
+                r.hdr_rmse_near,
+                r.hdr_psnr,
+                r.flip,
+                r.pareto
+            );
+        }
+        out
+    }
+
+    pub fn markdown(&self, options: &ReportOptions) -> String {
+        let date = jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string();
+        let r = &self.reference;
+        let surfaces = r.valid.iter().filter(|v| **v).count();
+        let background = r.valid.len() - surfaces - r.mismatched - r.covered;
+        let mut out = format!(
+            "# ssdo error-versus-time report\n\n- date: {date}\n- device: {}{}\n- timing: {}, median of {} frames\n\
+             - scene: {}, {}x{}, {} lights (seed {}), constant ambient {}, default radius {:.4}\n\
+             - truth: ray traced, exact visibility at any distance, one bounce from any surface (senders lit by the \
+             point lights), the mean of two traces of {} rays per pixel ({:.1} s in all)\n\
+             - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n\
+             - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
+             surfaces differ), {} under a light's cube\n\
+             - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); \
+             \"within R\" columns compare with the image whose occluders and senders beyond the radius are removed\n\n",
+            self.device,
+            if self.software { " (a CPU rasteriser, not a GPU)" } else { "" },
+            self.timing,
+            options.frames,
+            options.model.as_ref().map_or(options.scene.clone(), |p| p.display().to_string()),
+            options.size.0,
+            options.size.1,
+            options.lights,
+            options.seed,
+            self.ambient,
+            self.default_radius,
+            options.samples_per_pixel,
+            self.reference_seconds,
+            self.noise.hdr,
+            self.noise.directional,
+            self.noise.ao,
+            surfaces,
+            background,
+            r.mismatched,
+            r.covered,
+        );
+        out.push_str(
+            "| | mode | variant | samples (slices×steps) | blur | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
+        );
+        out.push_str("|---|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        for row in &self.rows {
+            let off = row.mode == Mode::Off;
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
+                if row.pareto { "★" } else { "" },
+                row.mode.name(),
+                row.variant,
+                if off { "—".to_string() } else { row.label() },
+                if off {
+                    "—"
+                } else if row.blur {
+                    "on"
+                } else {
+                    "off"
+                },
+                if off { "—".to_string() } else { format!("{:.3}", row.radius) },
+                row.ms,
+                row.hdr_rmse,
+                row.hdr_rmse_near,
+                row.hdr_psnr,
+                row.flip,
+                cell(row.do_rmse, 4),
+                cell(row.do_rmse_near, 4),
+                cell(row.bounce_ratio, 2),
+                cell(row.ao_rmse, 4),
+            );
+        }
+        out
+    }
+
+    /// Writes report.csv, report.md and report.png into `out`.
+    pub fn write(&self, options: &ReportOptions) -> Result<()> {
+        output::write_atomic(&options.out.join("report.csv"), self.csv().as_bytes())?;
+        output::write_atomic(&options.out.join("report.md"), self.markdown(options).as_bytes())?;
+        self.plot(&options.out.join("report.png"))
+    }
+}
