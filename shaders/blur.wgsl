@@ -4,7 +4,7 @@
 //  * BILATERAL (default): each neighbour is weighted by how close it lies to the centre pixel's
 //    tangent plane (relative to the sampling radius) and how well the normals agree, so the blur
 //    does not cross silhouettes or creases (no halos).
-//  * otherwise the classic 4x4 box blur of the source documents.
+//  * otherwise the classic 4x4 box blur of the classic SSAO chapter.
 // Neighbours on the sky or holding non-finite values are left out.
 
 #include "common/uniforms.wgsl"

@@ -6,7 +6,7 @@
 //   SSAO       ρ·(E(n)/π + A)·AO
 //   SSDO       ρ·(DO + A)          DO = the visible sky per direction + one bounce
 //   SSAO+SSDO  ρ·(DO + A·AO)       AO darkens only the constant ambient SSDO does not see
-// The classic variant keeps the source chapters' composite: A·ρ·AO + DO (DO without ρ), no
+// The classic variant keeps the SSDO course project's composite: A·ρ·AO + DO (DO without ρ), no
 // sky irradiance. Which terms exist is decided when the pipeline is built (override constants),
 // so a mode or a scene that lacks a term pays nothing for it. After a lighting pass the composite
 // adds the direct light that pass wrote; otherwise it runs the light loop.
@@ -35,9 +35,8 @@
 // Run the point-light loop here (there are lights and no lighting pass ran).
 override LIGHT_LOOP: bool = true;
 override HAS_AO: bool = false;
+// DO in the DO target's rgb; AO, when the mode has it, then travels in its alpha.
 override HAS_DO: bool = false;
-// AO travels in the DO buffer's alpha (SSAO+SSDO) rather than in its own buffer.
-override AO_IN_DO: bool = false;
 // The classic variant adds DO without the receiver's albedo, as the source does, and has no
 // sky irradiance.
 override CLASSIC: bool = false;
@@ -108,7 +107,7 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     }
     var ao = 1.0;
     if HAS_AO {
-        let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, AO_IN_DO), 0.0, 1.0);
+        let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, HAS_DO), 0.0, 1.0);
         ao = mix(1.0, pow(raw, frame.ao_power), frame.ao_strength);
     }
     let ambient = frame.pre_exposure * frame.ambient;

@@ -19,7 +19,7 @@
 // buffer, rgb = sky·strength + indirect·strength and a = AO, so SSDO and SSAO+SSDO write (and
 // blur) exactly the same target; a debug view of one term sets the other's strength to 0.
 //
-// Classic variant (the source documents, seeds 001 and 004): random kernel and 4x4 random
+// Classic variant (the classic SSAO chapter and the SSDO course project): random kernel and 4x4 random
 // rotation vectors, occlusion += (behind ? 1 : 0)·rangeCheck, AO = 1 - occlusion/N;
 // indirect += rangeCheck·max(dot(n_s, normalize(p - s)), 0)·albedo_s, sky += rangeCheck·sky·cosθ,
 // both divided by N and added without the receiver's albedo.

@@ -20,9 +20,8 @@ override OUTPUT_SRGB: bool = true;
 // 0 final image, 1 albedo, 2 view-space normals, 3 depth, 4 AO, 5 DO (tone mapped).
 override VIEW: u32 = 0u;
 override HAS_AO: bool = false;
+// DO in the DO target's rgb; AO, when the mode has it, then travels in its alpha.
 override HAS_DO: bool = false;
-// AO travels in the DO buffer's alpha.
-override AO_IN_DO: bool = false;
 
 // The displayed colour (linear, before sRGB encoding) of `pixel`.
 fn shade(pixel: vec2<i32>) -> vec3<f32> {
@@ -52,7 +51,7 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
         case 4u: {
             var ao = 1.0;
             if HAS_AO {
-                ao = select(textureLoad(ao_map, pixel, 0).r, textureLoad(do_map, pixel, 0).a, AO_IN_DO);
+                ao = select(textureLoad(ao_map, pixel, 0).r, textureLoad(do_map, pixel, 0).a, HAS_DO);
             }
             return vec3<f32>(clamp(ao, 0.0, 1.0));
         }

@@ -65,7 +65,7 @@ pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the source chapters' SSAO and SSDO)
+    /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the classic SSAO chapter and the SSDO course project)
     #[arg(long, default_value = "default", value_parser = parse_variant)]
     pub variant: Variant,
     /// Samples per pixel of the points and classic variants, 1-256 [default: 16; classic 64]

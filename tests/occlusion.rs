@@ -211,7 +211,7 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
 
-    // The classic variant keeps the source chapters' constant grey ambient in Off: no sky.
+    // The classic variant keeps the SSDO course project's constant grey ambient in Off: no sky.
     r.settings = Settings { variant: Variant::Classic, ..r.settings };
     let hdr = render(&gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));

@@ -217,7 +217,7 @@ impl super::Renderer {
             output_origin: origin,
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
-        if self.plan.decl.samples() {
+        if self.plan.decl.runs_sampling() {
             let radius = self.radius();
             let samples = s.samples.clamp(1, uniforms::MAX_SAMPLES);
             // The march reads the sky once per group of sectors: slices × 4 directions.

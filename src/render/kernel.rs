@@ -8,7 +8,7 @@
 //! rotations of a 4x4 tile are evenly spaced angles in Bayer order, so a 4x4 blur
 //! window averages all of them. Deterministic: the same N gives the same kernel.
 //!
-//! Classic: the source documents' kernel — random points in the hemisphere's half cube,
+//! Classic: the classic SSAO chapter's kernel (LearnOpenGL, "SSAO") — random points in the hemisphere's half cube,
 //! normalised, scaled by a random length and by lerp(0.1, 1, (i/N)²) — and 16 random rotation
 //! vectors in the tangent plane, from a fixed seed.
 
@@ -31,7 +31,7 @@ pub enum Variant {
     /// The paper's point sampling (Ritschel et al. 2009) with normalised estimators, a stratified
     /// kernel and bilateral blur: each direction tested at one point within the radius.
     Points,
-    /// The source documents' SSAO (seed 001) and SSDO (seed 004), reproduced as written.
+    /// The classic SSAO chapter's SSAO (LearnOpenGL) and the SSDO course project's SSDO, reproduced as written.
     Classic,
 }
 

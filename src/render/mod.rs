@@ -314,7 +314,7 @@ impl Renderer {
         list.push(("scene_geometry_and_materials".into(), self.scene.bytes));
         list.push(("sky_cubemap".into(), self.sky.bytes));
         list.push(("frame_uniforms_and_lights".into(), self.frame.bytes()));
-        if self.plan.decl.samples() {
+        if self.plan.decl.runs_sampling() {
             list.push(("occlusion_params".into(), self.occlusion_data.buffer.size()));
         }
         list

@@ -132,7 +132,7 @@ pub fn day_sky(d: Vec3) -> Vec3 {
     }
 }
 
-/// The source project's directional-sky demonstration: blue above, red below, neutral sides.
+/// The SSDO course project's directional-sky demonstration: blue above, red below, neutral sides.
 pub fn redblue_face(face: usize) -> Vec3 {
     match face {
         2 => Vec3::new(0.05, 0.15, 1.0),

@@ -1,5 +1,5 @@
 //! Point lights with random saturated colours, placed around the model from a seed, as in the
-//! source project (8 by default). Their strength scales with the model so that a model in
+//! SSDO course project this program grew from (8 by default). Their strength scales with the model so that a model in
 //! millimetres and one in kilometres are lit alike.
 
 use glam::Vec3;

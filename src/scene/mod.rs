@@ -28,7 +28,7 @@ pub const DEFAULT_MODEL: &str = "models/cornell/cornell.obj";
 pub const DEFAULT_SKYBOX: &str = "skyboxes/day";
 /// Where sky folders live.
 pub const SKYBOX_ROOT: &str = "skyboxes";
-/// The default number of point lights, as in the source project.
+/// The default number of point lights, as in the SSDO course project.
 pub const DEFAULT_LIGHTS: usize = 8;
 
 /// Axis-aligned bounds of finite points.

@@ -21,7 +21,7 @@ use std::str::FromStr;
 
 use crate::{Error, Result};
 
-/// The four render modes of the source project, in key order (1-4).
+/// The four render modes of the SSDO course project, in key order (1-4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Mode {
     Off,
@@ -110,7 +110,7 @@ pub struct ModeDecl {
 
 impl ModeDecl {
     /// Whether the mode runs the sampling pass at all.
-    pub fn samples(&self) -> bool {
+    pub fn runs_sampling(&self) -> bool {
         self.ambient_occlusion || self.directional_occlusion
     }
 }
@@ -217,7 +217,7 @@ impl Plan {
         if decl.directional_occlusion && lights {
             steps.push(Step::Lighting);
         }
-        if decl.samples() {
+        if decl.runs_sampling() {
             steps.push(Step::Occlusion);
             if blur {
                 steps.push(Step::Blur);
@@ -233,17 +233,12 @@ impl Plan {
         if !display {
             steps.push(Step::Tonemap);
         }
-        Self { mode, decl, features, blur: blur && decl.samples(), display, steps }
+        Self { mode, decl, features, blur: blur && decl.runs_sampling(), display, steps }
     }
 
     /// The names of the steps, in order.
     pub fn step_names(&self) -> Vec<&'static str> {
         self.steps.iter().map(|s| s.name_in(self.mode)).collect()
-    }
-
-    /// Whether SSDO's indirect bounce has a radiance buffer to read (a lighting pass ran).
-    pub fn indirect(&self) -> bool {
-        self.has(Step::Lighting)
     }
 
     /// Whether the HDR target exists: an HDR plan, or a lighting pass writing its direct light.
@@ -253,7 +248,7 @@ impl Plan {
 
     /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth).
     pub fn target_set(&self) -> TargetSet {
-        let samples = self.decl.samples();
+        let samples = self.decl.runs_sampling();
         TargetSet {
             hdr: self.keeps_hdr(),
             bounce: self.has(Step::Lighting),
@@ -293,7 +288,7 @@ mod tests {
             assert_eq!(plan.step_names().join(", "), steps, "{mode}");
             let t = plan.target_set();
             assert_eq!((t.hdr, t.bounce, t.ao, t.directional), targets, "{mode}");
-            assert_eq!((t.blurred, t.pyramid), (plan.decl.samples(), false), "{mode}");
+            assert_eq!((t.blurred, t.pyramid), (plan.decl.runs_sampling(), false), "{mode}");
         }
     }
 

@@ -116,7 +116,6 @@ impl Pass for CompositePass {
                         ("LIGHT_LOOP", f(key.light_loop)),
                         ("HAS_AO", f(key.ao)),
                         ("HAS_DO", f(key.directional)),
-                        ("AO_IN_DO", f(key.directional)),
                         ("CLASSIC", f(key.classic)),
                         ("WHITE_ALBEDO", f(key.white_albedo)),
                         ("DISPLAY", f(key.display)),

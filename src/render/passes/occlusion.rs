@@ -4,7 +4,7 @@
 //! for what the plan needs and rebuilt only when that changes.
 
 use super::super::kernel::{self, Variant};
-use super::super::modes::Plan;
+use super::super::modes::{Plan, Step};
 use super::super::targets::{AO_FORMAT, DO_FORMAT};
 use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
 use super::{
@@ -83,7 +83,7 @@ impl Outputs {
         Self {
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
-            indirect: plan.indirect(),
+            indirect: plan.has(Step::Lighting),
         }
     }
 
@@ -166,7 +166,7 @@ impl Pass for OcclusionPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, variant, data, unused, unused_pyramid, .. } = *p;
-        if !plan.decl.samples() {
+        if !plan.decl.runs_sampling() {
             self.pipeline.clear();
             self.bind_group = None;
             return;
@@ -175,7 +175,7 @@ impl Pass for OcclusionPass {
             outputs: Outputs::of(plan),
             classic: variant == Variant::Classic,
             march: variant.marches(),
-            pyramid: plan.has(super::super::modes::Step::DepthPyramid),
+            pyramid: plan.has(Step::DepthPyramid),
         };
         self.pipeline.ensure(key, |key| {
             let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };

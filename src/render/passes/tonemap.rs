@@ -88,7 +88,6 @@ impl Pass for TonemapPass {
                         ("VIEW", key.view as f64),
                         ("HAS_AO", f(key.ao)),
                         ("HAS_DO", f(key.directional)),
-                        ("AO_IN_DO", f(key.directional)),
                     ],
                 },
             )
