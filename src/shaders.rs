@@ -80,3 +80,18 @@ pub fn module(device: &wgpu::Device, name: &str) -> Result<wgpu::ShaderModule> {
         source: wgpu::ShaderSource::Wgsl(code.into()),
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn includes_are_pasted_once_and_a_missing_one_names_both_files() {
+        // blur.wgsl includes uniforms.wgsl itself and through gbuffer_read.wgsl.
+        let blur = resolve("blur.wgsl").unwrap();
+        assert_eq!(blur.matches("struct Frame {").count(), 1);
+        assert!(!blur.contains("#include"));
+        let e = resolve("no_such.wgsl").unwrap_err().to_string();
+        assert!(e.contains("no_such.wgsl"), "{e}");
+    }
+}

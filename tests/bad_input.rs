@@ -3,23 +3,11 @@
 //! image, or fails with exit code 3 and one line naming the file and the problem — never a panic
 //! (exit 101), never a half-written output file.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn ssdo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ssdo"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
-        .output()
-        .expect("the binary runs")
-}
-
-fn have_adapter() -> bool {
-    let ok = ssdo::gpu::Gpu::headless().is_ok();
-    assert!(ok || std::env::var("CI").map_or(true, |v| v != "true"), "{}", ssdo::gpu::NO_ADAPTER_HELP);
-    ok
-}
+use common::{has_adapter as have_adapter, run_ssdo as ssdo};
 
 /// What one run did.
 enum Outcome {

@@ -1,17 +1,12 @@
 //! The `ssdo` binary as a user runs it: files written atomically, one-line errors with
 //! documented exit codes, never a panic (exit 101).
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-fn ssdo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ssdo"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
-        .output()
-        .expect("the binary runs")
-}
+use common::{has_adapter, run_ssdo as ssdo};
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
@@ -19,14 +14,6 @@ fn stderr(output: &Output) -> String {
 
 fn error_line(output: &Output) -> String {
     stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
-}
-
-fn has_adapter() -> bool {
-    let ok = ssdo::gpu::Gpu::headless().is_ok();
-    if !ok && std::env::var("CI").is_ok_and(|v| v == "true") {
-        panic!("{}", ssdo::gpu::NO_ADAPTER_HELP);
-    }
-    ok
 }
 
 #[test]

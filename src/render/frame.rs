@@ -3,7 +3,7 @@
 use glam::{Vec3, Vec4Swizzles};
 
 use super::kernel;
-use super::passes::occlusion::SamplingParams;
+use super::resources::sampling::SamplingParams;
 use super::settings::{View, REACH_RADII, THICKNESS_RADII};
 use super::uniforms::{self, mat, FrameUniforms, GpuLight};
 use crate::scene::{LightRig, OrbitCamera, PointLight};
@@ -178,12 +178,7 @@ impl super::Renderer {
         let sky = self.sky.peak * s.sky_scale * s.sky_strength.max(1.0);
         let min_d2 = (self.rig.min_distance * self.rig.min_distance).max(f32::MIN_POSITIVE);
         let lights: f32 = self.lights.iter().map(|l| l.intensity * l.color.max_element() / min_d2).sum();
-        let peak = sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0));
-        if peak.is_finite() && peak > 4096.0 {
-            4096.0 / peak
-        } else {
-            1.0
-        }
+        pre_exposure_for(sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0)))
     }
 
     /// The sampling radius in use, in model units.
@@ -237,5 +232,30 @@ impl super::Renderer {
             };
             self.occlusion_data.update(&gpu.queue, &params);
         }
+    }
+}
+
+/// The pre-exposure for a frame whose brightest radiance is at most `peak`: 1 up to 4096, then
+/// 4096 / peak, so the half-float buffers (largest value 65504) keep 16× headroom.
+pub fn pre_exposure_for(peak: f32) -> f32 {
+    if peak.is_finite() && peak > 4096.0 {
+        4096.0 / peak
+    } else {
+        1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::pre_exposure_for;
+
+    #[test]
+    fn pre_exposure_keeps_the_brightest_radiance_at_4096() {
+        assert_eq!(pre_exposure_for(0.0), 1.0);
+        assert_eq!(pre_exposure_for(4096.0), 1.0);
+        assert_eq!(pre_exposure_for(1e5) * 1e5, 4096.0);
+        assert!((pre_exposure_for(1e30) * 1e30 - 4096.0).abs() < 1.0);
+        assert_eq!(pre_exposure_for(f32::INFINITY), 1.0, "a non-finite peak scales nothing");
+        assert_eq!(pre_exposure_for(f32::NAN), 1.0);
     }
 }

@@ -151,3 +151,41 @@ pub fn sky_mip_level(size: u32, n: usize) -> f32 {
     let texel = 4.0 / (size.max(1) as f32).powi(2);
     (0.5 * (per_sample / texel).log2()).max(0.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kernels_lie_in_the_unit_hemisphere_and_are_the_same_every_time() {
+        for variant in Variant::ALL {
+            for n in [1, 16, 64, 256] {
+                let k = kernel(variant, n);
+                assert_eq!(k.len(), n);
+                assert!(k.iter().all(|v| v.z >= 0.0 && v.length() <= 1.0 + 1e-6), "{variant} {n}");
+                assert_eq!(k, kernel(variant, n), "{variant} {n}: deterministic");
+            }
+        }
+        // The default kernel spreads its directions: their mean points up, not to one side.
+        let mean = kernel(Variant::Points, 64).iter().map(|v| v.normalize()).sum::<Vec3>() / 64.0;
+        assert!(mean.x.abs() < 0.05 && mean.y.abs() < 0.05 && mean.z > 0.4, "{mean}");
+    }
+
+    #[test]
+    fn rotations_are_unit_angles_and_slice_offsets_cover_the_tile() {
+        let r = rotations(Variant::Points);
+        assert!(r.iter().all(|e| ((e[0] * e[0] + e[1] * e[1]) - 1.0).abs() < 1e-5));
+        let mut offsets: Vec<f32> = r.iter().map(|e| e[2]).collect();
+        offsets.sort_by(f32::total_cmp);
+        for (i, o) in offsets.iter().enumerate() {
+            assert!((o - (i as f32 + 0.5) / 16.0).abs() < 1e-6, "all 16 slice offsets once");
+        }
+    }
+
+    #[test]
+    fn more_samples_read_finer_sky_mips() {
+        let levels: Vec<f32> = [1, 4, 16, 64, 256].iter().map(|&n| sky_mip_level(512, n)).collect();
+        assert!(levels.windows(2).all(|w| w[1] <= w[0]), "{levels:?}");
+        assert_eq!(sky_mip_level(1, 16), 0.0, "never below level 0");
+    }
+}

@@ -79,3 +79,24 @@ pub fn red_wall_scene() -> Scene {
     scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
     scene
 }
+
+/// Runs the `ssdo` binary from the repository root with `args`, on the backend the test run asks
+/// for (`WGPU_BACKEND`, Vulkan by default).
+pub fn run_ssdo(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ssdo"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+        .output()
+        .expect("the binary runs")
+}
+
+/// Whether there is an adapter to render on; under `CI=true` a missing one fails the test with
+/// the install hint.
+pub fn has_adapter() -> bool {
+    let ok = ssdo::gpu::Gpu::headless().is_ok();
+    if !ok && std::env::var("CI").is_ok_and(|v| v == "true") {
+        panic!("{}", NO_ADAPTER_HELP);
+    }
+    ok
+}

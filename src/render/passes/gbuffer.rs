@@ -7,6 +7,7 @@
 
 use wgpu::util::DeviceExt;
 
+use super::super::resources::scene::{upload_texture, Draw, SceneGpu};
 use super::super::targets::{ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
 use super::super::uniforms::MaterialParams;
 use super::{Pass, Recording};
@@ -14,123 +15,6 @@ use crate::gpu::Gpu;
 use crate::scene::model::TextureImage;
 use crate::scene::{Model, Vertex};
 use crate::{shaders, Result};
-
-/// One draw: a range of indices with a material bind group.
-struct Draw {
-    first_index: u32,
-    index_count: u32,
-    bind_group: wgpu::BindGroup,
-    textured: bool,
-}
-
-/// The model on the GPU.
-pub struct SceneGpu {
-    vertices: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    draws: Vec<Draw>,
-    pub textured: bool,
-    pub bytes: u64,
-}
-
-fn upload_texture(
-    gpu: &Gpu,
-    label: &str,
-    image: &TextureImage,
-    format: wgpu::TextureFormat,
-) -> (wgpu::TextureView, u64) {
-    let max = gpu.device.limits().max_texture_dimension_2d;
-    let shrunk;
-    let image = if image.width > max || image.height > max {
-        log::warn!("{label}: {}x{} exceeds the adapter's {max}; downscaling", image.width, image.height);
-        let src = image::RgbaImage::from_raw(image.width, image.height, image.rgba.to_vec())
-            .expect("texture size matches its data");
-        let scale = max as f32 / image.width.max(image.height) as f32;
-        let (w, h) = (((image.width as f32 * scale) as u32).max(1), ((image.height as f32 * scale) as u32).max(1));
-        let small = image::imageops::resize(&src, w, h, image::imageops::FilterType::Triangle);
-        shrunk = TextureImage { width: w, height: h, rgba: std::sync::Arc::new(small.into_raw()) };
-        &shrunk
-    } else {
-        image
-    };
-    let levels = mip_chain(image, format.is_srgb());
-    let data: Vec<u8> = levels.concat();
-    let texture = gpu.device.create_texture_with_data(
-        &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
-            mip_level_count: levels.len() as u32,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &data,
-    );
-    (texture.create_view(&wgpu::TextureViewDescriptor::default()), data.len() as u64)
-}
-
-/// The full mip chain of an RGBA8 image, level 0 first, down to 1x1: each level the 2x2 box
-/// average of the one above (the last row or column repeated where a side is odd), averaged in
-/// linear light when the texels are sRGB-encoded (so a minified checker keeps its brightness).
-/// Minified textures then read a level of about their on-screen size: no aliasing, and a few
-/// cache lines per pixel instead of texels scattered over the whole image.
-pub fn mip_chain(image: &TextureImage, srgb: bool) -> Vec<Vec<u8>> {
-    let decode: Vec<f32> = (0..256)
-        .map(|v| {
-            let c = v as f32 / 255.0;
-            match srgb {
-                false => c,
-                true if c <= 0.04045 => c / 12.92,
-                true => ((c + 0.055) / 1.055).powf(2.4),
-            }
-        })
-        .collect();
-    let encode = |c: f32| -> u8 {
-        let c = c.clamp(0.0, 1.0);
-        let e = match srgb {
-            false => c,
-            true if c <= 0.0031308 => c * 12.92,
-            true => 1.055 * c.powf(1.0 / 2.4) - 0.055,
-        };
-        (e * 255.0).round() as u8
-    };
-    let mut levels = vec![image.rgba.to_vec()];
-    let (mut w, mut h) = (image.width as usize, image.height as usize);
-    while w > 1 || h > 1 {
-        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-        let src = levels.last().expect("level 0 is there");
-        let mut dst = vec![0u8; nw * nh * 4];
-        for y in 0..nh {
-            let rows = [(2 * y).min(h - 1), (2 * y + 1).min(h - 1)];
-            for x in 0..nw {
-                let cols = [(2 * x).min(w - 1), (2 * x + 1).min(w - 1)];
-                for c in 0..4 {
-                    let texel = |yy: usize, xx: usize| src[(yy * w + xx) * 4 + c];
-                    let sum: f32 = rows
-                        .iter()
-                        .flat_map(|&yy| cols.iter().map(move |&xx| (yy, xx)))
-                        .map(|(yy, xx)| {
-                            // Alpha (specular strength) is linear in either format.
-                            if c == 3 {
-                                texel(yy, xx) as f32 / 255.0
-                            } else {
-                                decode[texel(yy, xx) as usize]
-                            }
-                        })
-                        .sum();
-                    let mean = 0.25 * sum;
-                    dst[(y * nw + x) * 4 + c] = if c == 3 { (mean * 255.0).round() as u8 } else { encode(mean) };
-                }
-            }
-        }
-        levels.push(dst);
-        (w, h) = (nw, nh);
-    }
-    levels
-}
 
 pub struct GBufferPass {
     pub material_layout: wgpu::BindGroupLayout,
@@ -335,37 +219,5 @@ impl Pass for GBufferPass {
             pass.set_bind_group(1, &draw.bind_group, &[]);
             pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn image(width: u32, height: u32, texel: impl Fn(u32, u32) -> [u8; 4]) -> TextureImage {
-        let mut bytes = Vec::new();
-        for y in 0..height {
-            for x in 0..width {
-                bytes.extend_from_slice(&texel(x, y));
-            }
-        }
-        TextureImage { width, height, rgba: std::sync::Arc::new(bytes) }
-    }
-
-    #[test]
-    fn the_mip_chain_halves_down_to_one_texel_and_averages_in_linear_light() {
-        let checker = image(8, 2, |x, y| if (x + y) % 2 == 0 { [255, 255, 255, 255] } else { [0, 0, 0, 0] });
-        let srgb = mip_chain(&checker, true);
-        let sizes: Vec<usize> = srgb.iter().map(|l| l.len() / 4).collect();
-        assert_eq!(sizes, vec![16, 4, 2, 1], "8x2, 4x1, 2x1, 1x1");
-        // Half white, half black is linear 0.5: sRGB 188, not 128; alpha (linear) 128.
-        assert_eq!(&srgb[1][..4], &[188, 188, 188, 128]);
-        assert_eq!(&srgb[3][..], &[188, 188, 188, 128]);
-        let linear = mip_chain(&checker, false);
-        assert_eq!(&linear[3][..], &[128, 128, 128, 128]);
-        // An odd side repeats its last row and column.
-        let odd = mip_chain(&image(3, 3, |x, _| [(x * 100) as u8, 0, 0, 255]), false);
-        assert_eq!(odd.len(), 2);
-        assert_eq!(&odd[1][..], &[50, 0, 0, 255]);
     }
 }

@@ -21,9 +21,11 @@ pub mod tonemap;
 
 use super::kernel::Variant;
 use super::modes::Plan;
+use super::resources::sampling::OcclusionData;
+use super::resources::scene::SceneGpu;
+use super::resources::sky::SkyGpu;
 use super::targets::Targets;
 use super::View;
-use occlusion::OcclusionData;
 
 /// Everything a pass records one step of a frame from.
 pub struct Recording<'a> {
@@ -34,8 +36,8 @@ pub struct Recording<'a> {
     pub plan: &'a Plan,
     /// Bind group 0: the frame uniforms and the lights.
     pub frame: &'a wgpu::BindGroup,
-    pub sky: &'a skybox::SkyGpu,
-    pub scene: &'a gbuffer::SceneGpu,
+    pub sky: &'a SkyGpu,
+    pub scene: &'a SceneGpu,
     pub lights: u32,
     /// What the frame is drawn into, and where the image starts in it (the viewer's panel is
     /// beside it).

@@ -1,0 +1,62 @@
+//! The sampling passes' parameters on the GPU: the kernel and the 4x4 rotations (regenerated only
+//! when the variant or the sample count changes), the radius, bias, strengths and the march's
+//! slices, steps, reach and thickness. Read by the sampling pass and the blur.
+
+use super::super::kernel::{self, Variant};
+use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
+
+/// Sampling parameters for one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplingParams {
+    pub variant: Variant,
+    pub samples: usize,
+    pub slices: usize,
+    pub steps: usize,
+    /// View-space reach and thickness of the march.
+    pub reach: f32,
+    pub thickness: f32,
+    /// View-space radius of the hemisphere.
+    pub radius: f32,
+    /// Depth bias in view units.
+    pub bias: f32,
+    pub sky_mip: f32,
+    pub sky_strength: f32,
+    pub indirect_strength: f32,
+}
+
+/// The kernel and parameters uniform, shared by the sampling and blur passes.
+pub struct OcclusionData {
+    pub buffer: wgpu::Buffer,
+    uniforms: Box<OcclusionParams>,
+    kernel_key: Option<(Variant, usize)>,
+}
+
+impl OcclusionData {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("occlusion_params"),
+            size: std::mem::size_of::<OcclusionParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self { buffer, uniforms: Box::new(bytemuck::Zeroable::zeroed()), kernel_key: None }
+    }
+
+    /// Writes the parameters; the kernel is regenerated only when variant or count change.
+    pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
+        let samples = params.samples.clamp(1, MAX_SAMPLES);
+        if self.kernel_key != Some((params.variant, samples)) {
+            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant, samples)) {
+                *slot = k.extend(0.0).into();
+            }
+            self.uniforms.rotations = kernel::rotations(params.variant);
+            self.kernel_key = Some((params.variant, samples));
+        }
+        let u = self.uniforms.as_mut();
+        (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as f32, params.sky_mip);
+        (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
+        (u.slices, u.steps, u.reach, u.thickness) =
+            (params.slices as f32, params.steps as f32, params.reach, params.thickness);
+        queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
+    }
+}
