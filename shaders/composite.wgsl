@@ -21,6 +21,8 @@
 #include "common/point_lights.wgsl"
 #include "common/fullscreen.wgsl"
 #include "common/tone_curve.wgsl"
+// The sky, for the background (DISPLAY only).
+#include "common/sky.wgsl"
 
 // AO alone (SSAO, r channel).
 @group(1) @binding(3) var ao_map: texture_2d<f32>;
@@ -28,9 +30,6 @@
 @group(1) @binding(4) var do_map: texture_2d<f32>;
 // The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
 @group(1) @binding(5) var direct_map: texture_2d<f32>;
-// The sky, for the background (DISPLAY only).
-@group(2) @binding(0) var sky_map: texture_cube<f32>;
-@group(2) @binding(1) var sky_sampler: sampler;
 
 // Run the point-light loop here (there are lights and no lighting pass ran).
 override LIGHT_LOOP: bool = true;
@@ -62,15 +61,6 @@ fn sky_irradiance(n: vec3<f32>) -> vec3<f32> {
     return max(e, vec3<f32>(0.0));
 }
 
-// The sky's pre-exposed radiance seen through the centre of `pixel` (as the skybox pass draws it).
-fn sky_radiance(pixel: vec2<i32>) -> vec3<f32> {
-    let uv = (vec2<f32>(pixel) + 0.5) * frame.viewport.zw;
-    let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
-    let view_dir = vec3<f32>(ndc.x / frame.view_to_clip[0][0], ndc.y / frame.view_to_clip[1][1], -1.0);
-    let world_dir = (frame.view_to_world * vec4<f32>(view_dir, 0.0)).xyz;
-    return textureSampleLevel(sky_map, sky_sampler, world_dir, 0.0).rgb * frame.sky_scale;
-}
-
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     if DISPLAY {
@@ -93,7 +83,7 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     let depth = load_depth(pixel);
     if depth <= 0.0 {
         if DISPLAY {
-            return sky_radiance(pixel);
+            return background((vec2<f32>(pixel) + 0.5) * frame.viewport.zw);
         }
         return vec3<f32>(0.0);
     }

@@ -32,8 +32,7 @@
 // The closest depth per 2^(k+1)-pixel block at level k, as f32 bits (shaders/depth_pyramid.wgsl),
 // read by the far steps when the plan built it (USE_PYRAMID); a 1x1 stand-in otherwise.
 @group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
-@group(2) @binding(0) var sky_map: texture_cube<f32>;
-@group(2) @binding(1) var sky_sampler: sampler;
+#include "common/sky.wgsl"
 
 override COMPUTE_AO: bool = true;
 override COMPUTE_DO: bool = true;

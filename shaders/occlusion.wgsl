@@ -36,8 +36,7 @@
 @group(1) @binding(4) var bounce_map: texture_2d<f32>;
 // The sky's mip chain, read at one whole level per pass (the sampler's mip filter is nearest):
 // the level already matches a sample's solid angle, and bilinear costs half of trilinear.
-@group(2) @binding(0) var sky_map: texture_cube<f32>;
-@group(2) @binding(1) var sky_sampler: sampler;
+#include "common/sky.wgsl"
 
 override COMPUTE_AO: bool = true;
 override COMPUTE_DO: bool = true;
