@@ -57,6 +57,11 @@ fn pngs(dir: &Path, prefix: &str) -> Vec<PathBuf> {
     files
 }
 
+/// What the viewer started in `dir` wrote to stderr (shown when it did not end as it should).
+fn log(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("viewer-stderr.txt")).unwrap_or_default()
+}
+
 fn ssdo() -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_ssdo"));
     command
@@ -74,7 +79,7 @@ fn start_viewer(display: &str, shots: &Path, extra: &[&str]) -> (Guard, String) 
             .args(extra)
             .env("DISPLAY", display)
             .stdout(Stdio::null())
-            .stderr(Stdio::null())
+            .stderr(std::fs::File::create(shots.join("viewer-stderr.txt")).expect("a log file"))
             .spawn()
             .expect("the viewer starts"),
     );
@@ -104,7 +109,9 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     let socket = format!("/tmp/.X11-unix/X{}", &display[1..]);
     let _xvfb = Guard(
         Command::new("Xvfb")
-            .args([display.as_str(), "-screen", "0", "800x600x24", "-nolisten", "tcp"])
+            // -noreset: Xvfb otherwise resets when its last client leaves, and the second viewer
+            // below can meet a server in the middle of that reset ("failed to open connection").
+            .args([display.as_str(), "-screen", "0", "800x600x24", "-nolisten", "tcp", "-noreset"])
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
@@ -131,7 +138,7 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("the comparison", Duration::from_secs(120), || !pngs(shots.path(), "compare-").is_empty());
     xdotool(&display, &["key", "--clearmodifiers", "Escape"]);
     wait_for("the viewer to quit", Duration::from_secs(30), || viewer.0.try_wait().ok().flatten().is_some());
-    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "Escape quits cleanly");
+    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "Escape quits cleanly; its stderr:\n{}", log(shots.path()));
 
     // A window destroyed from outside (not closed by its user) ends the viewer cleanly too,
     // not with a panic on the next frame.
@@ -147,7 +154,12 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("the viewer to quit after its window was destroyed", Duration::from_secs(30), || {
         viewer.0.try_wait().ok().flatten().is_some()
     });
-    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "a destroyed window quits cleanly");
+    assert_eq!(
+        viewer.0.wait().unwrap().code(),
+        Some(0),
+        "a destroyed window quits cleanly; its stderr:\n{}",
+        log(shots2.path())
+    );
 
     let screenshots = pngs(shots.path(), "screenshot-");
     for mode in modes {

@@ -120,10 +120,25 @@ impl Viewer {
         arrived
     }
 
+    /// egui's input for this frame: what `egui_winit::State::take_egui_input` gathers, with the
+    /// size from the last `Resized` instead of asking the window (see `Viewer::window_size`). The
+    /// scale factor is winit's cached value, no round trip to the server.
+    fn egui_input(&mut self) -> egui::RawInput {
+        let native = self.window.scale_factor() as f32;
+        let points_per_pixel = 1.0 / (native * self.egui.egui_ctx().zoom_factor());
+        let size = egui::vec2(self.window_size.width as f32, self.window_size.height as f32) * points_per_pixel;
+        let input = self.egui.egui_input_mut();
+        input.time = Some(self.started.elapsed().as_secs_f64());
+        input.screen_rect = (size.x > 0.0 && size.y > 0.0).then(|| egui::Rect::from_min_size(egui::Pos2::ZERO, size));
+        input.viewport_id = egui::ViewportId::ROOT;
+        input.viewports.entry(egui::ViewportId::ROOT).or_default().native_pixels_per_point = Some(native);
+        input.take()
+    }
+
     pub(super) fn redraw(&mut self) -> Result<()> {
         let started = Instant::now();
         self.apply_loads();
-        let size = self.window.inner_size();
+        let size = self.window_size;
         if size.width == 0 || size.height == 0 {
             return Ok(());
         }
@@ -140,7 +155,7 @@ impl Viewer {
         let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
 
         // The panel first: it may change settings for this frame.
-        let input = self.egui.take_egui_input(&self.window);
+        let input = self.egui_input();
         let default_radius = self.scene.default_radius();
         let ctx = self.egui.egui_ctx().clone();
         let mut actions = Vec::new();

@@ -129,6 +129,12 @@ struct Viewer {
     told_too_large: bool,
     /// When the loading line was last redrawn.
     last_progress: Instant,
+    /// The window's size as the last `Resized` said (0x0 while minimised). A frame reads this, never
+    /// the window: winit asks the X server for the size and panics if the window was destroyed from
+    /// outside while its `Destroyed` event is still queued.
+    window_size: PhysicalSize<u32>,
+    /// egui's clock (its input is built here, not by `egui_winit`, which asks the window its size).
+    started: Instant,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -235,6 +241,8 @@ impl Viewer {
             refreshing: false,
             told_too_large: false,
             last_progress: Instant::now(),
+            window_size: size,
+            started: Instant::now(),
         })
     }
 
@@ -300,7 +308,7 @@ impl Viewer {
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => self.resize(size),
-            WindowEvent::ScaleFactorChanged { .. } => self.resize(self.window.inner_size()),
+            WindowEvent::ScaleFactorChanged { .. } => self.resize(self.window_size),
             WindowEvent::RedrawRequested => self.redraw()?,
             WindowEvent::DroppedFile(path) => self.drop_file(path),
             WindowEvent::KeyboardInput {
@@ -355,6 +363,7 @@ impl Viewer {
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) {
+        self.window_size = size;
         // A minimised window is 0x0: keep everything as it is until it comes back.
         if size.width == 0 || size.height == 0 {
             return;
