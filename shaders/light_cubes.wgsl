@@ -20,7 +20,7 @@ struct CubeOut {
 }
 
 @vertex
-fn vs_main(@location(0) corner: vec3<f32>, @builtin(instance_index) index: u32) -> CubeOut {
+fn vs_main(@location(0) corner: vec3<f32>, @location(1) index: u32) -> CubeOut {
     let light = lights[index];
     let world = light.world_position + corner * light.cube_half_size;
     var out: CubeOut;
@@ -34,9 +34,9 @@ fn fs_main(in: CubeOut) -> @location(0) vec4<f32> {
     return vec4<f32>(in.color, 1.0);
 }
 
-// Straight into the output: the depth test against the G-buffer, then the tone map. Cubes are
-// one flat colour each, so without a depth buffer of their own only where two cubes overlap can
-// the farther one show; light cubes are a few pixels wide and rarely overlap.
+// Straight into the output: the depth test against the G-buffer, then the tone map. There is no
+// depth buffer between cubes here: they are drawn farthest first (the instance order), so a nearer
+// cube covers a farther one.
 @fragment
 fn fs_display(in: CubeOut) -> @location(0) vec4<f32> {
     let pixel = vec2<i32>(in.clip.xy - frame.output_origin);

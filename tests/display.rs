@@ -81,3 +81,25 @@ fn display_frames_land_at_their_origin_in_a_larger_output() {
     assert_eq!(placed.get_pixel(0, 0).0, [0, 0, 0, 0]);
     assert_eq!(placed.get_pixel(big.0 - 1, big.1 - 1).0, [0, 0, 0, 0]);
 }
+
+#[test]
+fn a_nearer_light_cube_covers_a_farther_one_in_both_paths() {
+    let Some(gpu) = gpu() else { return };
+    let (mut scene, sky, camera) = default_scene();
+    // Two cubes on one line of sight, the far one listed last (drawn last in list order): the
+    // near red one must show where they overlap, with or without a depth buffer between them.
+    let eye = camera.eye();
+    let towards = (camera.target - eye).normalize();
+    let near = eye + towards * (0.35 * camera.distance);
+    let far = eye + towards * (0.45 * camera.distance);
+    let light = |position, color| scene::PointLight { position, color, intensity: 0.5 };
+    scene.lights = vec![light(near, glam::Vec3::X), light(far, glam::Vec3::Y)];
+    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings { mode: Mode::Off, ..Settings::default() });
+    let (x, y) = common::project_to(&camera, SIZE, near);
+    for keep_hdr in [true, false] {
+        r.keep_hdr(&gpu, keep_hdr);
+        let image = shoot(&gpu, &mut r, &camera);
+        let [red, green, _, _] = image.get_pixel(x as u32, y as u32).0;
+        assert!(red > 200 && green < 60, "HDR path {keep_hdr}: the pixel is ({red}, {green}), not the near red cube");
+    }
+}

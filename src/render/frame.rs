@@ -31,6 +31,10 @@ pub struct FrameData {
     pub bind_group: wgpu::BindGroup,
     uniforms: wgpu::Buffer,
     lights: wgpu::Buffer,
+    /// The lights' indices, farthest from the camera first: the order the light cubes are drawn
+    /// in (an instance buffer), so that where a display plan draws them without a depth buffer of
+    /// their own, a nearer cube still covers a farther one.
+    pub cube_order: wgpu::Buffer,
     light_capacity: usize,
     frame_index: u32,
 }
@@ -70,7 +74,17 @@ impl FrameData {
             mapped_at_creation: false,
         });
         let (lights, bind_group) = Self::light_buffer(device, &layout, &uniforms, 1);
-        Self { layout, bind_group, uniforms, lights, light_capacity: 1, frame_index: 0 }
+        let cube_order = Self::order_buffer(device, 1);
+        Self { layout, bind_group, uniforms, lights, cube_order, light_capacity: 1, frame_index: 0 }
+    }
+
+    fn order_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame_cube_order"),
+            size: (capacity.max(1) * std::mem::size_of::<u32>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
     }
 
     /// A light array for `capacity` lights (at least one: a storage binding cannot be empty).
@@ -99,7 +113,7 @@ impl FrameData {
 
     /// Bytes held by the frame buffers.
     pub fn bytes(&self) -> u64 {
-        self.uniforms.size() + self.lights.size()
+        self.uniforms.size() + self.lights.size() + self.cube_order.size()
     }
 
     /// Writes this frame's uniforms and lights; grows the light array when needed.
@@ -145,6 +159,7 @@ impl FrameData {
             self.light_capacity = lights.len().next_power_of_two();
             (self.lights, self.bind_group) =
                 Self::light_buffer(device, &self.layout, &self.uniforms, self.light_capacity);
+            self.cube_order = Self::order_buffer(device, self.light_capacity);
         }
         let gpu_lights: Vec<GpuLight> = lights
             .iter()
@@ -159,6 +174,8 @@ impl FrameData {
             .collect();
         if !gpu_lights.is_empty() {
             queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&gpu_lights));
+            let order = far_to_near(gpu_lights.iter().map(|l| Vec3::from(l.view_position)));
+            queue.write_buffer(&self.cube_order, 0, bytemuck::cast_slice(&order));
         }
         self.frame_index = self.frame_index.wrapping_add(1);
     }
@@ -245,9 +262,20 @@ pub fn pre_exposure_for(peak: f32) -> f32 {
     }
 }
 
+/// Indices of view-space points, farthest from the camera first (ties in index order). For
+/// equal non-intersecting spheres this is the painter's order that is right at every pixel; the
+/// light cubes, all of one size, are close to that.
+pub fn far_to_near(view_positions: impl Iterator<Item = Vec3>) -> Vec<u32> {
+    let d: Vec<f32> = view_positions.map(|p| p.length_squared()).collect();
+    let mut order: Vec<u32> = (0..d.len() as u32).collect();
+    order.sort_by(|&a, &b| d[b as usize].total_cmp(&d[a as usize]).then(a.cmp(&b)));
+    order
+}
+
 #[cfg(test)]
 mod tests {
-    use super::pre_exposure_for;
+    use super::{far_to_near, pre_exposure_for};
+    use glam::Vec3;
 
     #[test]
     fn pre_exposure_keeps_the_brightest_radiance_at_4096() {
@@ -257,5 +285,14 @@ mod tests {
         assert!((pre_exposure_for(1e30) * 1e30 - 4096.0).abs() < 1.0);
         assert_eq!(pre_exposure_for(f32::INFINITY), 1.0, "a non-finite peak scales nothing");
         assert_eq!(pre_exposure_for(f32::NAN), 1.0);
+    }
+
+    #[test]
+    fn cubes_are_drawn_farthest_first() {
+        let points =
+            [Vec3::new(0.0, 0.0, -2.0), Vec3::new(3.0, 0.0, -1.0), Vec3::new(0.0, 0.0, -5.0), Vec3::new(0.0, 2.0, 0.0)];
+        assert_eq!(far_to_near(points.into_iter()), vec![2, 1, 0, 3]);
+        assert_eq!(far_to_near([Vec3::X, Vec3::Y].into_iter()), vec![0, 1], "ties keep their order");
+        assert!(far_to_near(std::iter::empty()).is_empty());
     }
 }

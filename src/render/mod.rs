@@ -357,6 +357,7 @@ impl Renderer {
                 sky: &self.sky,
                 scene: &self.scene,
                 lights: self.lights.len() as u32,
+                light_order: &self.frame.cube_order,
                 output,
                 origin,
             });

@@ -81,11 +81,19 @@ impl LightCubesPass {
                 module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 12,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-                })],
+                buffers: &[
+                    Some(wgpu::VertexBufferLayout {
+                        array_stride: 12,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                    }),
+                    // Which light each instance draws, farthest first (`FrameData::cube_order`).
+                    Some(wgpu::VertexBufferLayout {
+                        array_stride: 4,
+                        step_mode: wgpu::VertexStepMode::Instance,
+                        attributes: &wgpu::vertex_attr_array![1 => Uint32],
+                    }),
+                ],
             },
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: display.is_none().then(|| wgpu::DepthStencilState {
@@ -120,7 +128,7 @@ impl Pass for LightCubesPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, lights, plan, output, origin, .. } = rec;
+        let Recording { encoder, timestamps, targets, frame, lights, light_order, plan, output, origin, .. } = rec;
         let display = plan.display.then_some((output, origin));
         // `display`: a display plan's output and the image's origin in it; otherwise into HDR.
         let (color, depth) = match (display, &targets.hdr) {
@@ -155,6 +163,7 @@ impl Pass for LightCubesPass {
         }
         pass.set_bind_group(0, frame, &[]);
         pass.set_vertex_buffer(0, self.corners.slice(..));
+        pass.set_vertex_buffer(1, light_order.slice(..));
         pass.draw(0..36, 0..lights);
     }
 }

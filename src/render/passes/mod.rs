@@ -39,6 +39,8 @@ pub struct Recording<'a> {
     pub sky: &'a SkyGpu,
     pub scene: &'a SceneGpu,
     pub lights: u32,
+    /// The lights' indices, farthest first (an instance buffer of u32, for the light cubes).
+    pub light_order: &'a wgpu::Buffer,
     /// What the frame is drawn into, and where the image starts in it (the viewer's panel is
     /// beside it).
     pub output: &'a wgpu::TextureView,
