@@ -180,8 +180,8 @@ impl Viewer {
             .or(caps.formats.first().copied())
             .ok_or_else(|| Error::Gpu("the window offers no surface format".into()))?;
         let max = gpu.device.limits().max_texture_dimension_2d;
-        let size = window.inner_size();
-        let size = PhysicalSize::new(size.width.min(max), size.height.min(max));
+        let window_size = window.inner_size();
+        let size = PhysicalSize::new(window_size.width.min(max), window_size.height.min(max));
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             format,
@@ -241,7 +241,7 @@ impl Viewer {
             refreshing: false,
             told_too_large: false,
             last_progress: Instant::now(),
-            window_size: size,
+            window_size,
             started: Instant::now(),
         })
     }
