@@ -54,6 +54,9 @@ struct Occlusion {
     ao: f32,
     direct: vec3<f32>,
     indirect: vec3<f32>,
+    // The cosine-weighted share of the hemisphere no sample occludes (what the sky is seen
+    // through; the constant ambient's visibility at a sender).
+    open: f32,
 }
 
 // F(θ) = ∫ cos(θ − γ) sin θ dθ = (θ sin γ − cos(2θ − γ)/2) / 2. F falls where sin θ < 0 and rises
@@ -96,9 +99,12 @@ fn slice_angle(d: vec3<f32>, v: vec3<f32>, t: vec3<f32>) -> f32 {
     return fast_atan2(dot(d, t), dot(d, v));
 }
 
-fn evaluate(position: vec2<f32>) -> Occlusion {
+// The march at pixel centre `position` with `slices` slices, its rotation and jitter from the
+// 4x4 tile at `tile` (the pixel itself, or the sender-sky pass's own half-resolution pixel).
+fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion {
     var out: Occlusion;
     out.ao = 1.0;
+    out.open = 1.0;
     let pixel = vec2<i32>(position);
     let depth = load_depth(pixel);
     if depth <= 0.0 {
@@ -109,7 +115,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
     let p = view_position(position, depth) + n * occ.bias;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
-    let slices = max(u32(occ.slices), 1u);
+    let slices = max(slice_count, 1u);
     let steps = max(u32(occ.steps), 1u);
     let reach = max(occ.reach, radius);
     let thickness = max(occ.thickness, 0.0);
@@ -120,12 +126,13 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     let far_steps = steps - near_steps;
     // AO alone counts occluders within R only: the far steps would change nothing.
     let last_step = select(near_steps, steps, COMPUTE_DO);
-    let noise = occ.rotations[u32(pixel.x & 3) + 4u * u32(pixel.y & 3)];
+    let noise = occ.rotations[u32(tile.x & 3) + 4u * u32(tile.y & 3)];
 
     var total = 0.0;
     var occluded_near = 0.0;
     var direct = vec3<f32>(0.0);
     var indirect = vec3<f32>(0.0);
+    var open = 0.0;
     for (var slice = 0u; slice < slices; slice += 1u) {
         let phi = PI * (f32(slice) + noise.z) / f32(slices);
         // Screen direction (x right, y down) and the view-space direction it moves along.
@@ -271,6 +278,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
             }
             if COMPUTE_DO {
                 let visible = f32(countOneBits(~mask & group_bits)) / f32(PER_GROUP);
+                open += w * visible;
                 if visible > 0.0 {
                     let theta = a + 0.5 * width;
                     let omega = v * cos(theta) + t * sin(theta);
@@ -284,19 +292,35 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
         out.ao = 1.0 - occluded_near / total;
         out.direct = direct / total * frame.sky_scale;
         out.indirect = indirect / total;
+        out.open = open / total;
     }
     return out;
+}
+
+fn evaluate_pixel(position: vec2<f32>) -> Occlusion {
+    return evaluate(position, u32(occ.slices), vec2<i32>(position));
 }
 
 // SSAO: AO alone, into a one-channel target.
 @fragment
 fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(evaluate(in.position.xy).ao, 0.0, 0.0, 1.0);
+    return vec4<f32>(evaluate_pixel(in.position.xy).ao, 0.0, 0.0, 1.0);
 }
 
 // SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
-    let o = evaluate(in.position.xy);
+    let o = evaluate_pixel(in.position.xy);
     return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
+}
+
+// The sender-sky pass (built with COMPUTE_DO on, COMPUTE_AO and INDIRECT off): at half
+// resolution, the sky the full-resolution pixel (2x, 2y) sees through one slice — rgb the visible
+// sky light (E/π, pre-exposed), a the open share — which the lighting pass turns into the light
+// that surface sends in the bounce. One slice is noisy per sender; the gather averages many.
+@fragment
+fn fs_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let half = vec2<i32>(in.position.xy);
+    let o = evaluate(vec2<f32>(2 * half) + 0.5, 1u, half);
+    return vec4<f32>(o.direct, o.open);
 }

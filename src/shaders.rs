@@ -14,6 +14,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("common/point_lights.wgsl", include_str!("../shaders/common/point_lights.wgsl")),
     ("common/occlusion_params.wgsl", include_str!("../shaders/common/occlusion_params.wgsl")),
     ("common/sky.wgsl", include_str!("../shaders/common/sky.wgsl")),
+    ("common/sky_irradiance.wgsl", include_str!("../shaders/common/sky_irradiance.wgsl")),
     ("common/tone_curve.wgsl", include_str!("../shaders/common/tone_curve.wgsl")),
     ("common/surface_pack.wgsl", include_str!("../shaders/common/surface_pack.wgsl")),
     ("common/gbuffer_read.wgsl", include_str!("../shaders/common/gbuffer_read.wgsl")),

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::render::{Mode, Settings, Variant, View};
+use crate::render::{Mode, SenderSky, Settings, Variant, View};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
 
@@ -104,6 +104,11 @@ pub struct RenderArgs {
     /// Multiplier on SSDO's indirect bounce
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub indirect_strength: f32,
+    /// What lights the bounce's senders besides the point lights: march (the sky each sender
+    /// sees, from a half-resolution march), irradiance (the sky's unoccluded irradiance for its
+    /// normal) or off (the point lights only); the first two add the ambient
+    #[arg(long, default_value = "march", value_parser = parse_sender_sky)]
+    pub sender_sky: SenderSky,
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
     pub no_blur: bool,
@@ -123,6 +128,10 @@ pub struct RenderArgs {
 
 pub fn parse_variant(s: &str) -> std::result::Result<Variant, String> {
     s.parse::<Variant>().map_err(|e| e.to_string())
+}
+
+pub fn parse_sender_sky(s: &str) -> std::result::Result<SenderSky, String> {
+    s.parse::<SenderSky>().map_err(|e| e.to_string())
 }
 
 pub fn parse_view(s: &str) -> std::result::Result<View, String> {
@@ -257,6 +266,7 @@ impl RenderArgs {
             ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
             sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
             indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
+            sender_sky: self.sender_sky,
             blur: !self.no_blur,
             exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,

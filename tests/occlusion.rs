@@ -266,8 +266,24 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     let expect = [
         (Mode::Off, vec!["gbuffer", "composite", "skybox", "light_cubes", "tonemap"]),
         (Mode::Ssao, vec!["gbuffer", "ssao", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
-        (Mode::Ssdo, vec!["gbuffer", "lighting", "ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
-        (Mode::Both, vec!["gbuffer", "lighting", "ssao_ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
+        (
+            Mode::Ssdo,
+            vec!["gbuffer", "sender_sky", "lighting", "ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"],
+        ),
+        (
+            Mode::Both,
+            vec![
+                "gbuffer",
+                "sender_sky",
+                "lighting",
+                "ssao_ssdo",
+                "blur",
+                "composite",
+                "skybox",
+                "light_cubes",
+                "tonemap",
+            ],
+        ),
     ];
     let names = |r: &Renderer| r.allocations().into_iter().map(|(n, _)| n).collect::<Vec<_>>();
     for (mode, steps) in &expect {
@@ -289,16 +305,31 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     );
     r.set_mode(&gpu, Mode::Both);
     let both = names(&r);
-    for wanted in ["do_raw", "do_blurred", "bounce_radiance"] {
+    for wanted in ["do_raw", "do_blurred", "bounce_radiance", "sender_sky"] {
         assert!(both.contains(&wanted.to_string()), "{wanted} in {both:?}");
     }
     assert!(!both.iter().any(|n| n.starts_with("ao_")), "Both keeps AO in DO's alpha: {both:?}");
     assert!(!r.uses_texture_path(), "an untextured model takes no texture path");
 
-    // No lights: no lighting pass and no bounce buffer, no cubes.
+    // No lights: no cubes, but the sky still bounces (the senders' sky light).
     r.set_lights(&gpu, Vec::new());
+    assert_eq!(
+        r.plan().step_names(),
+        vec!["gbuffer", "sender_sky", "lighting", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]
+    );
+    assert!(names(&r).iter().any(|n| n.starts_with("bounce")));
+    // No lights and senders lit by the point lights alone: nothing to bounce, no lighting pass.
+    r.settings.sender_sky = ssdo::render::SenderSky::Off;
+    r.apply(&gpu);
     assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]);
-    assert!(!names(&r).iter().any(|n| n.starts_with("bounce")));
+    assert!(!names(&r).iter().any(|n| n.starts_with("bounce") || n == "sender_sky"));
+    // A bounce of strength 0 runs none of it either, whatever lights the senders.
+    r.settings.sender_sky = ssdo::render::SenderSky::March;
+    r.settings.indirect_strength = 0.0;
+    r.apply(&gpu);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]);
+    r.settings.indirect_strength = 1.0;
+    r.settings.sender_sky = ssdo::render::SenderSky::Off;
     // No blur: no blur pass and no blurred targets.
     r.settings.blur = false;
     r.apply(&gpu);

@@ -11,7 +11,7 @@ use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{LightRig, Material, PointLight, Scene, Skybox};
 
 fn settings(radius: f32, spp: u32) -> TraceSettings {
-    TraceSettings { samples_per_pixel: spp, seed: 7, radius, sky_scale: 1.0 }
+    TraceSettings { samples_per_pixel: spp, seed: 7, radius, sky_scale: 1.0, ambient: 0.0 }
 }
 
 /// The surface the reference sees looking down at `point` from above. The probe is tilted a

@@ -148,6 +148,17 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
             slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
             slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
+            egui::ComboBox::from_label("bounce senders lit by")
+                .selected_text(settings.sender_sky.name())
+                .show_ui(ui, |ui| {
+                    for option in crate::render::SenderSky::ALL {
+                        ui.selectable_value(&mut settings.sender_sky, option, option.name());
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "march: the sky each sender sees; irradiance: its unoccluded sky; off: point lights only",
+                );
             ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
             slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
             ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));

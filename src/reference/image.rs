@@ -47,6 +47,10 @@ pub struct TraceSettings {
     pub radius: f32,
     /// Multiplies the sky (the renderer's sky scale).
     pub sky_scale: f32,
+    /// The constant ambient radiance A: the senders of the bounce are lit by it through their
+    /// own openness, as receivers are (the receiver's own A·openness is applied in
+    /// [`Reference::radiance`], so it stays a parameter there).
+    pub ambient: f32,
 }
 
 struct PixelResult {

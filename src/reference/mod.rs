@@ -8,21 +8,23 @@
 //! * **Sky light**: the ray hits nothing at all and brings the sky's radiance in its direction
 //!   (the same cube map).
 //! * **One bounce**: the ray hits a surface, at any distance, which sends its diffuse radiance
-//!   under the point lights — unshadowed, exactly what the GPU's `bounce` buffer holds. Senders
-//!   are lit by the point lights only, not by the sky (a sky-lit bounce would need a second ray
-//!   per hit).
+//!   under its own *direct* light: the point lights (unshadowed, as on the GPU), the sky it sees
+//!   with its own visibility, and the constant ambient A with its own openness. The sender's sky
+//!   and openness come from one cosine-distributed ray of its own per hit (an unbiased estimate of
+//!   its E/π, noisier than the receiver's). The sender's own bounce is left out: one bounce, on
+//!   both sides.
 //! * **Openness**: the share of rays that escape, which occludes the constant ambient (a uniform
 //!   environment of radiance A).
 //!
 //! The truth at a pixel is ρ·(sky + bounce + A·openness) + direct point light, the same for every
 //! mode and variant. Beside it, **within-R diagnostics** with the sampling radius R: occluders
 //! and senders beyond R ignored (AO = 1 − share of rays hitting within R; sky where no hit within
-//! R; bounce from hits within R). The gap between a mode's error against the truth and against
-//! the within-R image is what its reach costs.
+//! R; bounce from hits within R, the senders lit as above). The gap between a mode's error against
+//! the truth and against the within-R image is what its reach costs.
 //!
 //! Deterministic: each pixel draws from a generator seeded by the seed and the pixel index, and
-//! pixels run in parallel. [`trace_pair`] traces twice with independent seeds, for the truth (their
-//! mean) and its noise floor (their difference).
+//! pixels run in parallel. The report traces twice with independent seeds, for the truth (their
+//! mean, [`Reference::mean`]) and its noise floor (their difference).
 
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
@@ -215,7 +217,7 @@ impl ReferenceScene {
                     open += 1.0;
                 }
                 Some(sender) => {
-                    let (diffuse, _) = point_lighting(&sender, -dir, lights, rig);
+                    let diffuse = self.sender_radiance(&sender, -dir, lights, rig, sky, settings, rng);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
                     if sender.distance < settings.radius {
@@ -241,6 +243,33 @@ impl ReferenceScene {
             sky_near: sky_near / nf,
             bounce_near: bounce_near / nf,
         }
+    }
+}
+
+impl ReferenceScene {
+    /// The diffuse radiance a sender sends towards `to_receiver`: ρ/π times its direct
+    /// irradiance — the point lights (unshadowed, as the GPU's lighting pass), and the sky and the
+    /// constant ambient through what the sender itself sees, estimated with one cosine-distributed
+    /// ray (unbiased: its mean over rays is the sender's visible E/π).
+    #[allow(clippy::too_many_arguments)]
+    fn sender_radiance(
+        &self,
+        sender: &Surface,
+        to_receiver: Vec3,
+        lights: &[PointLight],
+        rig: &LightRig,
+        sky: &Skybox,
+        settings: &TraceSettings,
+        rng: &mut StdRng,
+    ) -> Vec3 {
+        let (points, _) = point_lighting(sender, to_receiver, lights, rig);
+        let dir = cosine_direction(sender.normal, rng.random(), rng.random());
+        let origin = sender.position + sender.normal * self.epsilon;
+        let environment = match self.trace(origin, dir, f32::INFINITY) {
+            None => sky.sample(dir) * settings.sky_scale + Vec3::splat(settings.ambient),
+            Some(_) => Vec3::ZERO,
+        };
+        points + sender.albedo * environment
     }
 }
 

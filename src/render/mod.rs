@@ -24,7 +24,7 @@ use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::Result;
 use frame::FrameData;
 pub use kernel::Variant;
-pub use modes::{Mode, Plan, SceneFeatures, Step, TargetSet};
+pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, TargetSet};
 use passes::blur::BlurPass;
 use passes::composite::CompositePass;
 use passes::depth_pyramid::DepthPyramidPass;
@@ -32,13 +32,14 @@ use passes::gbuffer::GBufferPass;
 use passes::light_cubes::LightCubesPass;
 use passes::lighting::LightingPass;
 use passes::occlusion::OcclusionPass;
+use passes::sender_sky::SenderSkyPass;
 use passes::skybox::SkyboxPass;
 use passes::tonemap::TonemapPass;
 use passes::{Pass, Preparation, Recording};
 use resources::sampling::OcclusionData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
-pub use settings::{Settings, View, REACH_RADII, THICKNESS_RADII};
+pub use settings::{SenderSky, Settings, View, REACH_RADII, THICKNESS_RADII};
 use targets::Targets;
 use timing::GpuTimer;
 
@@ -65,6 +66,7 @@ pub struct Renderer {
     scene: SceneGpu,
     sky: SkyGpu,
     gbuffer: GBufferPass,
+    sender_sky_pass: SenderSkyPass,
     lighting: LightingPass,
     occlusion: OcclusionPass,
     blur: BlurPass,
@@ -109,7 +111,8 @@ impl Renderer {
             scene_radius: scene.default_radius(),
             sky_sh: sky.irradiance,
             occlusion_data: OcclusionData::new(device),
-            lighting: LightingPass::new(device, &frame.layout, &targets)?,
+            sender_sky_pass: SenderSkyPass::new(device, &frame.layout, &sky_layout)?,
+            lighting: LightingPass::new(device, &frame.layout)?,
             occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
             blur: BlurPass::new(device, &frame.layout)?,
             composite: CompositePass::new(device, &frame.layout, &sky_layout, output)?,
@@ -169,7 +172,14 @@ impl Renderer {
     fn plan_for(settings: &Settings, features: SceneFeatures, keep_hdr: bool) -> Plan {
         let pyramid = settings.variant.marches() && settings.depth_pyramid;
         let display = !keep_hdr && settings.view == View::Final;
-        Plan::new(settings.mode, features, settings.blur, pyramid, display)
+        let options = PlanOptions {
+            blur: settings.blur,
+            pyramid,
+            display,
+            indirect: settings.indirect_strength > 0.0,
+            sender_sky: settings.sender_sky,
+        };
+        Plan::new(settings.mode, features, options)
     }
 
     /// Keeps the linear HDR image of each frame in `targets().hdr` for reading back (the report,
@@ -199,9 +209,10 @@ impl Renderer {
             unused: &self.unused,
             unused_pyramid: &self.unused_pyramid,
         };
-        let passes: [&mut dyn Pass; 9] = [
+        let passes: [&mut dyn Pass; 10] = [
             &mut self.gbuffer,
             &mut self.pyramid,
+            &mut self.sender_sky_pass,
             &mut self.lighting,
             &mut self.occlusion,
             &mut self.blur,
@@ -223,7 +234,9 @@ impl Renderer {
             Step::GBuffer => &self.gbuffer,
             // The closest depth per block, for the march's far steps.
             Step::DepthPyramid => &self.pyramid,
-            // Point lights: displayed direct light, and the radiance SSDO bounces.
+            // The sky each sender sees, at half resolution.
+            Step::SenderSky => &self.sender_sky_pass,
+            // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
             Step::Lighting => &self.lighting,
             // AO and/or DO from one set of samples.
             Step::Occlusion => &self.occlusion,

@@ -72,6 +72,54 @@ impl std::str::FromStr for View {
     }
 }
 
+/// What lights the senders of SSDO's one bounce besides the point lights: the light a surface
+/// sends to its neighbours is its direct light, and under a sky most of that is sky light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SenderSky {
+    /// The sky each sender sees, with its own visibility: a half-resolution march of one slice
+    /// per pixel before the lighting pass (the sky from the open sectors, and the constant
+    /// ambient by the open share), read by the lighting pass at each sender.
+    #[default]
+    March,
+    /// The sender's unoccluded sky irradiance for its normal (the spherical harmonics the
+    /// composite already has) plus the constant ambient: no extra pass, but blind to what
+    /// occludes the sender, so too bright wherever a sender stands on a floor or in a crevice.
+    Irradiance,
+    /// The point lights only (no bounce at all under a sky alone): what the renderer did before
+    /// the senders took the sky, kept for comparison in the report.
+    Off,
+}
+
+impl SenderSky {
+    pub const ALL: [SenderSky; 3] = [SenderSky::March, SenderSky::Irradiance, SenderSky::Off];
+
+    /// The value of the lighting shader's `SENDER_SKY` constant.
+    pub fn shader_code(self) -> f64 {
+        match self {
+            SenderSky::Off => 0.0,
+            SenderSky::Irradiance => 1.0,
+            SenderSky::March => 2.0,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            SenderSky::March => "march",
+            SenderSky::Irradiance => "irradiance",
+            SenderSky::Off => "off",
+        }
+    }
+}
+
+impl std::str::FromStr for SenderSky {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> Result<Self> {
+        SenderSky::ALL.into_iter().find(|v| v.name().eq_ignore_ascii_case(s)).ok_or_else(|| {
+            crate::Error::Setting(format!("unknown sender sky '{s}' (expected march, irradiance or off)"))
+        })
+    }
+}
+
 /// What the user can change without reloading anything. The renderer follows changes on the
 /// next frame, rebuilding only what the change affects (a mode or blur switch re-plans).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -105,6 +153,8 @@ pub struct Settings {
     pub sky_strength: f32,
     /// Multiplies SSDO's indirect bounce.
     pub indirect_strength: f32,
+    /// What lights the bounce's senders besides the point lights.
+    pub sender_sky: SenderSky,
     /// Denoise the sampling output.
     pub blur: bool,
     /// Multiplies HDR radiance before tone mapping.
@@ -134,6 +184,7 @@ impl Default for Settings {
             ao_power: 1.0,
             sky_strength: 1.0,
             indirect_strength: 1.0,
+            sender_sky: SenderSky::March,
             blur: true,
             exposure: 1.0,
             ambient: 0.1,

@@ -117,6 +117,12 @@ pub fn view_of(target: &Option<Target>) -> Option<&wgpu::TextureView> {
     target.as_ref().map(|t| &t.view)
 }
 
+/// Half of `size`, rounded up: the sender-sky march's resolution (its pixel (x, y) is the
+/// full-resolution pixel (2x, 2y)).
+pub fn half_size(size: (u32, u32)) -> (u32, u32) {
+    (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1))
+}
+
 /// The view of an optional target, or `unused` where it does not exist.
 pub fn view_or<'a>(target: &'a Option<Target>, unused: &'a wgpu::TextureView) -> &'a wgpu::TextureView {
     view_of(target).unwrap_or(unused)
@@ -161,8 +167,11 @@ pub struct Targets {
     pub depth: Target,
     /// Linear HDR radiance before tone mapping (not in a display plan without a lighting pass).
     pub hdr: Option<Target>,
-    /// Diffuse radiance of each surface under the point lights: SSDO's bounce source.
+    /// The diffuse radiance of each surface under its direct light: SSDO's bounce source.
     pub bounce: Option<Target>,
+    /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a),
+    /// at half resolution: the sender-sky march's output, read by the lighting pass.
+    pub sender_sky: Option<Target>,
     /// What the sampling pass writes.
     pub raw: OcclusionTargets,
     /// What the blur writes (when the plan blurs).
@@ -182,6 +191,7 @@ impl Targets {
             depth: Target::new(device, "gbuffer_depth", size, DEPTH_FORMAT),
             hdr: set.hdr.then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
             bounce: set.bounce.then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
+            sender_sky: set.sender_sky.then(|| Target::new(device, "sender_sky", half_size(size), DO_FORMAT)),
             raw: OcclusionTargets::new(device, &set, size, false),
             blurred: set.blurred.then(|| OcclusionTargets::new(device, &set, size, true)),
             pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
@@ -207,6 +217,7 @@ impl Targets {
             .hdr
             .iter()
             .chain(self.bounce.iter())
+            .chain(self.sender_sky.iter())
             .chain(self.raw.all())
             .chain(self.blurred.iter().flat_map(|b| b.all()));
         let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();

@@ -28,7 +28,7 @@ use crate::gpu::Gpu;
 use crate::reference::{self, ReferenceScene, TraceSettings};
 use crate::render::capture::{capture, CAPTURE_FORMAT};
 use crate::render::readback::{read_depth, read_r16f, read_rgba16f};
-use crate::render::{Mode, Renderer, Settings, Variant};
+use crate::render::{Mode, Renderer, SenderSky, Settings, Variant};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
 
@@ -97,6 +97,8 @@ pub struct Row {
     /// The march's far steps read the depth pyramid.
     pub pyramid: bool,
     pub blur: bool,
+    /// What lights the bounce's senders (DO modes); `None`: no bounce (`--indirect-strength 0`).
+    pub bounce: Option<SenderSky>,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
     /// Median GPU milliseconds of the whole frame.
@@ -192,8 +194,13 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         let started = Instant::now();
         let tick = || progress("reference row");
         let trace = |seed: u64| {
-            let settings =
-                TraceSettings { samples_per_pixel: options.samples_per_pixel, seed, radius, sky_scale: base.sky_scale };
+            let settings = TraceSettings {
+                samples_per_pixel: options.samples_per_pixel,
+                seed,
+                radius,
+                sky_scale: base.sky_scale,
+                ambient,
+            };
             reference::trace(&bvh, &scene.lights, &scene.rig, &sky, &camera, options.size, &depth, &settings, &tick)
         };
         let (a, b) = (trace(options.seed), trace(options.seed ^ 0x5DEE_CE66_D1CE_4E5B));
@@ -213,12 +220,13 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         };
 
         for variant in [Variant::Classic, Variant::Points, Variant::March] {
-            // (mode, samples or slices, steps, blur, depth pyramid)
-            let mut configs: Vec<(Mode, usize, usize, bool, bool)> = Vec::new();
+            // (mode, samples or slices, steps, blur, depth pyramid, bounce senders)
+            let bounce = Some(base.sender_sky);
+            let mut configs: Vec<(Mode, usize, usize, bool, bool, Option<SenderSky>)> = Vec::new();
             if r_index == 0 && variant != Variant::Points {
                 // Off has no sampling pass: once for the sky-lit composite (under the default
                 // variant's name; points is the same image), once for classic.
-                configs.push((Mode::Off, 0, 0, false, false));
+                configs.push((Mode::Off, 0, 0, false, false, None));
             }
             let counts: Vec<(usize, usize)> = if variant.marches() {
                 options.march.clone()
@@ -226,15 +234,30 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 options.samples.iter().map(|&n| (n, 0)).collect()
             };
             for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
+                let bounce = if mode == Mode::Ssao { None } else { bounce };
                 for &(samples, steps) in &counts {
-                    configs.extend([(mode, samples, steps, true, false), (mode, samples, steps, false, false)]);
+                    configs.extend([
+                        (mode, samples, steps, true, false, bounce),
+                        (mode, samples, steps, false, false, bounce),
+                    ]);
                     // The march once more with its far steps on the depth pyramid (blurred).
                     if variant.marches() && mode != Mode::Ssao {
-                        configs.push((mode, samples, steps, true, true));
+                        configs.push((mode, samples, steps, true, true, bounce));
+                    }
+                    // The default settings with the bounce's other senders, and with no bounce.
+                    if variant == Variant::default()
+                        && mode != Mode::Ssao
+                        && (samples, steps) == (base.slices, base.steps)
+                    {
+                        for other in SenderSky::ALL.map(Some).into_iter().chain([None]) {
+                            if other != bounce {
+                                configs.push((mode, samples, steps, true, false, other));
+                            }
+                        }
                     }
                 }
             }
-            for (mode, samples, steps, blur, depth_pyramid) in configs {
+            for (mode, samples, steps, blur, depth_pyramid, bounce) in configs {
                 // Every configuration renders the same lighting (the classic variant keeps its
                 // own composite, not its own ambient), so all meet one truth.
                 let (slices, steps_or_default) =
@@ -248,6 +271,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     blur,
                     depth_pyramid,
                     radius: Some(radius),
+                    sender_sky: bounce.unwrap_or(base.sender_sky),
+                    indirect_strength: if bounce.is_some() || mode == Mode::Off { base.indirect_strength } else { 0.0 },
                     ..base
                 };
                 let ms = crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
@@ -294,7 +319,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                 let do_rmse_near = do_against(&|i| truth.directional_near(i));
                 // The bounce alone (the DO-indirect view zeroes the sky), against the truth's:
                 // a ratio of means, so noise cancels and only the estimator's bias remains.
-                let bounce_ratio = if directional.is_some() && !scene.lights.is_empty() {
+                let bounce_ratio = if directional.is_some() && bounce.is_some() {
                     renderer.settings.view = crate::render::View::DoIndirect;
                     capture(gpu, &mut renderer, &camera)?;
                     renderer.settings.view = s.view;
@@ -324,6 +349,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     && (samples, steps) == shown
                     && !depth_pyramid
                     && blur
+                    && bounce == Some(base.sender_sky)
                     && mode == Mode::Both
                     && r_index == 0
                 {
@@ -336,6 +362,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     steps,
                     pyramid: depth_pyramid,
                     blur,
+                    bounce: if mode == Mode::Ssao { None } else { bounce },
                     radius: if mode == Mode::Off { 0.0 } else { radius },
                     ms,
                     ao_rmse,
@@ -349,8 +376,9 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     pareto: false,
                 });
                 progress(&format!(
-                    "{mode} {variant} {}, radius {radius:.3}, blur {blur}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}",
-                    Row::count_label(variant, samples, steps, depth_pyramid)
+                    "{mode} {variant} {}, radius {radius:.3}, blur {blur}, bounce {}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}",
+                    Row::count_label(variant, samples, steps, depth_pyramid),
+                    Row::bounce_label(mode, bounce)
                 ));
             }
         }

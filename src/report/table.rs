@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::{Report, ReportOptions, Row};
-use crate::render::{Mode, Variant};
+use crate::render::{Mode, SenderSky, Variant};
 use crate::{output, Result};
 
 fn cell(v: Option<f64>, digits: usize) -> String {
@@ -21,6 +21,17 @@ impl Row {
         }
     }
 
+    /// What lit the bounce's senders: "march", "irradiance", "lights" (the point lights only),
+    /// "none" (no bounce), "—" (no DO).
+    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>) -> &'static str {
+        match (mode, bounce) {
+            (Mode::Off | Mode::Ssao, _) => "—",
+            (_, Some(SenderSky::Off)) => "lights",
+            (_, Some(other)) => other.name(),
+            (_, None) => "none",
+        }
+    }
+
     pub fn label(&self) -> String {
         Self::count_label(self.variant, self.samples, self.steps, self.pyramid)
     }
@@ -29,18 +40,19 @@ impl Row {
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,steps,pyramid,blur,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,pyramid,blur,bounce,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
                 r.steps,
                 r.pyramid,
                 r.blur,
+                Row::bounce_label(r.mode, r.bounce),
                 r.radius,
                 r.ms,
                 cell(r.ao_rmse, 6),
@@ -65,8 +77,8 @@ impl Report {
         let mut out = format!(
             "# ssdo error-versus-time report\n\n- date: {date}\n- device: {}{}\n- timing: {}, median of {} frames\n\
              - scene: {}, {}x{}, {} lights (seed {}), constant ambient {}, default radius {:.4}\n\
-             - truth: ray traced, exact visibility at any distance, one bounce from any surface (senders lit by the \
-             point lights), the mean of two traces of {} rays per pixel ({:.1} s in all)\n\
+             - truth: ray traced, exact visibility at any distance, one bounce from any surface (each sender lit by \
+             its direct light: the point lights, and the sky and ambient it sees), the mean of two traces of {} rays per pixel ({:.1} s in all)\n\
              - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n\
              - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
              surfaces differ), {} under a light's cube\n\
@@ -94,14 +106,14 @@ impl Report {
             r.covered,
         );
         out.push_str(
-            "| | mode | variant | samples (slices×steps) | blur | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
+            "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
         );
-        out.push_str("|---|---|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
             let off = row.mode == Mode::Off;
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
                 if row.pareto { "★" } else { "" },
                 row.mode.name(),
                 row.variant,
@@ -113,6 +125,7 @@ impl Report {
                 } else {
                     "off"
                 },
+                Row::bounce_label(row.mode, row.bounce),
                 if off { "—".to_string() } else { format!("{:.3}", row.radius) },
                 row.ms,
                 row.hdr_rmse,

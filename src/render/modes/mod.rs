@@ -8,17 +8,20 @@
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
 //! | SSAO | gbuffer, ssao, blur, composite, light_cubes | `ao_raw`, `ao_blurred` |
-//! | SSDO | gbuffer, lighting, ssdo, blur, composite, light_cubes | `hdr_color`, `bounce_radiance`, `do_raw`, `do_blurred` |
-//! | SSAO+SSDO | gbuffer, lighting, ssao_ssdo, blur, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_raw`, `do_blurred` |
+//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
 //!
-//! Without lights there is no lighting pass, bounce or light cubes (and no HDR target in a display
-//! plan); an HDR plan (the report, `--raw`, `--stats`, a debug view) adds `hdr_color`, the skybox
+//! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
+//! senders' sky and ambient light; no HDR target in a display plan); with `--sender-sky off` and
+//! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
+//! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a debug view) adds `hdr_color`, the skybox
 //! and the tone map; `--no-blur` drops the blur and its targets; the march with `--depth-pyramid`
 //! adds the pyramid in the DO modes.
 
 use std::fmt;
 use std::str::FromStr;
 
+use super::settings::SenderSky;
 use crate::{Error, Result};
 
 /// The four render modes of the SSDO course project, in key order (1-4).
@@ -121,12 +124,35 @@ pub struct SceneFeatures {
     pub lights: usize,
 }
 
+/// The settings that shape a plan besides the mode, by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanOptions {
+    /// Denoise the sampling output.
+    pub blur: bool,
+    /// The sampling pass marches the depth buffer and its far steps, taken only where DO is
+    /// computed, read a depth pyramid (the march variant with `depth_pyramid` on).
+    pub pyramid: bool,
+    /// See [`Plan::display`].
+    pub display: bool,
+    /// SSDO's one bounce is on (its strength is above 0).
+    pub indirect: bool,
+    /// What lights the bounce's senders besides the point lights (`Settings::sender_sky`).
+    pub sender_sky: SenderSky,
+}
+
+impl Default for PlanOptions {
+    /// A display plan with blur, no pyramid, and the bounce lit by the sky and the lights.
+    fn default() -> Self {
+        Self { blur: true, pyramid: false, display: true, indirect: true, sender_sky: SenderSky::default() }
+    }
+}
+
 /// Which screen targets a plan allocates besides the G-buffer (see `targets.rs` for formats).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TargetSet {
     /// Linear HDR radiance (`hdr_color`).
     pub hdr: bool,
-    /// Diffuse radiance under the point lights, SSDO's bounce source (`bounce_radiance`).
+    /// The diffuse radiance SSDO bounces (`bounce_radiance`): the senders' direct light.
     pub bounce: bool,
     /// AO alone (`ao_raw`): SSAO.
     pub ao: bool,
@@ -136,6 +162,8 @@ pub struct TargetSet {
     pub blurred: bool,
     /// The closest-depth pyramid of the march's far steps.
     pub pyramid: bool,
+    /// The sky each sender sees, at half resolution (`sender_sky`).
+    pub sender_sky: bool,
 }
 
 /// One step of a frame, in the order the frame runs them.
@@ -145,7 +173,11 @@ pub enum Step {
     GBuffer,
     /// The closest-depth pyramid the march's far steps read (march variant, DO modes).
     DepthPyramid,
-    /// Point lights once per pixel: the displayed direct light and the radiance SSDO bounces.
+    /// The sky each sender of the bounce sees: a half-resolution march of one slice per pixel
+    /// (`--sender-sky march`), read by the lighting pass.
+    SenderSky,
+    /// Each surface's direct light once per pixel: the radiance SSDO bounces (point lights, and
+    /// the sky and ambient when the senders take them), and the point lights' displayed light.
     Lighting,
     /// The sampling pass: AO, DO, or both from one set of samples.
     Occlusion,
@@ -177,6 +209,7 @@ impl Step {
         match self {
             Step::GBuffer => "gbuffer",
             Step::DepthPyramid => "depth_pyramid",
+            Step::SenderSky => "sender_sky",
             Step::Lighting => "lighting",
             Step::Occlusion => "occlusion",
             Step::Blur => "blur",
@@ -199,41 +232,50 @@ pub struct Plan {
     /// composite draws the sky and tone-maps straight into the output, and there is no skybox or
     /// tone-map pass, and no HDR target unless a lighting pass writes its direct light there.
     pub display: bool,
+    /// What lights the bounce's senders besides the point lights; `Off` wherever the plan has no
+    /// bounce.
+    pub sender_sky: SenderSky,
     pub steps: Vec<Step>,
 }
 
 impl Plan {
-    /// The steps of `mode` for a scene with `features`; `blur` denoises the sampling output.
-    /// `pyramid`: the sampling pass marches the depth buffer and its far steps, taken only where
-    /// DO is computed, read a depth pyramid (the march variant with `depth_pyramid` on).
-    /// `display`: see [`Plan::display`].
-    pub fn new(mode: Mode, features: SceneFeatures, blur: bool, pyramid: bool, display: bool) -> Self {
+    /// The steps of `mode` for a scene with `features` and the options `o`.
+    ///
+    /// The lighting pass runs where a DO mode bounces light and there is light to bounce: point
+    /// lights, or the sky when the senders take it. Off, SSAO and a bounce of strength 0 never
+    /// run it.
+    pub fn new(mode: Mode, features: SceneFeatures, o: PlanOptions) -> Self {
         let decl = *mode.declaration();
         let lights = features.lights > 0;
+        let bounces = decl.directional_occlusion && o.indirect;
+        let sender_sky = if bounces { o.sender_sky } else { SenderSky::Off };
         let mut steps = vec![Step::GBuffer];
-        if pyramid && decl.directional_occlusion {
+        if o.pyramid && decl.directional_occlusion {
             steps.push(Step::DepthPyramid);
         }
-        if decl.directional_occlusion && lights {
+        if sender_sky == SenderSky::March {
+            steps.push(Step::SenderSky);
+        }
+        if bounces && (lights || sender_sky != SenderSky::Off) {
             steps.push(Step::Lighting);
         }
         if decl.runs_sampling() {
             steps.push(Step::Occlusion);
-            if blur {
+            if o.blur {
                 steps.push(Step::Blur);
             }
         }
         steps.push(Step::Composite);
-        if !display {
+        if !o.display {
             steps.push(Step::Skybox);
         }
         if lights {
             steps.push(Step::LightCubes);
         }
-        if !display {
+        if !o.display {
             steps.push(Step::Tonemap);
         }
-        Self { mode, decl, features, blur: blur && decl.runs_sampling(), display, steps }
+        Self { mode, decl, features, blur: o.blur && decl.runs_sampling(), display: o.display, sender_sky, steps }
     }
 
     /// The names of the steps, in order.
@@ -243,7 +285,13 @@ impl Plan {
 
     /// Whether the HDR target exists: an HDR plan, or a lighting pass writing its direct light.
     pub fn keeps_hdr(&self) -> bool {
-        !self.display || self.has(Step::Lighting)
+        !self.display || self.lighting_writes_direct()
+    }
+
+    /// Whether the lighting pass writes the point lights' displayed light (it runs and there are
+    /// lights), which the composite then adds instead of running the light loop.
+    pub fn lighting_writes_direct(&self) -> bool {
+        self.has(Step::Lighting) && self.features.lights > 0
     }
 
     /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth).
@@ -256,6 +304,7 @@ impl Plan {
             directional: self.decl.directional_occlusion,
             blurred: self.blur,
             pyramid: self.has(Step::DepthPyramid),
+            sender_sky: self.has(Step::SenderSky),
         }
     }
 
@@ -280,11 +329,19 @@ mod tests {
         let rows = [
             (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
             (Mode::Ssao, "gbuffer, ssao, blur, composite, light_cubes", (false, false, true, false)),
-            (Mode::Ssdo, "gbuffer, lighting, ssdo, blur, composite, light_cubes", (true, true, false, true)),
-            (Mode::Both, "gbuffer, lighting, ssao_ssdo, blur, composite, light_cubes", (true, true, false, true)),
+            (
+                Mode::Ssdo,
+                "gbuffer, sender_sky, lighting, ssdo, blur, composite, light_cubes",
+                (true, true, false, true),
+            ),
+            (
+                Mode::Both,
+                "gbuffer, sender_sky, lighting, ssao_ssdo, blur, composite, light_cubes",
+                (true, true, false, true),
+            ),
         ];
         for (mode, steps, targets) in rows {
-            let plan = Plan::new(mode, lit, true, false, true);
+            let plan = Plan::new(mode, lit, PlanOptions::default());
             assert_eq!(plan.step_names().join(", "), steps, "{mode}");
             let t = plan.target_set();
             assert_eq!((t.hdr, t.bounce, t.ao, t.directional), targets, "{mode}");
@@ -296,15 +353,44 @@ mod tests {
     fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_lighting_pass() {
         let lit = SceneFeatures { lights: 8 };
         for mode in Mode::ALL {
-            let hdr = Plan::new(mode, lit, true, false, false);
-            let display = Plan::new(mode, lit, true, false, true);
+            let hdr = Plan::new(mode, lit, PlanOptions { display: false, ..PlanOptions::default() });
+            let display = Plan::new(mode, lit, PlanOptions::default());
             assert!(hdr.has(Step::Skybox) && hdr.has(Step::Tonemap) && hdr.keeps_hdr());
             assert!(!display.has(Step::Skybox) && !display.has(Step::Tonemap));
             assert_eq!(display.keeps_hdr(), display.has(Step::Lighting), "{mode}");
             let without = |p: &Plan| p.steps.iter().filter(|s| !matches!(s, Step::Skybox | Step::Tonemap)).count();
             assert_eq!(without(&hdr), display.steps.len(), "{mode}: the same passes otherwise");
         }
-        let dark = Plan::new(Mode::Ssdo, SceneFeatures { lights: 0 }, true, false, true);
-        assert!(!dark.keeps_hdr(), "no lights, no lighting pass, no HDR target");
+        let dark = Plan::new(Mode::Ssdo, SceneFeatures { lights: 0 }, PlanOptions::default());
+        assert!(dark.has(Step::Lighting), "under a sky alone the senders' sky light is bounced");
+        assert!(!dark.keeps_hdr(), "no lights: the lighting pass writes the bounce alone, no HDR target");
+    }
+
+    #[test]
+    fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
+        // (mode, lights, indirect, sender sky) -> lighting pass, bounce target, light cubes
+        let (march, irradiance, off) = (SenderSky::March, SenderSky::Irradiance, SenderSky::Off);
+        let rows = [
+            (Mode::Ssdo, 0, true, march, (true, true, false)),
+            (Mode::Both, 0, true, irradiance, (true, true, false)),
+            (Mode::Ssdo, 0, true, off, (false, false, false)),
+            (Mode::Ssdo, 8, true, off, (true, true, true)),
+            (Mode::Ssdo, 8, false, march, (false, false, true)),
+            (Mode::Ssdo, 0, false, irradiance, (false, false, false)),
+            (Mode::Off, 8, true, march, (false, false, true)),
+            (Mode::Ssao, 0, true, march, (false, false, false)),
+        ];
+        for (mode, lights, indirect, sender_sky, want) in rows {
+            let o = PlanOptions { indirect, sender_sky, ..PlanOptions::default() };
+            let plan = Plan::new(mode, SceneFeatures { lights }, o);
+            let got = (plan.has(Step::Lighting), plan.target_set().bounce, plan.has(Step::LightCubes));
+            assert_eq!(got, want, "{mode}, {lights} lights, indirect {indirect}, sender sky {sender_sky:?}");
+            // Without a lighting pass that writes it, the composite runs the light loop itself.
+            assert_eq!(plan.light_loop(), lights > 0 && !plan.has(Step::Lighting));
+            assert_eq!(plan.lighting_writes_direct(), plan.has(Step::Lighting) && lights > 0);
+            // The senders' own march runs exactly where a lighting pass reads it.
+            let marched = plan.has(Step::Lighting) && sender_sky == march;
+            assert_eq!((plan.has(Step::SenderSky), plan.target_set().sender_sky), (marched, marched));
+        }
     }
 }

@@ -6,7 +6,7 @@
 //! (display).
 
 use super::super::kernel::Variant;
-use super::super::modes::{Plan, Step};
+use super::super::modes::Plan;
 use super::super::targets::{view_or, HDR_FORMAT};
 use super::super::View;
 use super::{
@@ -32,7 +32,7 @@ impl Key {
     fn of(plan: &Plan, variant: Variant, white_albedo: bool) -> Self {
         Self {
             light_loop: plan.light_loop(),
-            additive: plan.has(Step::Lighting),
+            additive: plan.lighting_writes_direct(),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
             classic: variant == Variant::Classic,

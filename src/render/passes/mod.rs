@@ -16,6 +16,7 @@ pub mod gbuffer;
 pub mod light_cubes;
 pub mod lighting;
 pub mod occlusion;
+pub mod sender_sky;
 pub mod skybox;
 pub mod tonemap;
 

@@ -82,18 +82,7 @@ impl OcclusionPass {
     ) -> Result<Self> {
         let module = shaders::module(device, "occlusion.wgsl")?;
         let march_module = shaders::module(device, "march.wgsl")?;
-        let [a, n, d] = gbuffer_entries();
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("occlusion_layout"),
-            entries: &[
-                a,
-                n,
-                d,
-                uniform_entry(3),
-                texture_entry(4, false, wgpu::TextureViewDimension::D2),
-                super::uint_entry(5),
-            ],
-        });
+        let layout = sampling_layout(device, "occlusion_layout");
         Ok(Self {
             module,
             march_module,
@@ -108,7 +97,7 @@ impl OcclusionPass {
 impl Pass for OcclusionPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, variant, data, unused, unused_pyramid, .. } = *p;
+        let Preparation { targets, plan, variant, unused, .. } = *p;
         if !plan.decl.runs_sampling() {
             self.pipeline.clear();
             self.bind_group = None;
@@ -137,23 +126,7 @@ impl Pass for OcclusionPass {
             )
         });
         let bounce = targets.bounce.as_ref().map_or(unused, |t| &t.view);
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("occlusion_bind_group"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.albedo.view) },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.normal.view) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&targets.depth.view) },
-                wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: wgpu::BindingResource::TextureView(
-                        targets.pyramid.as_ref().map_or(unused_pyramid, |p| &p.view),
-                    ),
-                },
-            ],
-        }));
+        self.bind_group = Some(sampling_bind_group(device, &self.layout, p, bounce));
     }
 
     fn record(&self, rec: Recording<'_>) {
@@ -175,4 +148,44 @@ impl Pass for OcclusionPass {
         }
         .record(encoder);
     }
+}
+
+/// The layout of a sampling pass's bind group 1 (the sampling pass and the sender-sky march):
+/// the G-buffer, the parameters, the bounce source and the depth pyramid.
+pub fn sampling_layout(device: &wgpu::Device, label: &'static str) -> wgpu::BindGroupLayout {
+    let [a, n, d] = gbuffer_entries();
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[
+            a,
+            n,
+            d,
+            uniform_entry(3),
+            texture_entry(4, false, wgpu::TextureViewDimension::D2),
+            super::uint_entry(5),
+        ],
+    })
+}
+
+/// Bind group 1 of a sampling pass for the prepared targets, with `bounce` as its bounce source.
+pub fn sampling_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    p: &Preparation<'_>,
+    bounce: &wgpu::TextureView,
+) -> wgpu::BindGroup {
+    let Preparation { targets, data, unused_pyramid, .. } = *p;
+    let pyramid = targets.pyramid.as_ref().map_or(unused_pyramid, |p| &p.view);
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("sampling_bind_group"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.albedo.view) },
+            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.normal.view) },
+            wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&targets.depth.view) },
+            wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
+            wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(pyramid) },
+        ],
+    })
 }
