@@ -4,7 +4,8 @@
 // (spherical harmonics, precomputed per sky), AO and DO the sampling pass's outputs:
 //   Off        ρ·(E(n)/π + A)
 //   SSAO       ρ·(E(n)/π + A)·AO
-//   SSDO       ρ·(DO + A)          DO = the visible sky per direction + one bounce
+//   SSDO       ρ·(DO + A·V)        DO = the visible sky per direction + one bounce, V the share
+//                                  of the hemisphere the march finds open (1 for points)
 //   SSAO+SSDO  ρ·(DO + A·AO)       AO darkens only the constant ambient SSDO does not see
 // The classic variant keeps the SSDO course project's composite: A·ρ·AO + DO (DO without ρ), no
 // sky irradiance. Which terms exist is decided when the pipeline is built (override constants),
@@ -87,6 +88,10 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     if HAS_AO {
         let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, HAS_DO), 0.0, 1.0);
         ao = mix(1.0, pow(raw, frame.ao_power), frame.ao_strength);
+    } else if HAS_DO && !CLASSIC {
+        // SSDO: the ambient's visibility, from the sampling pass (the march's open share; 1 for
+        // the point estimator, which has none).
+        ao = clamp(directional.a, 0.0, 1.0);
     }
     let ambient = frame.pre_exposure * frame.ambient;
     var color: vec3<f32>;

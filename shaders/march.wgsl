@@ -307,11 +307,12 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
     return vec4<f32>(evaluate_pixel(in.position.xy).ao, 0.0, 0.0, 1.0);
 }
 
-// SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
+// SSDO and SSAO+SSDO: DO in rgb; in a, AO (SSAO+SSDO) or, in SSDO, the open share: the constant
+// ambient is a uniform sky, and SSDO sees it through the same open sectors as the sky.
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate_pixel(in.position.xy);
-    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, COMPUTE_AO));
 }
 
 // The sender-sky pass (built with COMPUTE_DO on, COMPUTE_AO and INDIRECT off): at half
