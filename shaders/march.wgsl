@@ -323,5 +323,6 @@ fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
 fn fs_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
     let half = vec2<i32>(in.position.xy);
     let o = evaluate(vec2<f32>(2 * half) + 0.5, 1u, half);
-    return vec4<f32>(o.direct, o.open);
+    // The sky strength the senders' unoccluded irradiance carries too (in the frame's SH).
+    return vec4<f32>(o.direct * occ.sender_sky_strength, o.open);
 }

@@ -183,3 +183,21 @@ fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
     }
     assert!(before.iter().any(|p| p[0] > 0.01), "the lights' red bounce is there");
 }
+
+#[test]
+fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
+    let Some(gpu) = gpu() else { return };
+    let mut scene = red_wall_scene();
+    scene.lights.clear();
+    let sky = Skybox::constant(Vec3::ONE);
+    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let near = project(&camera, Vec3::new(0.15, 0.0, 0.0));
+    for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
+        let bounce = |sky_strength| {
+            let s = Settings { sender_sky, sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) };
+            window(&frame(&gpu, &scene, &sky, &camera, s).1, near, 1).x
+        };
+        let (one, two) = (bounce(1.0), bounce(2.0));
+        assert!(one > 0.01 && (two / one - 2.0).abs() < 0.02, "{sender_sky:?}: bounce {one} at 1, {two} at 2");
+    }
+}

@@ -19,8 +19,10 @@ struct OcclusionParams {
     // multiply SSDO's sky light and its bounce
     sky_strength: f32,
     indirect_strength: f32,
+    // the user's sky strength for the bounce's senders (the debug views' overrides of
+    // `sky_strength` leave it alone, so the DO-indirect view still bounces sky light)
+    sender_sky_strength: f32,
     _pad0: f32,
-    _pad1: f32,
     // The march (shaders/march.wgsl): slices and steps per side...
     slices: f32,
     steps: f32,

@@ -244,9 +244,7 @@ impl ReferenceScene {
             bounce_near: bounce_near / nf,
         }
     }
-}
 
-impl ReferenceScene {
     /// The diffuse radiance a sender sends towards `to_receiver`: ρ/π times its direct
     /// irradiance — the point lights (unshadowed, as the GPU's lighting pass), and the sky and the
     /// constant ambient through what the sender itself sees, estimated with one cosine-distributed

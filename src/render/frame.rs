@@ -246,6 +246,7 @@ impl super::Renderer {
                 sky_mip: kernel::sky_mip_level(self.sky.size, directions),
                 sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
                 indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
+                sender_sky_strength: s.sky_strength,
             };
             self.occlusion_data.update(&gpu.queue, &params);
         }

@@ -272,7 +272,12 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
                     depth_pyramid,
                     radius: Some(radius),
                     sender_sky: bounce.unwrap_or(base.sender_sky),
-                    indirect_strength: if bounce.is_some() || mode == Mode::Off { base.indirect_strength } else { 0.0 },
+                    // No bounce (`none`) is the bounce's strength at 0.
+                    indirect_strength: if bounce.is_none() && mode.declaration().directional_occlusion {
+                        0.0
+                    } else {
+                        base.indirect_strength
+                    },
                     ..base
                 };
                 let ms = crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;

@@ -1,7 +1,8 @@
 //! Lighting pass (SSDO modes with light to bounce): each surface's direct light once per pixel.
 //! It writes the diffuse radiance SSDO bounces into `bounce` — the point lights and, unless the
-//! senders are lit by the point lights alone, the sky's unoccluded irradiance and the ambient —
-//! and, where there are point lights, their displayed light into HDR. The pipeline is specialised
+//! senders are lit by the point lights alone, the sky and the ambient they receive (from the
+//! sender-sky march, or the sky's unoccluded irradiance) — and, where there are point lights,
+//! their displayed light into HDR. The pipeline is specialised
 //! to the plan: without lights it has one target and runs no light loop.
 
 use super::super::modes::{Plan, Step};

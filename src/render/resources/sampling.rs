@@ -22,6 +22,8 @@ pub struct SamplingParams {
     pub sky_mip: f32,
     pub sky_strength: f32,
     pub indirect_strength: f32,
+    /// The user's sky strength, for the bounce's senders (not zeroed by the debug views).
+    pub sender_sky_strength: f32,
 }
 
 /// The kernel and parameters uniform, shared by the sampling and blur passes.
@@ -55,6 +57,7 @@ impl OcclusionData {
         let u = self.uniforms.as_mut();
         (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as f32, params.sky_mip);
         (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
+        u.sender_sky_strength = params.sender_sky_strength;
         (u.slices, u.steps, u.reach, u.thickness) =
             (params.slices as f32, params.steps as f32, params.reach, params.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
