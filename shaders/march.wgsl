@@ -174,7 +174,6 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             var previous = vec3<f32>(0.0);
             var previous_angle = 0.0;
             var previous_distance = 0.0;
-            var previous_above = false;
             var previous_offset = 0.0;
             for (var i = 0u; i < last_step; i += 1u) {
                 // Dense within R, then geometric out to the reach; jittered per pixel.
@@ -223,10 +222,14 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 // twice the step between them): the angles between them are that surface too, not
                 // a gap the sky shows through. Sparse far steps would otherwise leak sky through
                 // every wall.
-                // Only between two samples above the receiver's tangent plane: a surface rising
-                // from below the horizon is the receiver's own ground, not an occluder to extend.
+                // Only to a sample above the receiver's tangent plane. From one below it (the
+                // receiver's own ground before the foot of a wall) the surface rises through the
+                // horizon, so the sectors from the horizon up to this sample are that surface too:
+                // the previous angle lies below the hemisphere and clamps to its edge sector.
+                // Without this the sectors between the horizon and a wall's first sample showed
+                // the sky, and sent no bounce.
                 let above = dot(front, n) > 0.0;
-                if connected && above && previous_above
+                if connected && above
                     && length(s - previous) < thickness + 2.0 * (distance - previous_distance) {
                     a_min = min(a_min, previous_angle);
                     a_max = max(a_max, previous_angle);
@@ -234,7 +237,6 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 connected = true;
                 previous = s;
                 previous_distance = distance;
-                previous_above = above;
                 previous_angle = a_front;
                 // Wholly below the receiver's tangent plane: it blocks nothing of the hemisphere.
                 // (Tested on the positions, exactly, not on the approximate angles.)
