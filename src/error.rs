@@ -19,6 +19,10 @@ pub enum Error {
     /// An output file could not be written.
     #[error("{}: {problem}", path.display())]
     Output { path: PathBuf, problem: String },
+    /// Standard output was closed by its reader (a pipe into `head`): the program ends quietly,
+    /// with the status of a Unix tool killed by SIGPIPE.
+    #[error("standard output closed")]
+    StdoutClosed,
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
@@ -39,6 +43,7 @@ impl Error {
             Error::Input { .. } => 3,
             Error::Gpu(_) => 4,
             Error::Output { .. } => 5,
+            Error::StdoutClosed => 141,
         }
     }
 }

@@ -45,7 +45,11 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let started = Instant::now();
     let rows = args.size.1 as u64;
     let radii = args.radius.len() as u64;
-    let configs = 2 + radii * (3 * 2 * (2 * args.samples.len() + args.march.len()) + 2 * args.march.len()) as u64;
+    // The default march once more with each other bounce sender and with no bounce, in SSDO and Both.
+    let defaults = ssdo::render::Settings::default();
+    let bounce_rows = if args.march.contains(&(defaults.slices, defaults.steps)) { 2 * 3 } else { 0 };
+    let configs =
+        2 + radii * (3 * 2 * (2 * args.samples.len() + args.march.len()) + 2 * args.march.len() + bounce_rows) as u64;
     let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
@@ -60,13 +64,12 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let report = ssdo::report::run(&gpu, &options, &progress)?;
     bar.finish_and_clear();
     report.write(&options)?;
-    println!("{}", report.markdown(&options));
-    println!(
+    output::print_line(&report.markdown(&options))?;
+    output::print_line(&format!(
         "wrote {0}/report.csv, {0}/report.md, {0}/report.png in {1:.0} s",
         args.out.display(),
         started.elapsed().as_secs_f64()
-    );
-    Ok(())
+    ))
 }
 
 /// Runs `work`, showing a spinner with the elapsed time on standard error once it has taken a
@@ -120,11 +123,18 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     output::remove_stale_temporaries(&args.out);
     let mut batch = output::Batch::default();
     // With --json, standard output is the JSON document alone.
-    let say = |line: String| if args.json { log::info!("{line}") } else { println!("{line}") };
+    let say = |line: String| -> Result<()> {
+        if args.json {
+            log::info!("{line}");
+            Ok(())
+        } else {
+            output::print_line(&line)
+        }
+    };
     for mode in modes {
         renderer.set_mode(&gpu, mode);
         if args.print_plan {
-            print_plan(&renderer);
+            print_plan(&renderer)?;
         }
         if args.stats {
             let stats = ssdo::render::stats::frame_stats(&gpu, &mut renderer, &camera)?;
@@ -134,10 +144,10 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
                 stats_json.insert(mode.name().to_string(), serde_json::Value::Object(buffers));
             } else {
                 for s in &stats {
-                    println!(
+                    output::print_line(&format!(
                         "{mode:>5} {:<12} min {:>12.5e} max {:>12.5e} mean {:>12.5e} non_finite {}",
                         s.name, s.min, s.max, s.mean, s.non_finite
-                    );
+                    ))?;
                 }
             }
         }
@@ -153,14 +163,16 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
     }
     if args.stats && args.json {
-        println!("{}", serde_json::to_string_pretty(&serde_json::Value::Object(stats_json)).expect("JSON of numbers"));
+        output::print_line(
+            &serde_json::to_string_pretty(&serde_json::Value::Object(stats_json)).expect("JSON of numbers"),
+        )?;
     }
     if panels.len() > 1 {
         let path = args.out.join("compare.png");
         batch.stage(&path, &output::png_bytes(&path, &compare::grid(&panels))?)?;
     }
     for path in batch.commit()? {
-        say(format!("wrote {}", path.display()));
+        say(format!("wrote {}", path.display()))?;
     }
     Ok(())
 }
@@ -172,17 +184,18 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
     Ok((args.scene(model), sky))
 }
 
-fn print_plan(renderer: &Renderer) {
+fn print_plan(renderer: &Renderer) -> Result<()> {
     let plan = renderer.plan();
-    println!("plan {}:", plan.mode);
+    let mut text = format!("plan {}:", plan.mode);
     for name in plan.step_names() {
-        println!("  pass {name}");
+        text += &format!("\n  pass {name}");
     }
     let allocations = renderer.allocations();
     for (name, bytes) in &allocations {
-        println!("  bytes {name} {bytes}");
+        text += &format!("\n  bytes {name} {bytes}");
     }
-    println!("  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>());
+    text += &format!("\n  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>());
+    output::print_line(&text)
 }
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
@@ -215,11 +228,10 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
         modes,
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report.json()).expect("JSON of numbers and strings"));
+        output::print_line(&serde_json::to_string_pretty(&report.json()).expect("JSON of numbers and strings"))
     } else {
-        print!("{}", report.table());
+        output::print_line(report.table().trim_end_matches('\n'))
     }
-    Ok(())
 }
 
 fn run_view(args: ViewArgs) -> Result<()> {
@@ -272,7 +284,7 @@ fn main() -> ExitCode {
             let text = e.to_string();
             let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("bad command line");
             let first = first.trim().trim_start_matches("error:").trim();
-            eprintln!("ssdo: error: {} (see ssdo --help)", one_line(first));
+            error_line(&format!("{} (see ssdo --help)", one_line(first)));
             return ExitCode::from(2);
         }
     };
@@ -285,9 +297,17 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of standard output went away (`| head`): nothing to say, as a Unix tool.
+        Err(Error::StdoutClosed) => ExitCode::from(Error::StdoutClosed.exit_code() as u8),
         Err(e) => {
-            eprintln!("ssdo: error: {}", one_line(&e.to_string()));
+            error_line(&one_line(&e.to_string()));
             ExitCode::from(e.exit_code() as u8)
         }
     }
+}
+
+/// `ssdo: error: <text>` on standard error; a closed or full standard error is not worth a panic.
+fn error_line(text: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "ssdo: error: {text}");
 }

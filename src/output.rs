@@ -114,3 +114,16 @@ pub fn save_png(path: &Path, image: &image::RgbaImage) -> Result<()> {
 pub fn save_exr(path: &Path, image: &image::Rgba32FImage) -> Result<()> {
     write_atomic(path, &exr_bytes(path, image)?)
 }
+
+/// Writes `text` and a newline to standard output. A reader that closed the pipe ends the program
+/// quietly ([`Error::StdoutClosed`]); any other failure (a full disk) is an output error naming
+/// standard output. Never panics, unlike `println!`.
+pub fn print_line(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let written = out.write_all(text.as_bytes()).and_then(|()| out.write_all(b"\n")).and_then(|()| out.flush());
+    written.map_err(|e| match e.kind() {
+        std::io::ErrorKind::BrokenPipe => Error::StdoutClosed,
+        _ => Error::output("standard output", e.to_string()),
+    })
+}

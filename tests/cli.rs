@@ -330,3 +330,39 @@ fn a_window_no_adapter_could_draw_is_refused_before_it_opens() {
     assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
     assert!(error_line(&result).contains("at most 16384"), "{}", stderr(&result));
 }
+
+/// The binary with `args`, on the test's backend, standard output going to `stdout`.
+fn ssdo_into(args: &[&str], stdout: std::process::Stdio) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_ssdo"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+        .stdout(stdout)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs")
+}
+
+#[test]
+fn a_closed_pipe_ends_quietly_and_a_full_disk_is_one_error_line() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().to_str().unwrap();
+    let args = ["capture", "--mode", "all", "--size", "16x12", "--stats", "--print-plan", "--out", dir];
+    // `| head -1` with the reader gone before the first line: SIGPIPE's status, nothing said.
+    let mut child = ssdo_into(&args, std::process::Stdio::piped());
+    drop(child.stdout.take());
+    let result = child.wait_with_output().unwrap();
+    assert_eq!(result.status.code(), Some(141), "{}", stderr(&result));
+    assert!(!stderr(&result).contains("panicked") && error_line(&result).is_empty(), "{}", stderr(&result));
+    // Standard output on a full device: one line naming it, and the output kind's exit code.
+    if Path::new("/dev/full").exists() {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let result = ssdo_into(&args, full.into()).wait_with_output().unwrap();
+        assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains("standard output") && line.contains("No space left"), "{}", stderr(&result));
+    }
+}
