@@ -114,24 +114,25 @@ pub(crate) struct ReportArgs {
     /// Image size, WIDTHxHEIGHT
     #[arg(long, default_value = "320x240", value_parser = parse_size)]
     pub(crate) size: Size,
-    /// Sample counts of the points and classic variants to sweep, comma-separated
+    /// Sample counts of the points and classic variants to sweep, comma-separated (each 1-256,
+    /// at most 16 counts)
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     pub(crate) samples: Vec<usize>,
-    /// Slices x steps of the march variant to sweep, comma-separated
+    /// Slices x steps of the march variant to sweep, comma-separated (at most 16)
     #[arg(long, default_value = "1x8,2x8,2x12,4x16", value_delimiter = ',', value_parser = parse_march)]
     pub(crate) march: Vec<(usize, usize)>,
     /// Sampling radii to sweep, comma-separated: multiples of the scene's default (2x) or lengths
-    /// in model units (0.3)
+    /// in model units (0.3); at most 16
     #[arg(long, default_value = "1x", value_delimiter = ',')]
     pub(crate) radius: Vec<ssdo::report::RadiusChoice>,
-    /// Reference rays per pixel, in each of the two independent traces (at least 2)
-    #[arg(long, default_value_t = 256)]
+    /// Reference rays per pixel, in each of the two independent traces, 2-65536
+    #[arg(long, default_value_t = 256, value_parser = parse_spp)]
     pub(crate) spp: u32,
-    /// Frames timed per configuration (after two warm-up frames)
-    #[arg(long, default_value_t = 20)]
+    /// Frames timed per configuration (after two warm-up frames), 1-10000
+    #[arg(long, default_value_t = 20, value_parser = parse_frames)]
     pub(crate) frames: usize,
-    /// Number of random point lights
-    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS)]
+    /// Number of random point lights, 0-4096
+    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = ssdo::spec::parse_lights)]
     pub(crate) lights: usize,
     /// Seed of the lights and of the reference's rays
     #[arg(long, default_value_t = 1)]
@@ -139,6 +140,21 @@ pub(crate) struct ReportArgs {
     /// Output folder for report.csv, report.md, report.png and the error maps
     #[arg(long, default_value = "report")]
     pub(crate) out: PathBuf,
+}
+
+/// The most frames a bench or report times per configuration.
+pub(crate) const MAX_FRAMES: u64 = 10_000;
+/// The most reference rays per pixel in each trace.
+pub(crate) const MAX_SPP: u64 = 65_536;
+/// The most values in each of the report's sweep lists.
+pub(crate) const MAX_SWEEP: usize = 16;
+
+pub(crate) fn parse_frames(s: &str) -> std::result::Result<usize, String> {
+    ssdo::spec::count_in(s, 1, MAX_FRAMES).map(|n| n as usize)
+}
+
+pub(crate) fn parse_spp(s: &str) -> std::result::Result<u32, String> {
+    ssdo::spec::count_in(s, 2, MAX_SPP).map(|n| n as u32)
 }
 
 /// `4x8`: slices × steps of the march.
@@ -161,8 +177,8 @@ pub(crate) struct BenchArgs {
     /// Image size, WIDTHxHEIGHT
     #[arg(long, default_value = "800x600", value_parser = parse_size)]
     pub(crate) size: Size,
-    /// Frames measured per mode (after two warm-up frames)
-    #[arg(long, default_value_t = 20)]
+    /// Frames measured per mode (after two warm-up frames), 1-10000
+    #[arg(long, default_value_t = 20, value_parser = parse_frames)]
     pub(crate) frames: usize,
     /// Print JSON instead of a table
     #[arg(long)]

@@ -24,8 +24,13 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     if let Some(&(slices, steps)) = args.march.iter().find(|(a, b)| !(1..=32).contains(a) || !(1..=64).contains(b)) {
         return Err(Error::Setting(format!("--march {slices}x{steps}: slices must be 1-32 and steps 1-64")));
     }
-    if args.frames == 0 || args.samples.is_empty() || args.radius.is_empty() {
-        return Err(Error::Setting("--frames, --samples and --radius must each give at least one".into()));
+    if args.samples.is_empty() || args.radius.is_empty() || args.march.is_empty() {
+        return Err(Error::Setting("--samples, --march and --radius must each give at least one".into()));
+    }
+    for (name, count) in [("samples", args.samples.len()), ("march", args.march.len()), ("radius", args.radius.len())] {
+        if count > MAX_SWEEP {
+            return Err(Error::Setting(format!("--{name}: {count} values; a sweep takes at most {MAX_SWEEP}")));
+        }
     }
     let options = ssdo::report::ReportOptions {
         scene: args.scene.clone(),
@@ -50,6 +55,13 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let bounce_rows = if args.march.contains(&(defaults.slices, defaults.steps)) { 2 * 3 } else { 0 };
     let configs =
         2 + radii * (3 * 2 * (2 * args.samples.len() + args.march.len()) + 2 * args.march.len() + bounce_rows) as u64;
+    let (w, h) = (args.size.0 as u64, args.size.1 as u64);
+    log::info!(
+        "planned: {configs} configurations × {} frames at {w}x{h}, and a truth of 2 × {} rays over {} pixels per radius",
+        args.frames + 2,
+        args.spp,
+        w * h
+    );
     let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
@@ -199,9 +211,6 @@ fn print_plan(renderer: &Renderer) -> Result<()> {
 }
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
-    if args.frames == 0 {
-        return Err(Error::Setting("--frames 0: measure at least one frame".into()));
-    }
     let settings = args.render.settings(Mode::Off)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
@@ -211,13 +220,22 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     renderer.keep_hdr(&gpu, args.hdr);
     let timestamps = renderer.enable_timing(&gpu);
+    log::info!("planned: {} modes × {} frames at {}x{}", Mode::ALL.len(), args.frames + 2, size.0, size.1);
+    let bar = indicatif::ProgressBar::new(Mode::ALL.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} modes {msg}")
+            .expect("valid template"),
+    );
     let target = output_texture(&gpu, size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let mut modes = Vec::new();
     for mode in Mode::ALL {
         renderer.set_mode(&gpu, mode);
+        bar.set_message(mode.name());
         modes.push((mode, ssdo::render::timing::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let report = BenchReport {
         device: gpu.describe(),
         software: gpu.is_software(),

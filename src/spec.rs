@@ -26,8 +26,8 @@ pub struct SceneArgs {
     /// Skybox folder with six faces [default: skyboxes/day]
     #[arg(long)]
     pub skybox: Option<PathBuf>,
-    /// Number of random point lights
-    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS)]
+    /// Number of random point lights, 0-4096
+    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = parse_lights)]
     pub lights: usize,
     /// Seed for the lights' colours and positions
     #[arg(long, default_value_t = 1)]
@@ -50,6 +50,26 @@ pub struct SceneArgs {
     /// Scale the model by this factor (defaults scale with it)
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub scale: f32,
+}
+
+/// The most point lights a run takes: every pixel loops over all of them (unshadowed), so beyond
+/// this the light loop alone costs more than every other pass together, and the light buffer
+/// (48 bytes a light) stays far inside any adapter's storage-buffer limit.
+pub const MAX_LIGHTS: usize = 4096;
+
+/// A whole number in `min..=max`, with the range in the message (the parser names the flag).
+pub fn count_in(s: &str, min: u64, max: u64) -> std::result::Result<u64, String> {
+    let bad = || format!("must be a whole number between {min} and {max}");
+    let n: u64 = s.trim().parse().map_err(|_| bad())?;
+    if (min..=max).contains(&n) {
+        Ok(n)
+    } else {
+        Err(bad())
+    }
+}
+
+pub fn parse_lights(s: &str) -> std::result::Result<usize, String> {
+    count_in(s, 0, MAX_LIGHTS as u64).map(|n| n as usize)
 }
 
 pub fn parse_layout(s: &str) -> std::result::Result<scene::Layout, String> {

@@ -167,7 +167,7 @@ fn sampling_settings_are_validated() {
         (vec!["capture", "--samples", "0"], "--samples 0"),
         (vec!["capture", "--samples", "1000"], "--samples 1000"),
         (vec!["capture", "--radius", "-1"], "--radius"),
-        (vec!["bench", "--frames", "0"], "--frames 0"),
+        (vec!["bench", "--frames", "0"], "'0' for '--frames"),
     ] {
         let result = ssdo(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
@@ -364,5 +364,31 @@ fn a_closed_pipe_ends_quietly_and_a_full_disk_is_one_error_line() {
         assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
         let line = error_line(&result);
         assert!(line.contains("standard output") && line.contains("No space left"), "{}", stderr(&result));
+    }
+}
+
+#[test]
+fn every_count_has_a_range_and_says_it() {
+    // Counts that used to overflow, run for ever or reach the driver: refused by the parser with
+    // the flag, the value and the range, before anything is loaded.
+    let huge = "18446744073709551615";
+    for (args, needle) in [
+        (vec!["capture", "--lights", huge], "between 0 and 4096"),
+        (vec!["capture", "--lights", "10000000"], "between 0 and 4096"),
+        (vec!["report", "--lights", huge], "between 0 and 4096"),
+        (vec!["bench", "--lights", "4097"], "between 0 and 4096"),
+        (vec!["bench", "--frames", huge], "between 1 and 10000"),
+        (vec!["bench", "--frames", "100000000"], "between 1 and 10000"),
+        (vec!["report", "--frames", "0"], "between 1 and 10000"),
+        (vec!["report", "--spp", "4294967295"], "between 2 and 65536"),
+        (vec!["report", "--spp", "1"], "between 2 and 65536"),
+        (vec!["report", "--radius", &["1x"; 17].join(",")], "at most 16"),
+        (vec!["report", "--samples", &["8"; 200].join(",")], "at most 16"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains(needle), "{args:?}: {line}");
+        assert_eq!(stderr(&result).lines().filter(|l| l.starts_with("ssdo: error:")).count(), 1);
     }
 }
