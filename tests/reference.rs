@@ -264,3 +264,61 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
         assert!((e - base).abs() <= 0.1 * base, "{lights} lights: SSAO HDR RMSE {e} vs {base} with 8");
     }
 }
+
+fn tiny_report(
+    out: &std::path::Path,
+    model: Option<std::path::PathBuf>,
+    skybox: Option<std::path::PathBuf>,
+) -> ReportOptions {
+    ReportOptions {
+        scene: "cornell".into(),
+        model,
+        skybox,
+        size: (16, 12),
+        samples: vec![4],
+        march: vec![(1, 4)],
+        radii: vec![RadiusChoice::Times(1.0)],
+        samples_per_pixel: 4,
+        frames: 1,
+        lights: 2,
+        seed: 1,
+        out: out.to_path_buf(),
+    }
+}
+
+/// A sky folder of six `size`² EXR faces of constant radiance `value`.
+fn constant_exr_sky(dir: &std::path::Path, value: f32) {
+    for face in ["right", "left", "top", "bottom", "front", "back"] {
+        let image = image::Rgb32FImage::from_pixel(8, 8, image::Rgb([value; 3]));
+        image::DynamicImage::ImageRgb32F(image).save(dir.join(format!("{face}.exr"))).unwrap();
+    }
+}
+
+#[test]
+fn the_report_copes_with_any_finite_sky_and_refuses_what_it_cannot_measure() {
+    let Some(gpu) = common::gpu() else { return };
+    let out = tempfile::tempdir().unwrap();
+    // A sky of 1e30: every figure is huge but finite; the plot's axes are clamped and finish.
+    let bright = tempfile::tempdir().unwrap();
+    constant_exr_sky(bright.path(), 1e30);
+    let options = tiny_report(out.path(), None, Some(bright.path().to_path_buf()));
+    let result = report::run(&gpu, &options, &|_| {}).unwrap();
+    assert!(result.rows.iter().all(|r| r.hdr_rmse.is_finite()), "finite errors under a 1e30 sky");
+    result.write(&options).unwrap();
+    assert!(image::open(out.path().join("report.png")).is_ok());
+    // A sky of 3e38 (finite, from EXR faces): the truth overflows 32-bit floats; one clear error,
+    // not a hang in the plot or a table of infinities.
+    let blinding = tempfile::tempdir().unwrap();
+    constant_exr_sky(blinding.path(), 3e38);
+    let options = tiny_report(out.path(), None, Some(blinding.path().to_path_buf()));
+    let e = report::run(&gpu, &options, &|_| {}).err().expect("refused");
+    assert!(e.to_string().contains("overflows"), "{e}");
+    // A model 1e-20 across shows no surface pixel: an error, not a table of PSNR inf.
+    let model = out.path().join("tiny.obj");
+    std::fs::write(&model, "v 0 0 0\nv 1e-20 0 0\nv 0 1e-20 0\nf 1 2 3\n").unwrap();
+    let options = tiny_report(out.path(), Some(model), None);
+    match report::run(&gpu, &options, &|_| {}) {
+        Err(e) => assert!(e.to_string().contains("no surface pixel") && e.exit_code() == 2, "{e}"),
+        Ok(r) => panic!("a report of nothing: {} rows", r.rows.len()),
+    }
+}

@@ -8,7 +8,7 @@ use glam::Vec3;
 pub fn rmse(pairs: impl Iterator<Item = (f32, f32)>) -> f64 {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (a, b) in pairs {
-        sum += ((a - b) as f64).powi(2);
+        sum += (a as f64 - b as f64).powi(2);
         n += 1;
     }
     if n == 0 {

@@ -207,6 +207,25 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         reference_seconds += started.elapsed().as_secs_f64();
         let truth = reference::Reference::mean(&a, &b);
         let valid: Vec<usize> = (0..truth.valid.len()).filter(|&i| truth.valid[i]).collect();
+        // Nothing to measure is an error, not a table of zeros and infinite PSNRs.
+        if valid.is_empty() {
+            return Err(Error::Setting(format!(
+                "the view shows no surface pixel that the ray tracer and the GPU agree on ({} background, {} \
+                 silhouette, {} under a light's cube): nothing to measure",
+                truth.valid.len() - truth.mismatched - truth.covered,
+                truth.mismatched,
+                truth.covered
+            )));
+        }
+        // A sky so bright that the truth overflows 32-bit floats gives no number worth a row.
+        if valid.iter().any(|&i| !truth.radiance(i, ambient).is_finite()) {
+            let sky_name = sky_path.as_ref().map_or_else(|| "the sky".to_string(), |p| p.display().to_string());
+            return Err(Error::Setting(format!(
+                "{sky_name}: the ray-traced truth overflows 32-bit floats under this sky (radiance up to {:e}); \
+                 scale the sky down",
+                sky.max_value()
+            )));
+        }
         let half_difference = |f: &dyn Fn(&reference::Reference, usize) -> Vec3| {
             metrics::rmse(valid.iter().flat_map(|&i| {
                 let (x, y) = (f(&a, i), f(&b, i));

@@ -24,16 +24,14 @@ impl Report {
             let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| fail(&e))?;
             let rows = &self.rows;
-            let (min_ms, max_ms) = rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.ms), b.max(r.ms)));
-            let (min_e, max_e) =
-                rows.iter().fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r.hdr_rmse), b.max(r.hdr_rmse)));
-            let floor = |v: f64| v.max(1e-9).log10();
+            let ms: Vec<f64> = rows.iter().map(|r| r.ms).collect();
+            let errors: Vec<f64> = rows.iter().map(|r| r.hdr_rmse).collect();
             let mut chart = ChartBuilder::on(&root)
                 .caption("HDR RMSE against the one ray-traced truth, against frame time", ("sans-serif", 22))
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)
-                .build_cartesian_2d(floor(min_ms * 0.8)..floor(max_ms * 1.25), floor(min_e * 0.8)..floor(max_e * 1.25))
+                .build_cartesian_2d(log_axis(&ms), log_axis(&errors))
                 .map_err(|e| fail(&e))?;
             chart
                 .configure_mesh()
@@ -55,7 +53,7 @@ impl Report {
             chart
                 .draw_series(rows.iter().map(|r| {
                     let m = Mode::ALL.iter().position(|m| *m == r.mode).unwrap_or(0);
-                    Circle::new((floor(r.ms), floor(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
+                    Circle::new((log_value(r.ms), log_value(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
                 }))
                 .map_err(|e| fail(&e))?;
             let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
@@ -75,7 +73,8 @@ impl Report {
                         continue;
                     }
                     line.sort_by_key(|r| r.samples * 1000 + r.steps);
-                    let points: Vec<(f64, f64)> = line.iter().map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
+                    let points: Vec<(f64, f64)> =
+                        line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
                     let colour = colours[m];
                     let style = match variant {
                         Variant::March => colour.stroke_width(3),
@@ -96,7 +95,7 @@ impl Report {
             }
             // The Pareto front, as a staircase through its rows in time order.
             let front: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.pareto).map(|r| (floor(r.ms), floor(r.hdr_rmse))).collect();
+                rows.iter().filter(|r| r.pareto).map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
             let mut stairs = Vec::new();
             for (k, p) in front.iter().enumerate() {
                 if k > 0 {
@@ -169,4 +168,42 @@ pub(super) fn write_maps(
     save("reference_both_default.png", ref_image)?;
     save("gpu_both_default.png", gpu_image)?;
     save("error_flip_both_default.png", flip_map)
+}
+
+/// The plotted position of a positive value on a log axis: log10 of it clamped to [1e-9, 1e30]
+/// (a non-finite value sits at the top), so any finite or infinite metric gives a finite point.
+fn log_value(v: f64) -> f64 {
+    if v.is_nan() {
+        return 30.0;
+    }
+    v.clamp(1e-9, 1e30).log10()
+}
+
+/// A log axis spanning `values` with a margin, finite and never empty: the charting library's
+/// tick search does not end on an infinite or a zero-width range.
+fn log_axis(values: &[f64]) -> std::ops::Range<f64> {
+    let (low, high) = values.iter().map(|v| log_value(*v)).fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+    if low > high {
+        return -1.0..1.0;
+    }
+    let margin = ((high - low) * 0.05).max(0.1);
+    (low - margin)..(high + margin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{log_axis, log_value};
+
+    #[test]
+    fn log_axes_are_finite_and_not_empty_for_any_values() {
+        for values in
+            [vec![], vec![0.0], vec![3e38, 3e38], vec![f64::INFINITY, 1.0], vec![f64::NAN], vec![1e-300, 1e300]]
+        {
+            let axis = log_axis(&values);
+            assert!(axis.start.is_finite() && axis.end.is_finite() && axis.start < axis.end, "{values:?}: {axis:?}");
+            assert!(values.iter().all(|v| log_value(*v).is_finite()));
+        }
+        let axis = log_axis(&[0.01, 0.1]);
+        assert!(axis.start < -2.0 && axis.end > -1.0);
+    }
 }
