@@ -33,22 +33,22 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Camera yaw around the model in degrees [default: 35]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub yaw: Option<f32>,
     /// Camera elevation in degrees [default: 22]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub pitch: Option<f32>,
     /// Camera distance from the model's centre [default: frames the model]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub distance: Option<f32>,
     /// Near plane distance [default: a thousandth of the camera distance]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub near: Option<f32>,
     /// Far plane distance, or inf [default: inf]
     #[arg(long, value_parser = parse_far)]
     pub far: Option<f32>,
     /// Scale the model by this factor (defaults scale with it)
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub scale: f32,
 }
 
@@ -98,31 +98,31 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 12)]
     pub steps: usize,
     /// The march's reach, in model units [default: 24 radii]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub reach: Option<f32>,
     /// The march's surface thickness, in model units [default: 1 radius]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub thickness: Option<f32>,
     /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see README)
     #[arg(long)]
     pub depth_pyramid: bool,
     /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f32>,
     /// Depth bias of the occlusion test, as a fraction of the radius
-    #[arg(long, default_value_t = 0.03, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
     pub bias: f32,
     /// How much of the AO is applied (0 to 1)
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub ao_strength: f32,
     /// AO is raised to this power
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub ao_power: f32,
     /// Multiplier on SSDO's sky light
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub sky_strength: f32,
     /// Multiplier on SSDO's indirect bounce
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub indirect_strength: f32,
     /// What lights the bounce's senders besides the point lights: march (the sky each sender
     /// sees, from a half-resolution march), irradiance (the sky's unoccluded irradiance for its
@@ -133,13 +133,13 @@ pub struct RenderArgs {
     #[arg(long)]
     pub no_blur: bool,
     /// Exposure applied before tone mapping
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub exposure: f32,
     /// Constant ambient radiance, on top of the sky [default: 0.1; classic 0.5]
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub ambient: Option<f32>,
     /// Multiplier on the sky's radiance
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub sky_scale: f32,
     /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting
     #[arg(long, default_value = "final", value_parser = parse_view)]

@@ -392,3 +392,28 @@ fn every_count_has_a_range_and_says_it() {
         assert_eq!(stderr(&result).lines().filter(|l| l.starts_with("ssdo: error:")).count(), 1);
     }
 }
+
+#[test]
+fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
+    // `--yaw -inf` is read as a value (as `--yaw -45` is), and refused with its range.
+    for (args, needle) in [
+        (vec!["capture", "--yaw", "-inf"], "--yaw -inf: must be a finite number"),
+        (vec!["capture", "--pitch", "-NaN"], "--pitch NaN: must be a finite number"),
+        (vec!["capture", "--exposure", "-inf"], "--exposure -inf"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+    // A glTF (or any other known kind) given as a model is named as such, not read as an OBJ
+    // with "no triangles".
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["scene.gltf", "scene.GLB", "part.stl"] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, b"{\"asset\":{\"version\":\"2.0\"}}").unwrap();
+        let result = ssdo(&["capture", "--model", path.to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(3), "{name}: {}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains(name) && line.contains("Wavefront OBJ"), "{name}: {line}");
+    }
+}

@@ -172,12 +172,34 @@ pub(super) fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u
     Ok(bytes)
 }
 
+/// The kind of a model file in another format than OBJ, by its extension (read as OBJ it would
+/// say only that it holds no triangles).
+fn other_model_kind(path: &Path) -> Option<&'static str> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    Some(match ext.as_str() {
+        "gltf" | "glb" => "glTF",
+        "fbx" => "FBX",
+        "stl" => "STL",
+        "ply" => "PLY",
+        "dae" => "COLLADA",
+        "3ds" => "3DS",
+        "blend" => "Blender",
+        "usd" | "usda" | "usdc" | "usdz" => "USD",
+        "abc" => "Alembic",
+        "mtl" => "material (MTL)",
+        _ => return None,
+    })
+}
+
 pub fn load_obj(path: &Path) -> Result<Model> {
     load_obj_with_budget(path, TEXTURE_BUDGET_BYTES)
 }
 
 /// [`load_obj`] with another texture budget (decoded RGBA8 bytes for all textures together).
 pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
+    if let Some(kind) = other_model_kind(path) {
+        return Err(Error::input(path, format!("a {kind} file; models load from Wavefront OBJ files (.obj)")));
+    }
     let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(Error::input(path, "the file is empty"));
