@@ -13,9 +13,84 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     batch.commit().map(|_| ())
 }
 
-fn temporary_name(path: &Path) -> PathBuf {
+/// The prefix of every temporary file this program writes: `.ssdo-tmp.<pid>.<random>.<name>`.
+/// Only names of that form are ever swept, so no user's file can be taken for one.
+const TEMPORARY_PREFIX: &str = ".ssdo-tmp.";
+
+/// A fresh temporary file beside `path`, created exclusively (never over an existing file), and
+/// its name. The random part comes from the standard library's per-process random hash keys
+/// and a counter, so two runs, or two threads of one, never pick the same name.
+fn create_temporary(path: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
+    use std::hash::{BuildHasher, Hasher};
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    loop {
+        let mut hasher = std::collections::hash_map::RandomState::new().build_hasher();
+        hasher.write_u64(COUNTER.fetch_add(1, Ordering::Relaxed));
+        let tmp =
+            path.with_file_name(format!("{TEMPORARY_PREFIX}{}.{:016x}.{name}", std::process::id(), hasher.finish()));
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(file) => return Ok((tmp, file)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// The process id in a temporary file's name, if the name is one of this program's.
+fn temporary_owner(name: &str) -> Option<u32> {
+    let rest = name.strip_prefix(TEMPORARY_PREFIX)?;
+    let (pid, rest) = rest.split_once('.')?;
+    let (random, target) = rest.split_once('.')?;
+    let well_formed = random.len() == 16 && random.bytes().all(|b| b.is_ascii_hexdigit()) && !target.is_empty();
+    well_formed.then(|| pid.parse().ok()).flatten()
+}
+
+/// Whether the process `pid` is alive (Linux's /proc; elsewhere every process counts as alive).
+fn process_alive(pid: u32) -> bool {
+    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Holds a folder's commit lock (`.ssdo-tmp.lock`, holding the owner's pid) while a batch renames
+/// its files into place, so batches of concurrent runs land one after the other, each whole.
+struct FolderLock {
+    path: PathBuf,
+}
+
+impl FolderLock {
+    fn acquire(dir: &Path) -> Result<Self> {
+        use std::io::Write;
+        let path = dir.join(format!("{TEMPORARY_PREFIX}lock"));
+        let started = std::time::Instant::now();
+        loop {
+            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+                Ok(mut file) => {
+                    let _ = write!(file, "{}", std::process::id());
+                    return Ok(Self { path });
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    // A lock whose owner died (killed mid-commit) is stale: taken over.
+                    let owner = std::fs::read_to_string(&path).ok().and_then(|t| t.trim().parse::<u32>().ok());
+                    if owner.is_some_and(|pid| pid != std::process::id() && !process_alive(pid)) {
+                        let _ = std::fs::remove_file(&path);
+                        continue;
+                    }
+                    if started.elapsed() > std::time::Duration::from_secs(60) {
+                        return Err(Error::output(&path, "another run has held this folder's lock for a minute"));
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(5));
+                }
+                Err(e) => return Err(Error::output(&path, format!("cannot lock the folder: {e}"))),
+            }
+        }
+    }
+}
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
 }
 
 /// Files written together or not at all: each is staged under a temporary name, and only
@@ -32,8 +107,10 @@ impl Batch {
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent).map_err(|e| Error::output(parent, format!("cannot create folder: {e}")))?;
         }
-        let tmp = temporary_name(path);
-        if let Err(e) = std::fs::write(&tmp, bytes) {
+        use std::io::Write;
+        let (tmp, mut file) = create_temporary(path).map_err(|e| Error::output(path, format!("cannot write: {e}")))?;
+        if let Err(e) = file.write_all(bytes) {
+            drop(file);
             let _ = std::fs::remove_file(&tmp);
             return Err(Error::output(path, format!("cannot write: {e}")));
         }
@@ -41,9 +118,16 @@ impl Batch {
         Ok(())
     }
 
-    /// Renames every staged file into place. What would make a rename fail once written beside
-    /// its target (a folder of that name) is checked for every file before the first rename.
+    /// Renames every staged file into place, holding each folder's lock so that a concurrent run
+    /// into the same folder lands its set before or after this one, never mixed with it. What
+    /// would make a rename fail once written beside its target (a folder of that name) is checked
+    /// for every file before the first rename.
     pub fn commit(mut self) -> Result<Vec<PathBuf>> {
+        let mut folders: Vec<PathBuf> =
+            self.staged.iter().map(|(tmp, _)| tmp.parent().unwrap_or(Path::new(".")).to_path_buf()).collect();
+        folders.sort();
+        folders.dedup();
+        let _locks = folders.iter().map(|dir| FolderLock::acquire(dir)).collect::<Result<Vec<_>>>()?;
         if let Some((_, path)) = self.staged.iter().find(|(_, path)| path.is_dir()) {
             return Err(Error::output(path, "cannot write: a folder has this name"));
         }
@@ -70,8 +154,9 @@ impl Drop for Batch {
     }
 }
 
-/// Removes temporary files a killed run left in `dir` (`.<name>.<pid>.tmp` whose process is
-/// gone). Only where a process can be looked up (Linux's /proc); elsewhere nothing is removed.
+/// Removes the temporary files a killed run of this program left in `dir`: only names of this
+/// program's form (`.ssdo-tmp.<pid>.<random>.<name>`) whose process is gone. Only where a process
+/// can be looked up (Linux's /proc); elsewhere nothing is removed.
 pub fn remove_stale_temporaries(dir: &Path) {
     if !Path::new("/proc/self").exists() {
         return;
@@ -79,9 +164,8 @@ pub fn remove_stale_temporaries(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for entry in entries.flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
-        let Some(stem) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) else { continue };
-        let Some(pid) = stem.rsplit('.').next().and_then(|p| p.parse::<u32>().ok()) else { continue };
-        if pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists() {
+        let Some(pid) = temporary_owner(&name) else { continue };
+        if pid != std::process::id() && !process_alive(pid) && entry.file_type().is_ok_and(|t| t.is_file()) {
             let _ = std::fs::remove_file(entry.path());
         }
     }
@@ -126,4 +210,27 @@ pub fn print_line(text: &str) -> Result<()> {
         std::io::ErrorKind::BrokenPipe => Error::StdoutClosed,
         _ => Error::output("standard output", e.to_string()),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_this_programs_temporary_names_are_taken_for_temporaries() {
+        let (tmp, _file) = create_temporary(&std::env::temp_dir().join("x.png")).unwrap();
+        let name = tmp.file_name().unwrap().to_string_lossy().into_owned();
+        assert_eq!(temporary_owner(&name), Some(std::process::id()), "{name}");
+        let _ = std::fs::remove_file(&tmp);
+        for user in [
+            ".off.png.4000000.tmp",
+            ".ssdo-tmp.12.notes.txt",
+            ".ssdo-tmp.12.0123456789abcdeg.x",
+            "notes.tmp",
+            ".ssdo-tmp.lock",
+        ] {
+            assert_eq!(temporary_owner(user), None, "{user}");
+        }
+        assert_eq!(temporary_owner(".ssdo-tmp.4000000.0123456789abcdef.off.png"), Some(4_000_000));
+    }
 }

@@ -277,8 +277,10 @@ fn capture_all_writes_everything_or_nothing_and_sweeps_stale_temporaries() {
     let dir = out.path().to_str().unwrap();
     // compare.png cannot be written (a folder has its name): not one of the five files lands.
     std::fs::create_dir(out.path().join("compare.png")).unwrap();
-    // A temporary file a killed run left behind (no process has this id).
-    std::fs::write(out.path().join(".off.png.4000000.tmp"), b"half").unwrap();
+    // A temporary file a killed run left behind (no process has this id), and a user's file
+    // whose name merely looks like one: only the first is swept.
+    std::fs::write(out.path().join(".ssdo-tmp.4000000.0123456789abcdef.off.png"), b"half").unwrap();
+    std::fs::write(out.path().join(".off.png.4000000.tmp"), b"mine").unwrap();
     let result = ssdo(&["capture", "--mode", "all", "--size", "48x36", "--out", dir]);
     assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
     assert!(error_line(&result).contains("compare.png"), "{}", stderr(&result));
@@ -288,7 +290,11 @@ fn capture_all_writes_everything_or_nothing_and_sweeps_stale_temporaries() {
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .collect();
     left.sort();
-    assert_eq!(left, vec!["compare.png".to_string()], "nothing else written, the stale temporary gone");
+    assert_eq!(
+        left,
+        vec![".off.png.4000000.tmp".to_string(), "compare.png".to_string()],
+        "nothing else written, the stale temporary gone, the user's file kept"
+    );
 }
 
 #[test]
@@ -416,4 +422,46 @@ fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
         let line = error_line(&result);
         assert!(line.contains(name) && line.contains("Wavefront OBJ"), "{name}: {line}");
     }
+}
+
+#[test]
+fn concurrent_batches_into_one_folder_each_land_whole() {
+    // Six writers commit five files each into one folder at the same moment, round after round;
+    // after every round the five files must come from one writer's batch, never a mix of two.
+    let out = tempfile::tempdir().unwrap();
+    let names = ["off.png", "ssao.png", "ssdo.png", "both.png", "compare.png"];
+    let writers = 6;
+    let barrier = std::sync::Barrier::new(writers);
+    let mixed = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        for writer in 0..writers as u8 {
+            let (dir, barrier, mixed) = (out.path().to_path_buf(), &barrier, &mixed);
+            scope.spawn(move || {
+                for round in 0..30u8 {
+                    let mut batch = ssdo::output::Batch::default();
+                    for name in names {
+                        batch.stage(&dir.join(name), &[writer, round]).unwrap();
+                    }
+                    barrier.wait();
+                    batch.commit().unwrap();
+                    barrier.wait();
+                    if writer == 0 {
+                        let contents: Vec<Vec<u8>> =
+                            names.iter().map(|n| std::fs::read(dir.join(n)).unwrap()).collect();
+                        if contents.iter().any(|c| *c != contents[0]) {
+                            mixed.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        }
+                    }
+                    barrier.wait();
+                }
+            });
+        }
+    });
+    assert_eq!(mixed.into_inner(), 0, "rounds whose five files came from different batches");
+    let left: Vec<String> = std::fs::read_dir(out.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left.len(), names.len(), "no temporary or lock left: {left:?}");
 }
