@@ -59,6 +59,14 @@ pub struct Part {
     pub material: usize,
 }
 
+/// The smallest and largest bounding radius a model keeps as it is; outside, it is scaled to 1.
+pub const MIN_EXTENT: f32 = 1e-6;
+pub const MAX_EXTENT: f32 = 1e9;
+/// A model farther than this many of its radii from the origin is moved to its centre...
+pub const REBASE_RADII: f32 = 1e3;
+/// ...and one farther than this many is refused: its positions hold under 4 bits of its shape.
+pub const MAX_OFFSET_RADII: f32 = 1e6;
+
 /// Triangles ready for upload: one vertex and one index buffer, parts sorted by material.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -109,13 +117,67 @@ impl Model {
         [p(0), p(1), p(2)]
     }
 
+    /// Brings a model whose coordinates 32-bit floats cannot shade into a range they can, saying
+    /// what it did, or refuses it.
+    ///
+    /// * A bounding radius outside [`MIN_EXTENT`, `MAX_EXTENT`] (normals and depths underflow or
+    ///   overflow in the shaders: a model 1e-20 across rendered mostly non-finite pixels) is
+    ///   scaled about its centre to a radius of 1.
+    /// * A model farther from the origin than [`MAX_OFFSET_RADII`] of its radii keeps too few bits
+    ///   of its shape in its positions (already rounded when the file was read): refused. One
+    ///   farther than [`REBASE_RADII`] radii is moved to its bounding box's centre, so the
+    ///   camera-relative maths on the GPU keeps its precision.
+    pub fn fit_to_f32(&mut self) -> std::result::Result<Vec<String>, String> {
+        let mut said = Vec::new();
+        let (center, radius) = (self.bounds.center(), self.bounds.radius());
+        let distance = center.length();
+        if !(radius > 0.0) || distance / radius > MAX_OFFSET_RADII {
+            return Err(format!(
+                "the model lies {distance:e} from the origin and is {:e} across: 32-bit positions cannot hold its \
+                 shape there; move it nearer the origin",
+                2.0 * radius
+            ));
+        }
+        if distance > REBASE_RADII * radius {
+            self.translate(-center);
+            said.push(format!(
+                "moved by {:?} to its bounding box's centre: {distance:e} from the origin is {:.0} of its radii, \
+                 more than the GPU's 32-bit maths keeps precise",
+                (-center).to_array(),
+                distance / radius
+            ));
+        }
+        if !(MIN_EXTENT..=MAX_EXTENT).contains(&radius) {
+            let (c, k) = (self.bounds.center(), 1.0 / radius);
+            self.translate(-c);
+            self.scale(k);
+            self.translate(c * k);
+            said.push(format!(
+                "scaled by {k:e} to a bounding radius of 1: a radius of {radius:e} is outside what 32-bit floats \
+                 shade ({MIN_EXTENT:e} to {MAX_EXTENT:e}); lengths given in model units apply to the scaled model"
+            ));
+        }
+        Ok(said)
+    }
+
+    fn translate(&mut self, by: Vec3) {
+        for v in &mut self.vertices {
+            v.position = (Vec3::from(v.position) + by).into();
+        }
+        self.bounds = Bounds { min: self.bounds.min + by, max: self.bounds.max + by };
+    }
+
     /// Uniformly scales the model about the origin (the stability suite's scale cases).
     pub fn scaled(mut self, factor: f32) -> Self {
+        self.scale(factor);
+        self
+    }
+
+    fn scale(&mut self, factor: f32) {
         for v in &mut self.vertices {
             v.position = (Vec3::from(v.position) * factor).into();
         }
         self.bounds = Bounds { min: self.bounds.min * factor, max: self.bounds.max * factor };
-        self
     }
 }
 
@@ -344,6 +406,7 @@ pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
     let mut out = Model::from_groups(&name, materials, groups)
         .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
+    warnings.extend(out.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
     for w in &warnings {
         log::warn!("{}: {w}", path.display());
     }

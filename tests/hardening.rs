@@ -1,0 +1,182 @@
+//! Hostile use of the binary and its files: a closed pipe and a full disk on standard output,
+//! counts with no sensible upper limit, values that look like flags, models of other kinds or
+//! of scales and offsets 32-bit floats cannot shade, and concurrent runs into one folder.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use common::{has_adapter, run_ssdo as ssdo};
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+fn error_line(output: &Output) -> String {
+    stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
+}
+
+/// The binary with `args`, on the test's backend, standard output going to `stdout`.
+fn ssdo_into(args: &[&str], stdout: std::process::Stdio) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_ssdo"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+        .stdout(stdout)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs")
+}
+
+#[test]
+fn a_closed_pipe_ends_quietly_and_a_full_disk_is_one_error_line() {
+    if !has_adapter() {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().to_str().unwrap();
+    let args = ["capture", "--mode", "all", "--size", "16x12", "--stats", "--print-plan", "--out", dir];
+    // `| head -1` with the reader gone before the first line: SIGPIPE's status, nothing said.
+    let mut child = ssdo_into(&args, std::process::Stdio::piped());
+    drop(child.stdout.take());
+    let result = child.wait_with_output().unwrap();
+    assert_eq!(result.status.code(), Some(141), "{}", stderr(&result));
+    assert!(!stderr(&result).contains("panicked") && error_line(&result).is_empty(), "{}", stderr(&result));
+    // Standard output on a full device: one line naming it, and the output kind's exit code.
+    if Path::new("/dev/full").exists() {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let result = ssdo_into(&args, full.into()).wait_with_output().unwrap();
+        assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains("standard output") && line.contains("No space left"), "{}", stderr(&result));
+    }
+}
+
+#[test]
+fn every_count_has_a_range_and_says_it() {
+    // Counts that used to overflow, run for ever or reach the driver: refused by the parser with
+    // the flag, the value and the range, before anything is loaded.
+    let huge = "18446744073709551615";
+    for (args, needle) in [
+        (vec!["capture", "--lights", huge], "between 0 and 4096"),
+        (vec!["capture", "--lights", "10000000"], "between 0 and 4096"),
+        (vec!["report", "--lights", huge], "between 0 and 4096"),
+        (vec!["bench", "--lights", "4097"], "between 0 and 4096"),
+        (vec!["bench", "--frames", huge], "between 1 and 10000"),
+        (vec!["bench", "--frames", "100000000"], "between 1 and 10000"),
+        (vec!["report", "--frames", "0"], "between 1 and 10000"),
+        (vec!["report", "--spp", "4294967295"], "between 2 and 65536"),
+        (vec!["report", "--spp", "1"], "between 2 and 65536"),
+        (vec!["report", "--radius", &["1x"; 17].join(",")], "at most 16"),
+        (vec!["report", "--samples", &["8"; 200].join(",")], "at most 16"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains(needle), "{args:?}: {line}");
+        assert_eq!(stderr(&result).lines().filter(|l| l.starts_with("ssdo: error:")).count(), 1);
+    }
+}
+
+#[test]
+fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
+    // `--yaw -inf` is read as a value (as `--yaw -45` is), and refused with its range.
+    for (args, needle) in [
+        (vec!["capture", "--yaw", "-inf"], "--yaw -inf: must be a finite number"),
+        (vec!["capture", "--pitch", "-NaN"], "--pitch NaN: must be a finite number"),
+        (vec!["capture", "--exposure", "-inf"], "--exposure -inf"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+    }
+    // A glTF (or any other known kind) given as a model is named as such, not read as an OBJ
+    // with "no triangles".
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["scene.gltf", "scene.GLB", "part.stl"] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, b"{\"asset\":{\"version\":\"2.0\"}}").unwrap();
+        let result = ssdo(&["capture", "--model", path.to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(3), "{name}: {}", stderr(&result));
+        let line = error_line(&result);
+        assert!(line.contains(name) && line.contains("Wavefront OBJ"), "{name}: {line}");
+    }
+}
+
+#[test]
+fn concurrent_batches_into_one_folder_each_land_whole() {
+    // Six writers commit five files each into one folder at the same moment, round after round;
+    // after every round the five files must come from one writer's batch, never a mix of two.
+    let out = tempfile::tempdir().unwrap();
+    let names = ["off.png", "ssao.png", "ssdo.png", "both.png", "compare.png"];
+    let writers = 6;
+    let barrier = std::sync::Barrier::new(writers);
+    let mixed = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        for writer in 0..writers as u8 {
+            let (dir, barrier, mixed) = (out.path().to_path_buf(), &barrier, &mixed);
+            scope.spawn(move || {
+                for round in 0..30u8 {
+                    let mut batch = ssdo::output::Batch::default();
+                    for name in names {
+                        batch.stage(&dir.join(name), &[writer, round]).unwrap();
+                    }
+                    barrier.wait();
+                    batch.commit().unwrap();
+                    barrier.wait();
+                    if writer == 0 {
+                        let contents: Vec<Vec<u8>> =
+                            names.iter().map(|n| std::fs::read(dir.join(n)).unwrap()).collect();
+                        if contents.iter().any(|c| *c != contents[0]) {
+                            mixed.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        }
+                    }
+                    barrier.wait();
+                }
+            });
+        }
+    });
+    assert_eq!(mixed.into_inner(), 0, "rounds whose five files came from different batches");
+    let left: Vec<String> = std::fs::read_dir(out.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left.len(), names.len(), "no temporary or lock left: {left:?}");
+}
+
+#[test]
+fn models_outside_what_f32_shades_are_rescaled_rebased_or_refused() {
+    if !has_adapter() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let quad = |name: &str, offset: f64, size: f64| {
+        let path = dir.path().join(name);
+        let v = |x: f64, y: f64| format!("v {} {} 0\n", offset + x * size, y * size);
+        std::fs::write(
+            &path,
+            [v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0), v(1.0, 1.0), "f 1 2 4\nf 1 4 3\n".into()].concat(),
+        )
+        .unwrap();
+        path
+    };
+    // 1e-20 across (its own coordinates, not --scale) and 1e4 from the origin: warned about,
+    // fitted, and every linear buffer of every mode finite.
+    for (path, warning) in [(quad("tiny.obj", 0.0, 1e-20), "scaled by"), (quad("offset.obj", 1e4, 1.0), "moved by")] {
+        let out = dir.path().join("out");
+        let args = ["capture", "--model", path.to_str().unwrap(), "--mode", "all", "--size", "32x24", "--stats"];
+        let result = ssdo(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+        assert!(result.status.success(), "{}", stderr(&result));
+        assert!(stderr(&result).contains(warning), "{path:?}: {}", stderr(&result));
+        let stdout = String::from_utf8_lossy(&result.stdout);
+        let rows: Vec<&str> = stdout.lines().filter(|l| l.contains("non_finite")).collect();
+        assert!(!rows.is_empty() && rows.iter().all(|l| l.ends_with("non_finite 0")), "{path:?}: {stdout}");
+    }
+    // A unit quad 1e9 from the origin has lost its shape in 32-bit positions: refused, by name.
+    let far = quad("far.obj", 1e9, 1.0);
+    let result = ssdo(&["capture", "--model", far.to_str().unwrap(), "--size", "32x24"]);
+    assert_eq!(result.status.code(), Some(3), "{}", stderr(&result));
+    assert!(error_line(&result).contains("far.obj") && error_line(&result).contains("nearer the origin"));
+}
