@@ -313,11 +313,16 @@ fn the_report_copes_with_any_finite_sky_and_refuses_what_it_cannot_measure() {
     let options = tiny_report(out.path(), None, Some(blinding.path().to_path_buf()));
     let e = report::run(&gpu, &options, &|_| {}).err().expect("refused");
     assert!(e.to_string().contains("overflows"), "{e}");
-    // A model 1e-20 across shows no surface pixel: an error, not a table of PSNR inf.
+    // A model 1e-20 across (fitted to a radius of 1 as it loads) is measured like any other.
     let model = out.path().join("tiny.obj");
     std::fs::write(&model, "v 0 0 0\nv 1e-20 0 0\nv 0 1e-20 0\nf 1 2 3\n").unwrap();
-    let options = tiny_report(out.path(), Some(model), None);
-    match report::run(&gpu, &options, &|_| {}) {
+    let result = report::run(&gpu, &tiny_report(out.path(), Some(model), None), &|_| {}).unwrap();
+    assert!(result.rows.iter().all(|r| r.hdr_rmse.is_finite() && r.hdr_psnr.is_finite()));
+    // A sliver far thinner than a pixel covers no pixel centre: nothing to measure is an error,
+    // not a table of zeros and PSNR inf.
+    let sliver = out.path().join("sliver.obj");
+    std::fs::write(&sliver, "v 0 0 0\nv 1 0 0\nv 0.5 1e-7 0\nf 1 2 3\n").unwrap();
+    match report::run(&gpu, &tiny_report(out.path(), Some(sliver), None), &|_| {}) {
         Err(e) => assert!(e.to_string().contains("no surface pixel") && e.exit_code() == 2, "{e}"),
         Ok(r) => panic!("a report of nothing: {} rows", r.rows.len()),
     }
