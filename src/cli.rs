@@ -15,6 +15,9 @@ pub(crate) struct Cli {
     /// Without a command, the viewer opens with its defaults.
     #[command(subcommand)]
     pub(crate) command: Option<Command>,
+    /// Memory the run may use, such as 4G or 512M [default: half of this machine's memory]
+    #[arg(long, global = true, value_parser = ssdo::budget::parse_size)]
+    pub(crate) memory_budget: Option<u64>,
 }
 
 #[derive(Subcommand)]

@@ -5,6 +5,7 @@
 //! library headlessly on a software adapter.
 
 pub mod app;
+pub mod budget;
 pub mod compare;
 pub mod error;
 pub mod gpu;

@@ -121,10 +121,11 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::All => Mode::ALL.to_vec(),
     };
     let settings = args.render.settings(modes[0])?;
+    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures { lights: args.scene.lights });
+    Renderer::check_memory(size, &settings, features, args.raw || args.stats, &modes)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
-    let size = (args.size.0, args.size.1);
     gpu.check_size(size.0, size.1)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     // --raw and --stats read the linear HDR image back; otherwise the frame tone-maps in place.
@@ -212,10 +213,11 @@ fn print_plan(renderer: &Renderer) -> Result<()> {
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
     let settings = args.render.settings(Mode::Off)?;
+    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures { lights: args.scene.lights });
+    Renderer::check_memory(size, &settings, features, args.hdr, &Mode::ALL)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
-    let size = (args.size.0, args.size.1);
     gpu.check_size(size.0, size.1)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     renderer.keep_hdr(&gpu, args.hdr);
@@ -306,13 +308,14 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let result = match cli.command {
+    let budget = cli.memory_budget.map(ssdo::budget::set).unwrap_or(Ok(()));
+    let result = budget.and_then(|()| match cli.command {
         Some(Command::Capture(args)) => run_capture(&args),
         Some(Command::Bench(args)) => run_bench(&args),
         Some(Command::View(args)) => run_view(args),
         Some(Command::Report(args)) => run_report(&args),
         None => run_view(ViewArgs::parse_default()),
-    };
+    });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of standard output went away (`| head`): nothing to say, as a Unix tool.

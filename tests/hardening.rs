@@ -80,6 +80,35 @@ fn every_count_has_a_range_and_says_it() {
 }
 
 #[test]
+fn the_memory_budget_is_one_flag_and_refuses_before_the_work() {
+    // Every command takes it; nonsense and too little are refused with the range.
+    for (args, needle) in [
+        (vec!["capture", "--memory-budget", "lots"], "not a size such as 512M"),
+        (vec!["report", "--memory-budget", "2Q"], "the unit must be K, M, G or T"),
+        (vec!["bench", "--memory-budget", "10M"], "at least 64 MiB"),
+    ] {
+        let result = ssdo(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
+        assert!(error_line(&result).contains(needle), "{args:?}: {}", error_line(&result));
+    }
+    // Targets are sized from the plan before a device or a model is touched.
+    let result = ssdo(&["capture", "--size", "16384x16384", "--mode", "off", "--memory-budget", "1G"]);
+    assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
+    let line = error_line(&result);
+    assert!(line.contains("16384x16384 in Off would need") && line.contains("render targets"), "{line}");
+    // A model: one polygon of two million corners is refused by name from a stream of its file.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("polygon.obj");
+    let corners: Vec<&str> = ["1", "2", "3", "4", "5", "6"].iter().copied().cycle().take(2_000_000).collect();
+    let text = format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nv 0 0 1\nv 1 0 1\nf {}\n", corners.join(" "));
+    std::fs::write(&path, text).unwrap();
+    let result = ssdo(&["capture", "--model", path.to_str().unwrap(), "--memory-budget", "512M", "--mode", "off"]);
+    assert_eq!(result.status.code(), Some(3), "{}", stderr(&result));
+    let line = error_line(&result);
+    assert!(line.contains("polygon.obj: 1999998 triangles would need"), "{line}");
+}
+
+#[test]
 fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
     // `--yaw -inf` is read as a value (as `--yaw -45` is), and refused with its range.
     for (args, needle) in [

@@ -21,7 +21,8 @@ use glam::Vec3;
 
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
-use crate::Result;
+use crate::budget::{self, Share};
+use crate::{Error, Result};
 use frame::FrameData;
 pub use kernel::Variant;
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, TargetSet};
@@ -94,6 +95,7 @@ impl Renderer {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
         let features = SceneFeatures { lights: scene.lights.len() };
+        Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
@@ -277,6 +279,28 @@ impl Renderer {
         self.scene.textured
     }
 
+    /// Fails before anything is allocated when the targets of any of `modes` at `size`, with
+    /// the output image and its readback copy, would not fit the memory budget's share for
+    /// render targets.
+    pub fn check_memory(
+        size: (u32, u32),
+        settings: &Settings,
+        features: SceneFeatures,
+        keep_hdr: bool,
+        modes: &[Mode],
+    ) -> Result<()> {
+        let pixels = size.0 as u64 * size.1 as u64;
+        for &mode in modes {
+            let plan = Self::plan_for(&Settings { mode, ..*settings }, features, keep_hdr);
+            // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
+            let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
+            let bytes = Targets::bytes_for(size, &plan) + output;
+            budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
+                .map_err(Error::Setting)?;
+        }
+        Ok(())
+    }
+
     /// Replaces the sky; on error the old sky stays.
     pub fn set_sky(&mut self, gpu: &Gpu, sky: &Skybox) -> Result<()> {
         self.sky = SkyGpu::upload(gpu, &self.sky_layout, sky)?;
@@ -290,6 +314,8 @@ impl Renderer {
             return Ok(());
         }
         gpu.check_size(width, height)?;
+        let features = SceneFeatures { lights: self.lights.len() };
+        Self::check_memory((width, height), &self.settings, features, self.keep_hdr, &[self.settings.mode])?;
         self.targets.size = (width, height);
         self.rebuild_targets(gpu);
         Ok(())

@@ -58,9 +58,13 @@ impl Target {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let bytes = size.0 as u64 * size.1 as u64 * format.block_copy_size(None).unwrap_or(4) as u64;
-        Self { name, texture, view, bytes }
+        Self { name, texture, view, bytes: texel_bytes(size, format) }
     }
+}
+
+/// The bytes of a `size` texture of `format`.
+fn texel_bytes(size: (u32, u32), format: wgpu::TextureFormat) -> u64 {
+    size.0 as u64 * size.1 as u64 * format.block_copy_size(None).unwrap_or(4) as u64
 }
 
 /// The depth pyramid: closest depth per block, as f32 bits (see `shaders/depth_pyramid.wgsl`).
@@ -80,9 +84,20 @@ pub struct Pyramid {
 }
 
 impl Pyramid {
-    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+    /// Level 0's size and the number of levels for a screen of `size`.
+    fn shape(size: (u32, u32)) -> ((u32, u32), u32) {
         let base = ((size.0 / 2).max(1), (size.1 / 2).max(1));
-        let count = (32 - base.0.max(base.1).leading_zeros()).clamp(1, PYRAMID_LEVELS);
+        (base, (32 - base.0.max(base.1).leading_zeros()).clamp(1, PYRAMID_LEVELS))
+    }
+
+    /// The bytes of a pyramid for a screen of `size`.
+    fn bytes_for(size: (u32, u32)) -> u64 {
+        let (base, count) = Self::shape(size);
+        (0..count).map(|l| ((base.0 >> l).max(1) as u64) * ((base.1 >> l).max(1) as u64) * 4).sum()
+    }
+
+    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+        let (base, count) = Self::shape(size);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("depth_pyramid"),
             size: wgpu::Extent3d { width: base.0, height: base.1, depth_or_array_layers: 1 },
@@ -103,8 +118,7 @@ impl Pyramid {
                 })
             })
             .collect();
-        let bytes = (0..count).map(|l| ((base.0 >> l).max(1) as u64) * ((base.1 >> l).max(1) as u64) * 4).sum();
-        Self { texture, view, levels, bytes }
+        Self { texture, view, levels, bytes: Self::bytes_for(size) }
     }
 }
 
@@ -196,6 +210,20 @@ impl Targets {
             blurred: set.blurred.then(|| OcclusionTargets::new(device, &set, size, true)),
             pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
         }
+    }
+
+    /// The bytes [`Targets::new`] allocates for `plan` at `size`, known before anything is
+    /// allocated (the memory budget is checked with it).
+    pub fn bytes_for(size: (u32, u32), plan: &Plan) -> u64 {
+        let set = plan.target_set();
+        let when = |wanted: bool, bytes: u64| if wanted { bytes } else { 0 };
+        let occlusion = when(set.ao, texel_bytes(size, AO_FORMAT)) + when(set.directional, texel_bytes(size, DO_FORMAT));
+        [ALBEDO_FORMAT, NORMAL_FORMAT, DEPTH_FORMAT].map(|f| texel_bytes(size, f)).iter().sum::<u64>()
+            + when(set.hdr, texel_bytes(size, HDR_FORMAT))
+            + when(set.bounce, texel_bytes(size, BOUNCE_FORMAT))
+            + when(set.sender_sky, texel_bytes(half_size(size), DO_FORMAT))
+            + occlusion * (1 + set.blurred as u64)
+            + when(set.pyramid, Pyramid::bytes_for(size))
     }
 
     /// The HDR target, where the plan keeps one (see `Renderer::keep_hdr`).

@@ -160,6 +160,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             options.samples_per_pixel
         )));
     }
+    let features = crate::render::SceneFeatures { lights: options.lights };
+    Renderer::check_memory(options.size, &Settings::default(), features, true, &Mode::ALL)?;
     let (model, scene_sky) = match &options.model {
         Some(path) => (scene::model::load_obj(path)?, None),
         None => scenes::by_name(&options.scene)?,

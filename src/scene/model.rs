@@ -13,10 +13,11 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::obj_text::{decode_text, sanitize_mtl, sanitize_obj};
+use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
 use super::texture::{load_texture, TextureCache};
-pub use super::texture::{texture_file_name, TextureImage, TEXTURE_BUDGET_BYTES};
+pub use super::texture::{texture_file_name, TextureImage};
 use super::Bounds;
+use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 /// One vertex as the G-buffer pass reads it.
@@ -199,7 +200,8 @@ fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, wa
     }
 }
 
-/// Loads an OBJ file (and its MTL files and textures).
+const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
+
 /// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
 pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 pub const MAX_MTL_BYTES: u64 = 64 << 20;
@@ -253,19 +255,32 @@ fn other_model_kind(path: &Path) -> Option<&'static str> {
     })
 }
 
+/// Loads an OBJ file, its materials and textures within the run's memory budget.
 pub fn load_obj(path: &Path) -> Result<Model> {
-    load_obj_with_budget(path, TEXTURE_BUDGET_BYTES)
+    load_obj_with_budget(path, budget::texture_room())
 }
 
-/// [`load_obj`] with another texture budget (decoded RGBA8 bytes for all textures together).
-pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
+/// [`load_obj`] with another room for textures (decoded RGBA8 bytes for all of them together).
+pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     if let Some(kind) = other_model_kind(path) {
         return Err(Error::input(path, format!("a {kind} file; models load from Wavefront OBJ files (.obj)")));
     }
-    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
-    if bytes.iter().all(|b| b.is_ascii_whitespace()) {
-        return Err(Error::input(path, "the file is empty"));
+    // Sized before it is read: the triangles the faces make, against the geometry's share.
+    check_file(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
+    let counts = count_obj(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    if !counts.has_content {
+        let nothing = if counts.zero_bytes > 0 { "holds only zero bytes, no text" } else { "the file is empty" };
+        return Err(Error::input(path, nothing));
     }
+    if counts.triangles == 0 {
+        return Err(Error::input(path, NO_TRIANGLES));
+    }
+    let file_bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    // The file is held three times while it is parsed: as read, as text, and cleaned.
+    let needed = counts.triangles.saturating_mul(budget::BYTES_PER_TRIANGLE).saturating_add(3 * file_bytes);
+    budget::check(Share::Geometry, needed, || format!("{} triangles", counts.triangles))
+        .map_err(|problem| Error::input(path, problem))?;
+    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
     let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let warnings = RefCell::new(Vec::new());
@@ -318,7 +333,8 @@ pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
         }
         Vec::new()
     });
-    let mut cache = TextureCache::with_budget(texture_budget);
+    let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
+    let mut cache = TextureCache::plan(&dir, maps.flatten(), texture_room);
     let mut materials: Vec<Material> =
         tobj_materials.iter().map(|m| convert_material(m, &dir, &mut cache, &mut warnings)).collect();
     let default_material = materials.len();
@@ -401,7 +417,7 @@ pub fn load_obj_with_budget(path: &Path, texture_budget: u64) -> Result<Model> {
         warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));
     }
     if groups.iter().all(Vec::is_empty) {
-        return Err(Error::input(path, "no triangles to draw (no faces, or only points and lines)"));
+        return Err(Error::input(path, NO_TRIANGLES));
     }
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
     let mut out = Model::from_groups(&name, materials, groups)

@@ -89,3 +89,74 @@ pub(super) fn sanitize_obj(text: &str) -> (String, usize) {
     }
     (out, dropped)
 }
+
+/// What a quick pass over an OBJ file's bytes finds, before anything is parsed or built.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ObjCounts {
+    /// `f` records.
+    pub faces: u64,
+    /// Triangles once every face is fanned (a face of n corners makes n - 2).
+    pub triangles: u64,
+    /// Whether anything but white space and NUL bytes is there.
+    pub has_content: bool,
+    /// NUL bytes (skipped: UTF-16 text has one in every ASCII character).
+    pub zero_bytes: u64,
+}
+
+/// Counts faces and triangles by streaming the file in small chunks: a gigabyte of zero bytes
+/// or one polygon of millions of corners is sized in a second, in a few kilobytes, before the
+/// parser builds anything. NUL bytes are skipped, so UTF-16 text counts the same.
+pub fn count_obj(path: &std::path::Path) -> std::io::Result<ObjCounts> {
+    use std::io::Read;
+    #[derive(Clone, Copy, PartialEq)]
+    enum State {
+        LineStart,
+        SawF,
+        Face { in_token: bool },
+        Skip,
+    }
+    let mut file = std::fs::File::open(path)?;
+    let mut buffer = vec![0u8; 1 << 16];
+    let (mut counts, mut state, mut corners) = (ObjCounts::default(), State::LineStart, 0u64);
+    let end_line = |counts: &mut ObjCounts, state: State, corners: &mut u64| {
+        if matches!(state, State::Face { .. }) || (state == State::Skip && *corners > 0) {
+            counts.faces += 1;
+            counts.triangles += corners.saturating_sub(2);
+        }
+        *corners = 0;
+    };
+    loop {
+        let n = file.read(&mut buffer)?;
+        if n == 0 {
+            break;
+        }
+        for &b in &buffer[..n] {
+            if b == 0 {
+                counts.zero_bytes += 1;
+                continue;
+            }
+            let blank = b == b' ' || b == b'\t';
+            if b == b'\n' || b == b'\r' {
+                end_line(&mut counts, state, &mut corners);
+                state = State::LineStart;
+                continue;
+            }
+            counts.has_content |= !b.is_ascii_whitespace();
+            state = match state {
+                State::LineStart if blank => State::LineStart,
+                State::LineStart if b == b'f' => State::SawF,
+                State::SawF if blank => State::Face { in_token: false },
+                State::Face { .. } if b == b'#' => State::Skip,
+                State::Face { .. } if blank => State::Face { in_token: false },
+                State::Face { in_token: false } => {
+                    corners += 1;
+                    State::Face { in_token: true }
+                }
+                State::Face { in_token: true } => state,
+                _ => State::Skip,
+            };
+        }
+    }
+    end_line(&mut counts, state, &mut corners);
+    Ok(counts)
+}

@@ -2,6 +2,7 @@
 //! before the name, wrong letter case), images decoded within size limits, each file decoded once
 //! per model within a byte budget, and a visible checker in place of what cannot be read.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use super::model::read_bounded;
@@ -31,24 +32,55 @@ impl TextureImage {
     }
 }
 
-/// The decoded RGBA8 bytes all of one model's textures may take together; a texture that would
-/// go beyond is halved until it fits, with a warning. A small file can decode to a huge image
-/// (a 128 KB PNG of 4096² 16-bit texels), and a material file can name it many times.
-pub const TEXTURE_BUDGET_BYTES: u64 = 1 << 30;
-
-/// The textures of one model load: each file decoded once, whichever names it.
+/// The textures of one model load: each file decoded once, whichever names it, at a size
+/// planned from all the model's image headers before any is decoded.
 #[derive(Default)]
 pub(super) struct TextureCache {
-    by_path: std::collections::HashMap<PathBuf, TextureImage>,
+    by_path: HashMap<PathBuf, TextureImage>,
     /// (length, hash) of the file's bytes: the same picture under another name.
-    by_content: std::collections::HashMap<(usize, u64), TextureImage>,
-    bytes: u64,
-    budget: u64,
+    by_content: HashMap<ContentKey, TextureImage>,
+    /// The size each picture decodes to, so that all of them fit `room` together.
+    planned: HashMap<ContentKey, (u32, u32)>,
+    /// Decoded RGBA8 level-0 bytes the model's textures may take together.
+    room: u64,
+}
+
+type ContentKey = (usize, u64);
+
+fn content_key(bytes: &[u8]) -> ContentKey {
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut hasher);
+    (bytes.len(), hasher.finish())
 }
 
 impl TextureCache {
-    pub(super) fn with_budget(budget: u64) -> Self {
-        Self { budget, ..Self::default() }
+    /// Reads the header of every distinct picture the texture statements name (not the pixels)
+    /// and plans each one's size: all of them together within `room` bytes of RGBA8, the
+    /// largest halved first (see [`crate::budget::fit_images`]). A file that cannot be read is
+    /// left to [`load_texture`] to report.
+    pub(super) fn plan<'a>(dir: &Path, arguments: impl IntoIterator<Item = &'a str>, room: u64) -> Self {
+        let mut seen_paths = HashSet::new();
+        let mut pictures: Vec<(ContentKey, (u32, u32))> = Vec::new();
+        for argument in arguments {
+            let Some(path) = texture_file_name(argument).and_then(|name| find_texture(dir, &name)) else { continue };
+            if !seen_paths.insert(std::fs::canonicalize(&path).unwrap_or(path.clone())) {
+                continue;
+            }
+            let Ok(bytes) = read_bounded(&path, 1 << 30) else { continue };
+            let key = content_key(&bytes);
+            if pictures.iter().any(|(k, _)| *k == key) {
+                continue;
+            }
+            let header = image::ImageReader::new(std::io::Cursor::new(&bytes[..])).with_guessed_format();
+            if let Ok(size) = header.map_err(image::ImageError::IoError).and_then(|r| r.into_dimensions()) {
+                pictures.push((key, size));
+            }
+        }
+        let sizes: Vec<(u32, u32)> = pictures.iter().map(|&(_, size)| size).collect();
+        let fitted = crate::budget::fit_images(&sizes, room);
+        let planned = pictures.iter().map(|&(key, _)| key).zip(fitted).collect();
+        Self { planned, room, ..Self::default() }
     }
 }
 
@@ -107,12 +139,17 @@ pub fn decode_image(path: &Path, bytes: &[u8], max_side: u32) -> Result<image::D
     let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    reader.limits(decode_limits(max_side));
+    reader.decode().map_err(|e| Error::input(path, format!("not a readable image: {e}")))
+}
+
+/// The decoder's limits: sides up to `max_side`, and no allocation past 4 GiB.
+fn decode_limits(max_side: u32) -> image::Limits {
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(max_side);
     limits.max_image_height = Some(max_side);
     limits.max_alloc = Some(4 * 1024 * 1024 * 1024);
-    reader.limits(limits);
-    reader.decode().map_err(|e| Error::input(path, format!("not a readable image: {e}")))
+    limits
 }
 
 /// Largest texture side accepted when loading (textures are also checked against the device).
@@ -124,7 +161,6 @@ pub(super) fn load_texture(
     cache: &mut TextureCache,
     warnings: &mut Vec<String>,
 ) -> TextureImage {
-    use std::hash::{Hash, Hasher};
     let Some(name) = texture_file_name(argument) else {
         warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
         return TextureImage::checker();
@@ -144,40 +180,79 @@ pub(super) fn load_texture(
             return TextureImage::checker();
         }
     };
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    bytes.hash(&mut hasher);
-    let key = (bytes.len(), hasher.finish());
+    let key = content_key(&bytes);
     if let Some(image) = cache.by_content.get(&key) {
         let image = image.clone();
         cache.by_path.insert(canonical, image.clone());
         return image;
     }
-    let image = match decode_image(&path, &bytes, MAX_TEXTURE_SIDE) {
-        Ok(image) => image,
+    let planned = cache.planned.get(&key).copied();
+    let texture = match decode_texture(&path, &bytes, planned, cache.room) {
+        Ok((texture, original)) => {
+            if (texture.width, texture.height) != original {
+                warnings.push(format!(
+                    "{}: downscaled from {}x{} to {}x{}: the model's textures would exceed the {} of the memory budget for textures",
+                    path.display(),
+                    original.0,
+                    original.1,
+                    texture.width,
+                    texture.height,
+                    crate::budget::format_bytes(cache.room)
+                ));
+            }
+            texture
+        }
         Err(e) => {
             warnings.push(format!("{e}; using a checker"));
             return TextureImage::checker();
         }
     };
-    let mut rgba = image.to_rgba8();
-    drop(image);
-    let room = cache.budget.saturating_sub(cache.bytes);
-    let (w0, h0) = rgba.dimensions();
-    let (mut w, mut h) = (w0, h0);
-    while (w as u64) * (h as u64) * 4 > room && (w > 1 || h > 1) {
-        (w, h) = ((w / 2).max(1), (h / 2).max(1));
-    }
-    if (w, h) != (w0, h0) {
-        warnings.push(format!(
-            "{}: downscaled from {w0}x{h0} to {w}x{h}: the model's textures would exceed the {} KiB texture budget",
-            path.display(),
-            cache.budget >> 10
-        ));
-        rgba = image::imageops::resize(&rgba, w, h, image::imageops::FilterType::Triangle);
-    }
-    cache.bytes += (w as u64) * (h as u64) * 4;
-    let texture = TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba.into_raw()) };
     cache.by_path.insert(canonical, texture.clone());
     cache.by_content.insert(key, texture.clone());
     texture
+}
+
+/// The smallest transient decode allowed whatever the texture share: a 4096² RGBA8 picture.
+const MIN_DECODE_BYTES: u64 = 64 << 20;
+
+/// Decodes a picture at its own size, then resizes it to `planned` (filtered) and turns it into
+/// RGBA8. The decode's own allocation is checked from the header first: it may take the
+/// texture share for a moment (a 1-bit PNG of 16384² decodes to 256 MiB of grey), not more.
+/// Returns the texture and the picture's original size.
+fn decode_texture(
+    path: &Path,
+    bytes: &[u8],
+    planned: Option<(u32, u32)>,
+    room: u64,
+) -> Result<(TextureImage, (u32, u32))> {
+    use image::ImageDecoder;
+    let cannot = |e: image::ImageError| Error::input(path, format!("not a readable image: {e}"));
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    reader.limits(decode_limits(MAX_TEXTURE_SIDE));
+    let decoder = reader.into_decoder().map_err(cannot)?;
+    let original = decoder.dimensions();
+    let (decode_bytes, allowed) = (decoder.total_bytes(), room.max(MIN_DECODE_BYTES));
+    if decode_bytes > allowed {
+        let size = crate::budget::format_bytes;
+        return Err(Error::input(
+            path,
+            format!(
+                "{}x{} decodes to {}, over the {} of the memory budget for textures",
+                original.0,
+                original.1,
+                size(decode_bytes),
+                size(allowed)
+            ),
+        ));
+    }
+    let image = image::DynamicImage::from_decoder(decoder).map_err(cannot)?;
+    let (w, h) = planned.unwrap_or(original);
+    let rgba = if (w, h) == original {
+        image.into_rgba8()
+    } else {
+        image.thumbnail_exact(w, h).into_rgba8()
+    };
+    Ok((TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba.into_raw()) }, original))
 }

@@ -2,7 +2,8 @@
 //! the material maps with their mip chains. The G-buffer pass fills it (`GBufferPass::upload`,
 //! which owns the material layout and sampler) and draws it.
 
-use wgpu::util::DeviceExt;
+
+use rayon::prelude::*;
 
 use crate::gpu::Gpu;
 use crate::scene::model::TextureImage;
@@ -24,6 +25,9 @@ pub struct SceneGpu {
     pub bytes: u64,
 }
 
+/// An upload at least this large is waited for before the next is made.
+const LARGE_UPLOAD: usize = 16 << 20;
+
 pub(crate) fn upload_texture(
     gpu: &Gpu,
     label: &str,
@@ -44,24 +48,47 @@ pub(crate) fn upload_texture(
     } else {
         image
     };
-    let levels = mip_chain(image, format.is_srgb());
-    let data: Vec<u8> = levels.concat();
-    let texture = gpu.device.create_texture_with_data(
-        &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
-            mip_level_count: levels.len() as u32,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &data,
-    );
-    (texture.create_view(&wgpu::TextureViewDescriptor::default()), data.len() as u64)
+    let level_count = 32 - image.width.max(image.height).leading_zeros();
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+        mip_level_count: level_count,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    // Level by level, each made from the one above and written before the next is made: the
+    // image is never copied whole, and a large level's upload copy is freed before the next is
+    // made (on a software adapter the texture, the copies and the model's pixels share the RAM).
+    let write = |level: u32, (w, h): (u32, u32), texels: &[u8]| {
+        let origin = wgpu::Origin3d::ZERO;
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: level, origin, aspect: wgpu::TextureAspect::All },
+            texels,
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
+            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        );
+        if texels.len() >= LARGE_UPLOAD {
+            gpu.queue.submit([]);
+            // A failed wait only keeps the copy alive longer; errors surface at the next check.
+            let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        }
+    };
+    let mut size = (image.width, image.height);
+    let mut bytes = image.rgba.len() as u64;
+    write(0, size, &image.rgba);
+    let mut level = next_level(&image.rgba, size, format.is_srgb());
+    for index in 1..level_count {
+        size = ((size.0 / 2).max(1), (size.1 / 2).max(1));
+        write(index, size, &level);
+        bytes += level.len() as u64;
+        if index + 1 < level_count {
+            level = next_level(&level, size, format.is_srgb());
+        }
+    }
+    (texture.create_view(&wgpu::TextureViewDescriptor::default()), bytes)
 }
 
 /// The full mip chain of an RGBA8 image, level 0 first, down to 1x1: each level the 2x2 box
@@ -70,6 +97,18 @@ pub(crate) fn upload_texture(
 /// Minified textures then read a level of about their on-screen size: no aliasing, and a few
 /// cache lines per pixel instead of texels scattered over the whole image.
 pub fn mip_chain(image: &TextureImage, srgb: bool) -> Vec<Vec<u8>> {
+    let mut levels = vec![image.rgba.to_vec()];
+    let (mut w, mut h) = (image.width, image.height);
+    while w > 1 || h > 1 {
+        let next = next_level(levels.last().expect("level 0 is there"), (w, h), srgb);
+        levels.push(next);
+        (w, h) = ((w / 2).max(1), (h / 2).max(1));
+    }
+    levels
+}
+
+/// The level below `src` (RGBA8, `w` x `h`) in the chain of [`mip_chain`].
+fn next_level(src: &[u8], (w, h): (u32, u32), srgb: bool) -> Vec<u8> {
     let decode: Vec<f32> = (0..256)
         .map(|v| {
             let c = v as f32 / 255.0;
@@ -89,39 +128,34 @@ pub fn mip_chain(image: &TextureImage, srgb: bool) -> Vec<Vec<u8>> {
         };
         (e * 255.0).round() as u8
     };
-    let mut levels = vec![image.rgba.to_vec()];
-    let (mut w, mut h) = (image.width as usize, image.height as usize);
-    while w > 1 || h > 1 {
-        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-        let src = levels.last().expect("level 0 is there");
-        let mut dst = vec![0u8; nw * nh * 4];
-        for y in 0..nh {
-            let rows = [(2 * y).min(h - 1), (2 * y + 1).min(h - 1)];
-            for x in 0..nw {
-                let cols = [(2 * x).min(w - 1), (2 * x + 1).min(w - 1)];
-                for c in 0..4 {
-                    let texel = |yy: usize, xx: usize| src[(yy * w + xx) * 4 + c];
-                    let sum: f32 = rows
-                        .iter()
-                        .flat_map(|&yy| cols.iter().map(move |&xx| (yy, xx)))
-                        .map(|(yy, xx)| {
-                            // Alpha (specular strength) is linear in either format.
-                            if c == 3 {
-                                texel(yy, xx) as f32 / 255.0
-                            } else {
-                                decode[texel(yy, xx) as usize]
-                            }
-                        })
-                        .sum();
-                    let mean = 0.25 * sum;
-                    dst[(y * nw + x) * 4 + c] = if c == 3 { (mean * 255.0).round() as u8 } else { encode(mean) };
-                }
+    let (w, h) = (w as usize, h as usize);
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let mut dst = vec![0u8; nw * nh * 4];
+    // Rows in parallel: a 8192² map's chain is a quarter of a billion texels.
+    dst.par_chunks_mut(nw * 4).enumerate().for_each(|(y, row)| {
+        let rows = [(2 * y).min(h - 1), (2 * y + 1).min(h - 1)];
+        for x in 0..nw {
+            let cols = [(2 * x).min(w - 1), (2 * x + 1).min(w - 1)];
+            for c in 0..4 {
+                let texel = |yy: usize, xx: usize| src[(yy * w + xx) * 4 + c];
+                let sum: f32 = rows
+                    .iter()
+                    .flat_map(|&yy| cols.iter().map(move |&xx| (yy, xx)))
+                    .map(|(yy, xx)| {
+                        // Alpha (specular strength) is linear in either format.
+                        if c == 3 {
+                            texel(yy, xx) as f32 / 255.0
+                        } else {
+                            decode[texel(yy, xx) as usize]
+                        }
+                    })
+                    .sum();
+                let mean = 0.25 * sum;
+                row[x * 4 + c] = if c == 3 { (mean * 255.0).round() as u8 } else { encode(mean) };
             }
         }
-        levels.push(dst);
-        (w, h) = (nw, nh);
-    }
-    levels
+    });
+    dst
 }
 
 #[cfg(test)]

@@ -1,0 +1,156 @@
+//! The memory budget, measured: this test binary counts every byte the Rust allocator hands
+//! out, so the peak of a load is a figure the test checks (the GPU driver's own memory is not
+//! counted; `tests/resources.rs` watches that). One test at a time: the counter is the process's.
+
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::Mutex;
+
+use ssdo::render::{Mode, Renderer, SceneFeatures, Settings};
+
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+// SAFETY: every call is passed to the system allocator unchanged; the counters only add up sizes.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            let now = LIVE.fetch_add(layout.size(), Relaxed) + layout.size();
+            PEAK.fetch_max(now, Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, p: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(p, layout) };
+        LIVE.fetch_sub(layout.size(), Relaxed);
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// What `work` returns, and the most bytes it held at once beyond what was live before.
+fn peak_during<T>(work: impl FnOnce() -> T) -> (T, usize) {
+    let base = LIVE.load(Relaxed);
+    PEAK.store(base, Relaxed);
+    let out = work();
+    (out, PEAK.load(Relaxed).saturating_sub(base))
+}
+
+const MIB: usize = 1 << 20;
+
+fn write_quad(dir: &Path, map: &str) -> std::path::PathBuf {
+    std::fs::write(dir.join("m.mtl"), format!("newmtl m\nKd 1 1 1\nmap_Kd {map}\n")).unwrap();
+    let obj = "mtllib m.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+               usemtl m\nf 1/1 2/2 3/3 4/4\n";
+    std::fs::write(dir.join("quad.obj"), obj).unwrap();
+    dir.join("quad.obj")
+}
+
+#[test]
+fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = tempfile::tempdir().unwrap();
+    // 8192² grey texels of one value: a 0.2 MB file that is 256 MiB as RGBA8.
+    image::GrayImage::from_pixel(8192, 8192, image::Luma([85])).save(dir.path().join("bomb.png")).unwrap();
+    assert!(std::fs::metadata(dir.path().join("bomb.png")).unwrap().len() < MIB as u64);
+    let quad = write_quad(dir.path(), "bomb.png");
+
+    let (model, peak) = peak_during(|| ssdo::scene::model::load_obj_with_budget(&quad, 16 << 20).unwrap());
+    let map = model.materials[0].diffuse_map.as_ref().unwrap();
+    assert_eq!((map.width, map.height), (2048, 2048), "halved until 16 MiB of RGBA8 holds it");
+    assert!(model.warnings.iter().any(|w| w.contains("downscaled from 8192x8192 to 2048x2048")), "{:?}", model.warnings);
+    // The grey decode (64 MiB) and the result (16 MiB) at most; decoding to RGBA8 first would
+    // have held 256 MiB, and a float resize of that twice as much again.
+    assert!(peak < 100 * MIB, "the load peaked at {} MiB", peak / MIB);
+}
+
+#[test]
+fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // Eight distinct 512² maps (8 MiB of RGBA8) in 2 MiB: each ends at 256², none below.
+    let mut mtl = String::new();
+    let mut obj = String::from("mtllib m.mtl\n");
+    for i in 0..8u32 {
+        image::RgbImage::from_pixel(512, 512, image::Rgb([i as u8 * 30, 100, 50])).save(d.join(format!("t{i}.png"))).unwrap();
+        mtl += &format!("newmtl m{i}\nKd 1 1 1\nmap_Kd t{i}.png\n");
+        obj += &format!("v {i} 0 0\nv {i} 0 1\nv {i}.5 0 0\nusemtl m{i}\nf {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+    }
+    std::fs::write(d.join("m.mtl"), mtl).unwrap();
+    std::fs::write(d.join("m.obj"), obj).unwrap();
+    let model = ssdo::scene::model::load_obj_with_budget(&d.join("m.obj"), 2 << 20).unwrap();
+    let sizes: Vec<(u32, u32)> =
+        model.materials.iter().filter_map(|m| m.diffuse_map.as_ref()).map(|t| (t.width, t.height)).collect();
+    assert_eq!(sizes.len(), 8);
+    assert!(sizes.iter().all(|&s| s == (256, 256)), "{sizes:?}");
+
+    // A picture whose decode alone is beyond the room (and beyond the 64 MiB any decode may
+    // take): 16-bit RGBA of 4096x2304 is 72 MiB before any resize. It becomes the checker.
+    let big = image::ImageBuffer::<image::Rgba<u16>, _>::from_pixel(4096, 2304, image::Rgba([9000u16; 4]));
+    big.save(d.join("deep.png")).unwrap();
+    drop(big);
+    let quad = write_quad(d, "deep.png");
+    let (model, peak) = peak_during(|| ssdo::scene::model::load_obj_with_budget(&quad, 3 << 20).unwrap());
+    let map = model.materials[0].diffuse_map.as_ref().unwrap();
+    assert_eq!((map.width, map.height), (8, 8), "the checker");
+    assert!(
+        model.warnings.iter().any(|w| w.contains("deep.png") && w.contains("decodes to 72 MiB")),
+        "{:?}",
+        model.warnings
+    );
+    assert!(peak < 8 * MIB, "refused from the header, yet {} MiB were held", peak / MIB);
+}
+
+#[test]
+fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    ssdo::budget::set(256 << 20).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    // One polygon of a million corners (a 2 MB file): 999,998 fan triangles, 610 MiB to build,
+    // over the 128 MiB geometry share of a 256 MiB budget.
+    let path = dir.path().join("polygon.obj");
+    let corners: Vec<String> = (0..1_000_000).map(|i| (i % 9 + 1).to_string()).collect();
+    let vertices: String = (0..9).map(|i| format!("v {} 0 {}\n", (i as f32).cos(), (i as f32).sin())).collect();
+    std::fs::write(&path, format!("{vertices}f {}\n", corners.join(" "))).unwrap();
+    let (result, peak) = peak_during(|| ssdo::scene::model::load_obj(&path));
+    let message = result.unwrap_err().to_string();
+    assert!(message.contains("polygon.obj") && message.contains("999998 triangles would need"), "{message}");
+    assert!(message.contains("memory budget for geometry") && message.contains("--memory-budget"), "{message}");
+    assert!(peak < MIB, "sized from a stream of the file, yet {} KiB were held", peak >> 10);
+
+    // Targets: refused from the plan, before a device exists; what fits passes.
+    let settings = Settings::default();
+    let features = SceneFeatures { lights: 8 };
+    let error = Renderer::check_memory((8192, 8192), &settings, features, false, &Mode::ALL).unwrap_err();
+    assert!(error.to_string().contains("8192x8192 in Off would need"), "{error}");
+    Renderer::check_memory((160, 120), &settings, features, true, &Mode::ALL).unwrap();
+    ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
+}
+
+#[test]
+fn the_targets_counted_before_allocation_are_the_targets_allocated() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let Some(gpu) = common::gpu() else { return };
+    let scene = ssdo::scene::Scene::new(ssdo::scene::builtin::cornell().unwrap(), 8, 1);
+    let sky = ssdo::scene::Skybox::constant(glam::Vec3::ONE);
+    for mode in Mode::ALL {
+        for keep_hdr in [false, true] {
+            let settings = Settings { mode, ..Settings::default() };
+            let mut renderer = common::renderer(&gpu, &scene, &sky, (97, 61), settings);
+            renderer.keep_hdr(&gpu, keep_hdr);
+            let allocated: u64 = renderer.targets().allocations().iter().map(|(_, b)| b).sum();
+            let counted = ssdo::render::targets::Targets::bytes_for((97, 61), renderer.plan());
+            assert_eq!(counted, allocated, "{mode:?}, HDR kept: {keep_hdr}");
+        }
+    }
+}
