@@ -84,6 +84,25 @@ fn rewound_obj(dir: &std::path::Path) -> ssdo::scene::Model {
     load_obj(&dir.join("rewound.obj")).unwrap()
 }
 
+/// The default scene written as OBJ in coordinates f32 cannot shade as they are: `scale` times
+/// its size, `offset` model radii from the origin (f64 in the file). The loader fits it.
+fn placed_obj(dir: &std::path::Path, name: &str, scale: f64, offset: f64) -> ssdo::scene::Model {
+    let model = builtin::cornell().unwrap();
+    let shift = offset * model.bounds.radius() as f64 * scale;
+    let mut obj = String::new();
+    for v in &model.vertices {
+        let p = v.position.map(|c| c as f64 * scale);
+        obj += &format!("v {:e} {:e} {:e}\n", p[0] + shift, p[1], p[2]);
+    }
+    for tri in model.indices.chunks_exact(3) {
+        obj += &format!("f {} {} {}\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    }
+    std::fs::write(dir.join(name), obj).unwrap();
+    let fitted = load_obj(&dir.join(name)).unwrap();
+    assert!(!fitted.warnings.is_empty() || (scale == 1.0 && offset < 1e3), "{name}: fitted without a word");
+    fitted
+}
+
 fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     let mut list = Vec::new();
     let mut c = base("near 1e-6, far inf", "--near 1e-6 --far inf");
@@ -171,6 +190,16 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     c.settings.sky_strength = 1e6;
     c.settings.indirect_strength = 1e6;
     list.push(c);
+    // Scales and offsets in the file's own coordinates, beyond what --scale takes: scaled to a
+    // unit radius or moved to the origin at load (with a warning), then like any model.
+    list.push(with_model("1e-20 across in its own coordinates", "--model tiny.obj", placed_obj(dir, "tiny.obj", 1e-20, 0.0)));
+    list.push(with_model("1e12 across in its own coordinates", "--model huge.obj", placed_obj(dir, "huge.obj", 1e12, 0.0)));
+    list.push(with_model("1e4 radii from the origin", "--model offset.obj", placed_obj(dir, "offset.obj", 1.0, 1e4)));
+    list.push(with_model(
+        "1e-9 across, 1e5 radii from the origin",
+        "--model tiny_far.obj",
+        placed_obj(dir, "tiny_far.obj", 1e-9, 1e5),
+    ));
     let mut c = base("near plane at 1e-9 of the distance (the smallest taken)", "--near <1e-9 × distance>");
     c.camera.near = c.camera.distance * 1e-9;
     list.push(c);
