@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Frame time against pixel count and against triangle count, per mode: the README's scaling
-# tables. Runs `ssdo bench --json` on the benchmark room (every pixel is geometry) and prints
+# Frame time against pixel count and against triangle count, per mode: the scaling
+# tables of docs/performance.md. Runs `ssdo bench --json` on the benchmark room (every pixel is geometry) and prints
 # Markdown. Figures are medians of FRAMES frames (default 5) per mode, one run each.
 #   scripts/scaling.sh [VARIANT]     (default: the default variant, march)
 set -euo pipefail

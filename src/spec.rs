@@ -103,7 +103,7 @@ pub struct RenderArgs {
     /// The march's surface thickness, in model units [default: 1 radius]
     #[arg(long, allow_hyphen_values = true)]
     pub thickness: Option<f32>,
-    /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see README)
+    /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see docs/accuracy.md)
     #[arg(long)]
     pub depth_pyramid: bool,
     /// Sampling radius in model units [default: a tenth of the scene's bounding radius]

@@ -204,7 +204,7 @@ impl Settings {
 /// The march's default reach and thickness, in default sampling radii (a tenth of the scene's
 /// bounding radius each): far enough to see the walls of a room from its middle; thin enough that
 /// a pole does not shadow the floor behind it (walls need no more: consecutive samples on one
-/// surface are bridged). Chosen with the report on cornell, open and stairs (see the README):
+/// surface are bridged). Chosen with the report on cornell, open and stairs (see docs/accuracy.md):
 /// 3 radii lowered cornell's error at 2×8 a little but made it rise again with more steps.
 pub const REACH_RADII: f32 = 24.0;
 pub const THICKNESS_RADII: f32 = 1.0;
