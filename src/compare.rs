@@ -4,14 +4,13 @@
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgba, RgbaImage};
 
-use crate::render::{Mode, Settings};
+use crate::render::Settings;
 
 /// The caption of one mode's panel: the mode and its key, then the settings that shaped it.
 pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Vec<String> {
     let s = settings;
-    let key = Mode::ALL.iter().position(|m| *m == s.mode).unwrap_or(0) + 1;
-    let mut lines = vec![format!("{}  [{key}]", s.mode.title())];
-    if s.mode == Mode::Off {
+    let mut lines = vec![format!("{}  [{}]", s.mode.title(), s.mode.key())];
+    if !s.mode.declaration().runs_sampling() {
         let light = if s.variant == crate::render::Variant::Classic { "ambient" } else { "sky + ambient" };
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {

@@ -50,11 +50,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let started = Instant::now();
     let rows = args.size.1 as u64;
     let radii = args.radius.len() as u64;
-    // The default march once more with each other bounce sender and with no bounce, in SSDO and Both.
-    let defaults = ssdo::render::Settings::default();
-    let bounce_rows = if args.march.contains(&(defaults.slices, defaults.steps)) { 2 * 3 } else { 0 };
-    let configs =
-        2 + radii * (3 * 2 * (2 * args.samples.len() + args.march.len()) + 2 * args.march.len() + bounce_rows) as u64;
+    let configs = ssdo::report::planned_configurations(&options) as u64;
     let (w, h) = (args.size.0 as u64, args.size.1 as u64);
     log::info!(
         "planned: {configs} configurations × {} frames at {w}x{h}, and a truth of 2 × {} rays over {} pixels per radius",

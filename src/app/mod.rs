@@ -333,14 +333,19 @@ impl Viewer {
     }
 
     fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
-        let mode = match key {
-            KeyCode::Digit1 | KeyCode::Numpad1 => Some(Mode::Off),
-            KeyCode::Digit2 | KeyCode::Numpad2 => Some(Mode::Ssao),
-            KeyCode::Digit3 | KeyCode::Numpad3 => Some(Mode::Ssdo),
-            KeyCode::Digit4 | KeyCode::Numpad4 => Some(Mode::Both),
+        let digit = match key {
+            KeyCode::Digit1 | KeyCode::Numpad1 => Some(1),
+            KeyCode::Digit2 | KeyCode::Numpad2 => Some(2),
+            KeyCode::Digit3 | KeyCode::Numpad3 => Some(3),
+            KeyCode::Digit4 | KeyCode::Numpad4 => Some(4),
+            KeyCode::Digit5 | KeyCode::Numpad5 => Some(5),
+            KeyCode::Digit6 | KeyCode::Numpad6 => Some(6),
+            KeyCode::Digit7 | KeyCode::Numpad7 => Some(7),
+            KeyCode::Digit8 | KeyCode::Numpad8 => Some(8),
+            KeyCode::Digit9 | KeyCode::Numpad9 => Some(9),
             _ => None,
         };
-        if let Some(mode) = mode {
+        if let Some(mode) = digit.and_then(Mode::from_key) {
             return self.act(Action::Mode(mode));
         }
         match key {

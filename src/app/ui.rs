@@ -100,8 +100,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
 
             ui.label("Mode (keys 1-4)");
             ui.horizontal_wrapped(|ui| {
-                for (i, mode) in Mode::ALL.into_iter().enumerate() {
-                    if ui.selectable_label(settings.mode == mode, format!("{} {}", i + 1, mode.title())).clicked() {
+                for mode in Mode::ALL {
+                    if ui.selectable_label(settings.mode == mode, format!("{} {}", mode.key(), mode.title())).clicked() {
                         actions.push(Action::Mode(mode));
                     }
                 }

@@ -14,21 +14,22 @@
 //! (background and silhouette pixels left out, and counted); the truth is the mean of two
 //! independent traces, whose difference gives its own noise floor.
 
+mod measure;
 pub mod metrics;
 mod plot;
 pub mod scenes;
+pub mod sweep;
 mod table;
 
 use std::path::PathBuf;
 use std::time::Instant;
 
-use glam::Vec3;
-
 use crate::gpu::Gpu;
 use crate::reference::{self, ReferenceScene, TraceSettings};
 use crate::render::capture::{capture, CAPTURE_FORMAT};
-use crate::render::readback::{read_depth, read_r16f, read_rgba16f};
+use crate::render::readback::read_depth;
 use crate::render::{Mode, Renderer, SenderSky, Settings, Variant};
+pub use sweep::{planned_configurations, Config};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
 
@@ -188,6 +189,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let bvh = ReferenceScene::new(&scene.model);
     let target = crate::render::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
+    let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient };
+    let sky_name = sky_path.as_ref().map_or_else(|| "the sky".to_string(), |p| p.display().to_string());
     let mut rows = Vec::new();
     let mut reference_seconds = 0.0;
     let mut kept = None;
@@ -207,209 +210,24 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         };
         let (a, b) = (trace(options.seed), trace(options.seed ^ 0x5DEE_CE66_D1CE_4E5B));
         reference_seconds += started.elapsed().as_secs_f64();
-        let truth = reference::Reference::mean(&a, &b);
-        let valid: Vec<usize> = (0..truth.valid.len()).filter(|&i| truth.valid[i]).collect();
-        // Nothing to measure is an error, not a table of zeros and infinite PSNRs.
-        if valid.is_empty() {
-            return Err(Error::Setting(format!(
-                "the view shows no surface pixel that the ray tracer and the GPU agree on ({} background, {} \
-                 silhouette, {} under a light's cube): nothing to measure",
-                truth.valid.len() - truth.mismatched - truth.covered,
-                truth.mismatched,
-                truth.covered
-            )));
-        }
-        // A sky so bright that the truth overflows 32-bit floats gives no number worth a row.
-        if valid.iter().any(|&i| !truth.radiance(i, ambient).is_finite()) {
-            let sky_name = sky_path.as_ref().map_or_else(|| "the sky".to_string(), |p| p.display().to_string());
-            return Err(Error::Setting(format!(
-                "{sky_name}: the ray-traced truth overflows 32-bit floats under this sky (radiance up to {:e}); \
-                 scale the sky down",
-                sky.max_value()
-            )));
-        }
-        let half_difference = |f: &dyn Fn(&reference::Reference, usize) -> Vec3| {
-            metrics::rmse(valid.iter().flat_map(|&i| {
-                let (x, y) = (f(&a, i), f(&b, i));
-                (0..3).map(move |c| (0.5 * x[c], 0.5 * y[c]))
-            }))
-        };
-        let noise = NoiseFloor {
-            hdr: half_difference(&|r, i| r.radiance(i, ambient)),
-            directional: half_difference(&|r, i| r.directional(i)),
-            ao: half_difference(&|r, i| Vec3::splat(r.ao[i])),
-        };
-
-        for variant in [Variant::Classic, Variant::Points, Variant::March] {
-            // (mode, samples or slices, steps, blur, depth pyramid, bounce senders)
-            let bounce = Some(base.sender_sky);
-            let mut configs: Vec<(Mode, usize, usize, bool, bool, Option<SenderSky>)> = Vec::new();
-            if r_index == 0 && variant != Variant::Points {
-                // Off has no sampling pass: once for the sky-lit composite (under the default
-                // variant's name; points is the same image), once for classic.
-                configs.push((Mode::Off, 0, 0, false, false, None));
-            }
-            let counts: Vec<(usize, usize)> = if variant.marches() {
-                options.march.clone()
-            } else {
-                options.samples.iter().map(|&n| (n, 0)).collect()
-            };
-            for mode in [Mode::Ssao, Mode::Ssdo, Mode::Both] {
-                let bounce = if mode == Mode::Ssao { None } else { bounce };
-                for &(samples, steps) in &counts {
-                    configs.extend([
-                        (mode, samples, steps, true, false, bounce),
-                        (mode, samples, steps, false, false, bounce),
-                    ]);
-                    // The march once more with its far steps on the depth pyramid (blurred).
-                    if variant.marches() && mode != Mode::Ssao {
-                        configs.push((mode, samples, steps, true, true, bounce));
-                    }
-                    // The default settings with the bounce's other senders, and with no bounce.
-                    if variant == Variant::default()
-                        && mode != Mode::Ssao
-                        && (samples, steps) == (base.slices, base.steps)
-                    {
-                        for other in SenderSky::ALL.map(Some).into_iter().chain([None]) {
-                            if other != bounce {
-                                configs.push((mode, samples, steps, true, false, other));
-                            }
-                        }
-                    }
-                }
-            }
-            for (mode, samples, steps, blur, depth_pyramid, bounce) in configs {
-                // Every configuration renders the same lighting (the classic variant keeps its
-                // own composite, not its own ambient), so all meet one truth.
-                let (slices, steps_or_default) =
-                    if variant.marches() { (samples, steps) } else { (base.slices, base.steps) };
-                renderer.settings = Settings {
-                    mode,
-                    variant,
-                    samples: if variant.marches() { base.samples } else { samples.max(1) },
-                    slices,
-                    steps: steps_or_default,
-                    blur,
-                    depth_pyramid,
-                    radius: Some(radius),
-                    sender_sky: bounce.unwrap_or(base.sender_sky),
-                    // No bounce (`none`) is the bounce's strength at 0.
-                    indirect_strength: if bounce.is_none() && mode.declaration().directional_occlusion {
-                        0.0
-                    } else {
-                        base.indirect_strength
-                    },
-                    ..base
-                };
-                let ms = crate::render::timing::measure(gpu, &mut renderer, &camera, &view, options.frames)?.frame_ms;
-                let image = capture(gpu, &mut renderer, &camera)?;
-                let s = renderer.settings;
-                // The half-float buffers hold radiance × pre-exposure: divided out here.
-                let unexpose = 1.0 / renderer.pre_exposure();
-                let targets = renderer.targets().occlusion();
-                let directional =
-                    targets.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?.map(|d| {
-                        d.into_iter()
-                            .map(|p| [p[0] * unexpose, p[1] * unexpose, p[2] * unexpose, p[3]])
-                            .collect::<Vec<_>>()
-                    });
-                let ao = match (&targets.ao, &directional) {
-                    (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
-                    (None, Some(d)) if mode.declaration().ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
-                    _ => None,
-                };
-                let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?
-                    .into_iter()
-                    .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)
-                    .collect();
-                let against = |want: &dyn Fn(usize) -> Vec3| {
-                    metrics::rmse(valid.iter().flat_map(|&i| {
-                        let (got, want) = (hdr[i], want(i));
-                        (0..3).map(move |c| (got[c], want[c]))
-                    }))
-                };
-                let hdr_rmse = against(&|i| truth.radiance(i, ambient));
-                let hdr_rmse_near = against(&|i| truth.radiance_near(i, ambient));
-                let hdr_peak =
-                    valid.iter().map(|&i| truth.radiance(i, ambient).max_element()).fold(1e-6f32, f32::max) as f64;
-                let ao_rmse = ao.as_ref().map(|ao| metrics::rmse(valid.iter().map(|&i| (ao[i], truth.ao[i]))));
-                let do_against = |want: &dyn Fn(usize) -> Vec3| {
-                    directional.as_ref().map(|d| {
-                        metrics::rmse(valid.iter().flat_map(|&i| {
-                            let w = want(i);
-                            (0..3).map(move |c| (d[i][c], w[c]))
-                        }))
-                    })
-                };
-                let do_rmse = do_against(&|i| truth.directional(i));
-                let do_rmse_near = do_against(&|i| truth.directional_near(i));
-                // The bounce alone (the DO-indirect view zeroes the sky), against the truth's:
-                // a ratio of means, so noise cancels and only the estimator's bias remains.
-                let bounce_ratio = if directional.is_some() && bounce.is_some() {
-                    renderer.settings.view = crate::render::View::DoIndirect;
-                    capture(gpu, &mut renderer, &camera)?;
-                    renderer.settings.view = s.view;
-                    let bounce =
-                        renderer.targets().occlusion().directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture));
-                    let bounce = bounce.transpose()?.unwrap_or_default();
-                    let mean = |f: &dyn Fn(usize) -> f32| {
-                        valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64
-                    };
-                    let got =
-                        mean(&|i| reference::luminance(Vec3::new(bounce[i][0], bounce[i][1], bounce[i][2]) * unexpose));
-                    let want = mean(&|i| reference::luminance(truth.bounce[i]));
-                    (want > 0.0).then(|| got / want)
-                } else {
-                    None
-                };
-
-                let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
-                let mut ref_image = gpu_image.clone();
-                for &i in &valid {
-                    let (x, y) = ((i as u32) % options.size.0, (i as u32) / options.size.0);
-                    ref_image.put_pixel(x, y, image::Rgb(metrics::display(truth.radiance(i, ambient), s.exposure)));
-                }
-                let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.valid);
-                let shown = (base.slices, base.steps);
-                if variant == Variant::default()
-                    && (samples, steps) == shown
-                    && !depth_pyramid
-                    && blur
-                    && bounce == Some(base.sender_sky)
-                    && mode == Mode::Both
-                    && r_index == 0
-                {
-                    plot::write_maps(&options.out, &truth, &ao, &ref_image, &gpu_image, &flip_map)?;
-                }
-                rows.push(Row {
-                    mode,
-                    variant,
-                    samples,
-                    steps,
-                    pyramid: depth_pyramid,
-                    blur,
-                    bounce: if mode == Mode::Ssao { None } else { bounce },
-                    radius: if mode == Mode::Off { 0.0 } else { radius },
-                    ms,
-                    ao_rmse,
-                    do_rmse,
-                    do_rmse_near,
-                    bounce_ratio,
-                    hdr_rmse,
-                    hdr_rmse_near,
-                    hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
-                    flip,
-                    pareto: false,
-                });
-                progress(&format!(
-                    "{mode} {variant} {}, radius {radius:.3}, blur {blur}, bounce {}: {ms:.2} ms, HDR RMSE {hdr_rmse:.4}",
-                    Row::count_label(variant, samples, steps, depth_pyramid),
-                    Row::bounce_label(mode, bounce)
-                ));
-            }
+        let truth = measure::Truth::from_traces(&a, &b, ambient, &sky_name, sky.max_value())?;
+        for config in sweep::configurations(options, r_index == 0) {
+            let maps = r_index == 0 && config.is_the_default_both();
+            let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
+            progress(&format!(
+                "{} {} {}, radius {radius:.3}, blur {}, bounce {}: {:.2} ms, HDR RMSE {:.4}",
+                row.mode,
+                row.variant,
+                Row::count_label(row.variant, row.samples, row.steps, row.pyramid),
+                row.blur,
+                Row::bounce_label(row.mode, config.bounce),
+                row.ms,
+                row.hdr_rmse
+            ));
+            rows.push(row);
         }
         if r_index == 0 {
-            kept = Some((truth, noise));
+            kept = Some((truth.reference, truth.noise));
         }
     }
     gpu.check()?;

@@ -24,7 +24,8 @@ use std::str::FromStr;
 use super::settings::SenderSky;
 use crate::{Error, Result};
 
-/// The four render modes of the SSDO course project, in key order (1-4).
+/// The four render modes of the SSDO course project, in key order (1-4). Everything about a mode
+/// is its row of [`MODES`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Mode {
     Off,
@@ -33,55 +34,103 @@ pub enum Mode {
     Both,
 }
 
+/// Everything a mode is, in one row: what selects it, what it is called where, and what it
+/// computes. The viewer's keys, the command line, file names, captions, the plan's step names
+/// and the messages all read this table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ModeDecl {
+    pub mode: Mode,
+    /// The viewer's key (and the caption's `[key]`).
+    pub key: u32,
+    /// On the command line and in file names.
+    pub name: &'static str,
+    /// For people: labels, captions, the window.
+    pub title: &'static str,
+    /// The sampling step's name in this mode's plan (`--print-plan`, timings).
+    pub sampling_step: &'static str,
+    /// Ambient occlusion: darkens the ambient term.
+    pub ambient_occlusion: bool,
+    /// Directional occlusion: sky light from the open directions and one indirect bounce.
+    pub directional_occlusion: bool,
+}
+
+/// The modes, in key order.
+pub const MODES: [ModeDecl; 4] = [
+    // Off: the sky's irradiance, the ambient term and the point lights, unoccluded.
+    ModeDecl {
+        mode: Mode::Off,
+        key: 1,
+        name: "off",
+        title: "Off",
+        sampling_step: "occlusion",
+        ambient_occlusion: false,
+        directional_occlusion: false,
+    },
+    // SSAO: the sky and ambient terms darkened by screen-space ambient occlusion (the classic
+    // hemisphere-kernel technique, or the march's near steps).
+    ModeDecl {
+        mode: Mode::Ssao,
+        key: 2,
+        name: "ssao",
+        title: "SSAO",
+        sampling_step: "ssao",
+        ambient_occlusion: true,
+        directional_occlusion: false,
+    },
+    // SSDO: directional occlusion (Ritschel, Grosch & Seidel 2009) — the sky from the open
+    // directions plus one bounce from nearby surfaces — instead of the unoccluded sky.
+    ModeDecl {
+        mode: Mode::Ssdo,
+        key: 3,
+        name: "ssdo",
+        title: "SSDO",
+        sampling_step: "ssdo",
+        ambient_occlusion: false,
+        directional_occlusion: true,
+    },
+    // SSAO+SSDO: SSDO with AO on the constant ambient term, both from one set of samples.
+    ModeDecl {
+        mode: Mode::Both,
+        key: 4,
+        name: "both",
+        title: "SSAO+SSDO",
+        sampling_step: "ssao_ssdo",
+        ambient_occlusion: true,
+        directional_occlusion: true,
+    },
+];
+
 impl Mode {
-    pub const ALL: [Mode; 4] = [Mode::Off, Mode::Ssao, Mode::Ssdo, Mode::Both];
+    pub const ALL: [Mode; 4] = [MODES[0].mode, MODES[1].mode, MODES[2].mode, MODES[3].mode];
+
+    /// This mode's row of [`MODES`].
+    pub fn declaration(self) -> &'static ModeDecl {
+        MODES.iter().find(|d| d.mode == self).expect("every mode has a row")
+    }
 
     /// Name used on the command line and in file names.
     pub fn name(self) -> &'static str {
-        match self {
-            Mode::Off => "off",
-            Mode::Ssao => "ssao",
-            Mode::Ssdo => "ssdo",
-            Mode::Both => "both",
-        }
+        self.declaration().name
     }
 
     /// Name shown to people (labels, window title).
     pub fn title(self) -> &'static str {
-        match self {
-            Mode::Off => "Off",
-            Mode::Ssao => "SSAO",
-            Mode::Ssdo => "SSDO",
-            Mode::Both => "SSAO+SSDO",
-        }
+        self.declaration().title
     }
 
-    /// What this mode needs: the one place a mode is defined.
-    pub fn declaration(self) -> &'static ModeDecl {
-        const fn decl(mode: Mode, ambient_occlusion: bool, directional_occlusion: bool) -> ModeDecl {
-            ModeDecl { mode, ambient_occlusion, directional_occlusion }
-        }
-        // Off: the sky's irradiance, the ambient term and the point lights, unoccluded.
-        const OFF: ModeDecl = decl(Mode::Off, false, false);
-        // SSAO: the sky and ambient terms darkened by screen-space ambient occlusion (the classic
-        // hemisphere-kernel technique, or the march's near steps).
-        const SSAO: ModeDecl = decl(Mode::Ssao, true, false);
-        // SSDO: directional occlusion (Ritschel, Grosch & Seidel 2009) — the sky from the open
-        // directions plus one bounce from nearby surfaces — instead of the unoccluded sky.
-        const SSDO: ModeDecl = decl(Mode::Ssdo, false, true);
-        // SSAO+SSDO: SSDO with AO on the constant ambient term, both from one set of samples.
-        const BOTH: ModeDecl = decl(Mode::Both, true, true);
-        match self {
-            Mode::Off => &OFF,
-            Mode::Ssao => &SSAO,
-            Mode::Ssdo => &SSDO,
-            Mode::Both => &BOTH,
-        }
+    /// The viewer's key for this mode.
+    pub fn key(self) -> u32 {
+        self.declaration().key
     }
 
-    /// The mode for keys 1-4.
+    /// The mode of a viewer key.
     pub fn from_key(key: u32) -> Option<Mode> {
-        Mode::ALL.get(key.checked_sub(1)? as usize).copied()
+        MODES.iter().find(|d| d.key == key).map(|d| d.mode)
+    }
+
+    /// The modes that run the sampling pass (every one but Off).
+    pub fn sampled() -> impl Iterator<Item = Mode> {
+        MODES.iter().filter(|d| d.runs_sampling()).map(|d| d.mode)
     }
 }
 
@@ -94,21 +143,11 @@ impl fmt::Display for Mode {
 impl FromStr for Mode {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        Mode::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| Error::Setting(format!("unknown mode '{s}' (expected off, ssao, ssdo or both)")))
+        MODES.iter().find(|d| d.name.eq_ignore_ascii_case(s)).map(|d| d.mode).ok_or_else(|| {
+            let names: Vec<&str> = MODES.iter().map(|d| d.name).collect();
+            Error::Setting(format!("unknown mode '{s}' (expected {})", names.join(", ")))
+        })
     }
-}
-
-/// What a mode asks of the frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ModeDecl {
-    pub mode: Mode,
-    /// Ambient occlusion: darkens the ambient term.
-    pub ambient_occlusion: bool,
-    /// Directional occlusion: sky light from the open directions and one indirect bounce.
-    pub directional_occlusion: bool,
 }
 
 impl ModeDecl {
@@ -197,10 +236,8 @@ pub enum Step {
 impl Step {
     /// The step's name in a plan of `mode` (the sampling pass is named after what it computes).
     pub fn name_in(self, mode: Mode) -> &'static str {
-        match (self, mode) {
-            (Step::Occlusion, Mode::Ssao) => "ssao",
-            (Step::Occlusion, Mode::Ssdo) => "ssdo",
-            (Step::Occlusion, _) => "ssao_ssdo",
+        match self {
+            Step::Occlusion => mode.declaration().sampling_step,
             _ => self.name(),
         }
     }
@@ -321,6 +358,20 @@ impl Plan {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_mode_has_one_row_with_its_own_key_and_names() {
+        for (i, d) in MODES.iter().enumerate() {
+            assert_eq!(Mode::ALL[i], d.mode);
+            assert_eq!(Mode::from_key(d.key), Some(d.mode));
+            assert_eq!(d.name.parse::<Mode>().unwrap(), d.mode);
+            assert_eq!(d.mode.declaration(), d);
+        }
+        let err = "ssdo2".parse::<Mode>().unwrap_err().to_string();
+        assert!(err.contains("expected off, ssao, ssdo, both"), "{err}");
+        assert_eq!(Mode::sampled().collect::<Vec<_>>(), [Mode::Ssao, Mode::Ssdo, Mode::Both]);
+        assert_eq!(Mode::from_key(0), None);
+    }
 
     #[test]
     fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {

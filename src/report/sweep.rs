@@ -1,0 +1,154 @@
+//! What the report sweeps: one [`Config`] a measured row, listed by [`configurations`] for each
+//! radius. The count is known before anything renders, so the report can say its planned work.
+
+use super::ReportOptions;
+use crate::render::{Mode, SenderSky, Settings, Variant};
+
+/// One configuration the report renders and measures at a radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    pub mode: Mode,
+    pub variant: Variant,
+    /// Samples of the points and classic variants; slices of the march (0 for Off).
+    pub samples: usize,
+    /// Steps a side of the march's slices (0 otherwise).
+    pub steps: usize,
+    pub blur: bool,
+    /// The march's far steps read the depth pyramid.
+    pub pyramid: bool,
+    /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
+    pub bounce: Option<SenderSky>,
+}
+
+/// The variants, in the order the report measures them.
+pub const VARIANTS: [Variant; 3] = [Variant::Classic, Variant::Points, Variant::March];
+
+/// The configurations measured at one radius. Off has no sampling pass and no radius, so only
+/// the first radius measures it: once with the sky-lit composite (under the default variant's
+/// name; points gives the same image) and once for classic. Every sampled mode is measured at
+/// each count with blur on and off; the DO modes also with the march's depth pyramid, and at the
+/// default count with the bounce's other senders and with no bounce.
+pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
+    let base = Settings::default();
+    let mut configs = Vec::new();
+    for variant in VARIANTS {
+        if first_radius && variant != Variant::Points {
+            let off = Config { mode: Mode::Off, variant, samples: 0, steps: 0, blur: false, pyramid: false, bounce: None };
+            configs.push(off);
+        }
+        let counts: Vec<(usize, usize)> = if variant.marches() {
+            options.march.clone()
+        } else {
+            options.samples.iter().map(|&n| (n, 0)).collect()
+        };
+        for mode in Mode::sampled() {
+            let directional = mode.declaration().directional_occlusion;
+            let bounce = directional.then_some(base.sender_sky);
+            for &(samples, steps) in &counts {
+                let at = |blur, pyramid, bounce| Config { mode, variant, samples, steps, blur, pyramid, bounce };
+                configs.extend([at(true, false, bounce), at(false, false, bounce)]);
+                if variant.marches() && directional {
+                    configs.push(at(true, true, bounce));
+                }
+                if variant == Variant::default() && directional && (samples, steps) == (base.slices, base.steps) {
+                    for other in SenderSky::ALL.map(Some).into_iter().chain([None]) {
+                        if other != bounce {
+                            configs.push(at(true, false, other));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    configs
+}
+
+/// Every configuration of the whole report, over all its radii.
+pub fn planned_configurations(options: &ReportOptions) -> usize {
+    (0..options.radii.len()).map(|i| configurations(options, i == 0).len()).sum()
+}
+
+impl Config {
+    /// The renderer's settings for this configuration at `radius`. Every configuration renders
+    /// the same lighting (the classic variant keeps its own composite, not its own ambient), so
+    /// all meet one truth.
+    pub fn settings(&self, radius: f32) -> Settings {
+        let base = Settings::default();
+        let marches = self.variant.marches();
+        let (slices, steps) = if marches { (self.samples, self.steps) } else { (base.slices, base.steps) };
+        // No bounce (`none`) is the bounce's strength at 0.
+        let no_bounce = self.bounce.is_none() && self.mode.declaration().directional_occlusion;
+        Settings {
+            mode: self.mode,
+            variant: self.variant,
+            samples: if marches { base.samples } else { self.samples.max(1) },
+            slices,
+            steps,
+            blur: self.blur,
+            depth_pyramid: self.pyramid,
+            radius: Some(radius),
+            sender_sky: self.bounce.unwrap_or(base.sender_sky),
+            indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
+            ..base
+        }
+    }
+
+    /// The configuration whose error maps the report writes: the default SSAO+SSDO.
+    pub fn is_the_default_both(&self) -> bool {
+        let base = Settings::default();
+        self.variant == Variant::default()
+            && (self.samples, self.steps) == (base.slices, base.steps)
+            && !self.pyramid
+            && self.blur
+            && self.bounce == Some(base.sender_sky)
+            && self.mode == Mode::Both
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options(samples: usize, march: usize, radii: usize) -> ReportOptions {
+        ReportOptions {
+            scene: "cornell".into(),
+            model: None,
+            skybox: None,
+            size: (16, 12),
+            samples: vec![8; samples],
+            march: vec![(2, 12); march],
+            radii: vec![super::super::RadiusChoice::Times(1.0); radii],
+            samples_per_pixel: 2,
+            frames: 1,
+            lights: 0,
+            seed: 1,
+            out: "report".into(),
+        }
+    }
+
+    #[test]
+    fn the_sweep_is_counted_as_it_is_listed() {
+        // Per radius and count: 3 sampled modes × blur on/off, the two DO modes again with the
+        // pyramid (march only), and at the default march 3 other bounces in each DO mode.
+        for (samples, march, radii) in [(1, 1, 1), (5, 4, 1), (2, 3, 2)] {
+            let o = options(samples, march, radii);
+            let per_radius = 2 * (6 * samples) + (6 + 2) * march + 2 * 3 * march;
+            assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
+        }
+        let configs = configurations(&options(1, 1, 1), true);
+        assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
+        assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
+        assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce.is_none() && !c.pyramid));
+    }
+
+    #[test]
+    fn no_bounce_is_a_bounce_of_strength_zero_and_counts_reach_the_variant_they_belong_to() {
+        let none = Config { mode: Mode::Ssdo, variant: Variant::March, samples: 4, steps: 16, blur: true, pyramid: false, bounce: None };
+        let s = none.settings(0.5);
+        assert_eq!((s.indirect_strength, s.slices, s.steps, s.radius), (0.0, 4, 16, Some(0.5)));
+        let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };
+        let s = points.settings(0.5);
+        assert_eq!((s.samples, s.indirect_strength), (32, 1.0));
+        assert_eq!((s.slices, s.steps), (Settings::default().slices, Settings::default().steps));
+    }
+}
