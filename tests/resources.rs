@@ -68,3 +68,80 @@ fn resizes_and_sky_swaps_leave_memory_flat() {
     let change = (rss_after as f64 - rss_before as f64) / rss_before as f64;
     assert!(change.abs() <= 0.05, "resident memory changed by {:.1}%", change * 100.0);
 }
+
+#[test]
+fn a_history_survives_re_plans_that_do_not_concern_it_and_is_dropped_on_resize() {
+    use ssdo::render::history::{History, HistorySpec};
+    let Some(gpu) = common::gpu() else { return };
+    let spec = HistorySpec { name: "accumulated", format: wgpu::TextureFormat::Rgba16Float, key: 7 };
+    let other = HistorySpec { name: "other", key: 1, ..spec };
+    let mut history = History::default();
+    history.ensure(&gpu.device, (32, 24), &[spec]);
+    let get = |h: &History| {
+        let p = h.get("accumulated").expect("kept");
+        (p.generation, p.frames)
+    };
+    let made = get(&history).0;
+    assert_eq!(history.bytes(), 2 * 32 * 24 * 8, "two Rgba16Float textures");
+    // Ping-pong: what a frame writes is what the next one reads.
+    for frame in 1..=3 {
+        let written: *const _ = history.get("accumulated").unwrap().write();
+        history.advance();
+        let pair = history.get("accumulated").unwrap();
+        assert!(std::ptr::eq(pair.read(), written), "frame {frame} reads what the last one wrote");
+        assert!(!std::ptr::eq(pair.write(), written));
+    }
+    assert_eq!(get(&history), (made, 3));
+    // A re-plan that still asks for it (and for something else) keeps it, frames and all.
+    history.ensure(&gpu.device, (32, 24), &[other, spec]);
+    assert_eq!(get(&history), (made, 3));
+    assert_eq!(history.get("other").unwrap().frames, 0);
+    // A reset keeps the textures and forgets the frames.
+    history.reset();
+    assert_eq!(get(&history), (made, 0));
+    // Another key (its inputs changed) or another size makes it anew; what no spec names goes.
+    history.advance();
+    history.ensure(&gpu.device, (32, 24), &[HistorySpec { key: 8, ..spec }]);
+    let rekeyed = get(&history);
+    assert!(rekeyed.0 != made && rekeyed.1 == 0, "{rekeyed:?}");
+    assert!(history.get("other").is_none());
+    history.advance();
+    history.ensure(&gpu.device, (33, 24), &[HistorySpec { key: 8, ..spec }]);
+    let resized = get(&history);
+    assert!(resized.0 != rekeyed.0 && resized.1 == 0, "dropped on resize: {resized:?}");
+    assert_eq!(history.get("accumulated").unwrap().size, (33, 24));
+    history.ensure(&gpu.device, (33, 24), &[]);
+    assert_eq!((history.bytes(), history.all().count()), (0, 0));
+}
+
+#[test]
+fn the_frame_uniforms_carry_the_previous_camera_and_no_plan_allocates_history_yet() {
+    let Some(gpu) = common::gpu() else { return };
+    let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
+    let sky = Skybox::constant(Vec3::ONE);
+    let size = (40, 30);
+    let mut renderer = common::renderer(&gpu, &scene, &sky, size, Settings { mode: Mode::Both, ..Settings::default() });
+    let a = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
+    let b = ssdo::scene::OrbitCamera { yaw_deg: a.yaw_deg + 10.0, ..a };
+    let clip = |c: &ssdo::scene::OrbitCamera| {
+        (c.view_to_clip(size.0 as f32 / size.1 as f32) * c.world_to_view()).to_cols_array_2d()
+    };
+    let previous = |r: &ssdo::render::Renderer| r.frame_uniforms().previous_world_to_clip;
+    common::shoot(&gpu, &mut renderer, &a);
+    assert_eq!(previous(&renderer), clip(&a), "a first frame's previous camera is its own");
+    common::shoot(&gpu, &mut renderer, &b);
+    assert_eq!(previous(&renderer), clip(&a), "the second frame remembers the first's camera");
+    assert_ne!(previous(&renderer), clip(&b));
+    renderer.reset_history();
+    common::shoot(&gpu, &mut renderer, &b);
+    assert_eq!(previous(&renderer), clip(&b), "after a reset the previous camera is the frame's own");
+    // Nothing accumulates yet: no plan asks for a history, so none is allocated.
+    for mode in Mode::ALL {
+        renderer.set_mode(&gpu, mode);
+        renderer.resize(&gpu, 41, 30).unwrap();
+        common::shoot(&gpu, &mut renderer, &a);
+        assert_eq!(renderer.history().bytes(), 0, "{mode}");
+        assert!(renderer.allocations().iter().all(|(name, _)| !name.starts_with("history_")));
+        renderer.resize(&gpu, 40, 30).unwrap();
+    }
+}

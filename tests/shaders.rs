@@ -104,6 +104,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             output_origin,
             _pad1,
             sky_sh,
+            previous_world_to_clip,
         }
     );
     same_layout!(

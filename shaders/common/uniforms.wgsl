@@ -37,6 +37,9 @@ struct Frame {
     // The sky's irradiance E(n)/π for a world-space normal: 9 spherical-harmonic coefficients
     // (rgb), scaled by the sky scale and strength and pre-exposed (Skybox::irradiance_sh).
     sky_sh: array<vec4<f32>, 9>,
+    // World space to the previous frame's clip space (this frame's own on a first frame or
+    // after a reset): where a static surface was on screen a frame ago, for reprojection.
+    previous_world_to_clip: mat4x4<f32>,
 }
 
 struct Light {

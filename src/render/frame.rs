@@ -37,6 +37,10 @@ pub struct FrameData {
     pub cube_order: wgpu::Buffer,
     light_capacity: usize,
     frame_index: u32,
+    /// The last frame's world-to-clip transform; `None` on a first frame and after a reset.
+    previous_world_to_clip: Option<glam::Mat4>,
+    /// What the last `update` wrote (for tests and diagnostics).
+    last: FrameUniforms,
 }
 
 impl FrameData {
@@ -75,7 +79,9 @@ impl FrameData {
         });
         let (lights, bind_group) = Self::light_buffer(device, &layout, &uniforms, 1);
         let cube_order = Self::order_buffer(device, 1);
-        Self { layout, bind_group, uniforms, lights, cube_order, light_capacity: 1, frame_index: 0 }
+        let (light_capacity, frame_index, previous_world_to_clip) = (1, 0, None);
+        let last = bytemuck::Zeroable::zeroed();
+        Self { layout, bind_group, uniforms, lights, cube_order, light_capacity, frame_index, previous_world_to_clip, last }
     }
 
     fn order_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
@@ -111,6 +117,16 @@ impl FrameData {
         (lights, bind_group)
     }
 
+    /// The uniforms of the last frame written.
+    pub fn uniforms(&self) -> &FrameUniforms {
+        &self.last
+    }
+
+    /// The next frame has no previous one: its previous camera is its own.
+    pub fn forget_previous(&mut self) {
+        self.previous_world_to_clip = None;
+    }
+
     /// Bytes held by the frame buffers.
     pub fn bytes(&self) -> u64 {
         self.uniforms.size() + self.lights.size() + self.cube_order.size()
@@ -129,6 +145,8 @@ impl FrameData {
         let (w, h) = inputs.size;
         let world_to_view = camera.world_to_view();
         let view_to_clip = camera.view_to_clip(w as f32 / h as f32);
+        let world_to_clip = view_to_clip * world_to_view;
+        let previous = self.previous_world_to_clip.replace(world_to_clip).unwrap_or(world_to_clip);
         let uniforms = FrameUniforms {
             world_to_view: mat(world_to_view),
             view_to_clip: mat(view_to_clip),
@@ -152,8 +170,10 @@ impl FrameData {
             output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32],
             _pad1: [0.0; 2],
             sky_sh: inputs.sky_sh.map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
+            previous_world_to_clip: mat(previous),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
+        self.last = uniforms;
 
         if lights.len() > self.light_capacity {
             self.light_capacity = lights.len().next_power_of_two();

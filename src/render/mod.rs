@@ -6,6 +6,7 @@
 
 pub mod capture;
 pub mod frame;
+pub mod history;
 pub mod kernel;
 pub mod modes;
 pub mod passes;
@@ -24,19 +25,11 @@ use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
 use frame::FrameData;
+use history::History;
 pub use kernel::Variant;
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, TargetSet};
-use passes::blur::BlurPass;
-use passes::composite::CompositePass;
-use passes::depth_pyramid::DepthPyramidPass;
-use passes::gbuffer::GBufferPass;
-use passes::light_cubes::LightCubesPass;
-use passes::lighting::LightingPass;
-use passes::occlusion::OcclusionPass;
-use passes::sender_sky::SenderSkyPass;
-use passes::skybox::SkyboxPass;
-use passes::tonemap::TonemapPass;
-use passes::{Pass, Preparation, Recording};
+use passes::set::PassSet;
+use passes::{FrameState, Preparation, Recording};
 use resources::sampling::OcclusionData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
@@ -62,19 +55,12 @@ pub struct Renderer {
     unused: wgpu::TextureView,
     /// The same for the depth pyramid's integer format.
     unused_pyramid: wgpu::TextureView,
-    pyramid: DepthPyramidPass,
     targets: Targets,
+    /// Targets that survive frames and re-plans (none until a pass accumulates).
+    history: History,
     scene: SceneGpu,
     sky: SkyGpu,
-    gbuffer: GBufferPass,
-    sender_sky_pass: SenderSkyPass,
-    lighting: LightingPass,
-    occlusion: OcclusionPass,
-    blur: BlurPass,
-    composite: CompositePass,
-    skybox: SkyboxPass,
-    light_cubes: LightCubesPass,
-    tonemap: TonemapPass,
+    passes: PassSet,
     /// Format of what `encode` draws into.
     output: wgpu::TextureFormat,
     /// Keep the HDR image for reading back after the frame (see [`Renderer::keep_hdr`]).
@@ -100,8 +86,8 @@ impl Renderer {
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan);
-        let mut gbuffer = GBufferPass::new(gpu, &frame.layout)?;
-        let scene_gpu = gbuffer.upload(gpu, &scene.model);
+        let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
+        let scene_gpu = passes.gbuffer.upload(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
         let unused = targets::Target::new(device, "unused_input", (1, 1), targets::DO_FORMAT).view;
         let unused_pyramid = targets::Target::new(device, "unused_pyramid", (1, 1), targets::PYRAMID_FORMAT).view;
@@ -113,14 +99,6 @@ impl Renderer {
             scene_radius: scene.default_radius(),
             sky_sh: sky.irradiance,
             occlusion_data: OcclusionData::new(device),
-            sender_sky_pass: SenderSkyPass::new(device, &frame.layout, &sky_layout)?,
-            lighting: LightingPass::new(device, &frame.layout)?,
-            occlusion: OcclusionPass::new(device, &frame.layout, &sky_layout)?,
-            blur: BlurPass::new(device, &frame.layout)?,
-            composite: CompositePass::new(device, &frame.layout, &sky_layout, output)?,
-            skybox: SkyboxPass::new(device, &frame.layout, &sky_layout)?,
-            light_cubes: LightCubesPass::new(device, &frame.layout, output)?,
-            tonemap: TonemapPass::new(device, &frame.layout, output)?,
             output,
             keep_hdr: false,
             plan,
@@ -128,11 +106,11 @@ impl Renderer {
             sky_layout,
             unused,
             unused_pyramid,
-            pyramid: DepthPyramidPass::new(device)?,
             targets,
+            history: History::default(),
             scene: scene_gpu,
             sky: sky_gpu,
-            gbuffer,
+            passes,
             timer: None,
         };
         renderer.prepare_passes(gpu);
@@ -194,6 +172,8 @@ impl Renderer {
 
     fn rebuild_targets(&mut self, gpu: &Gpu) {
         self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan);
+        // A history outlives the re-plan unless its size or its own inputs changed.
+        self.history.ensure(&gpu.device, self.targets.size, &self.plan.history);
         self.prepare_passes(gpu);
         self.timer = self.timer.as_ref().map(|_| GpuTimer::new(gpu, &self.plan));
     }
@@ -211,49 +191,26 @@ impl Renderer {
             unused: &self.unused,
             unused_pyramid: &self.unused_pyramid,
         };
-        let passes: [&mut dyn Pass; 10] = [
-            &mut self.gbuffer,
-            &mut self.pyramid,
-            &mut self.sender_sky_pass,
-            &mut self.lighting,
-            &mut self.occlusion,
-            &mut self.blur,
-            &mut self.composite,
-            &mut self.skybox,
-            &mut self.light_cubes,
-            &mut self.tonemap,
-        ];
-        for pass in passes {
-            pass.prepare(&gpu.device, &preparation);
-        }
+        let device = &gpu.device;
+        self.passes.each(|pass| pass.prepare(device, &preparation));
         self.prepared = (variant, view);
     }
 
-    /// The pass that records `step`.
-    fn pass(&self, step: Step) -> &dyn Pass {
-        match step {
-            // Geometry once: albedo, normal, depth.
-            Step::GBuffer => &self.gbuffer,
-            // The closest depth per block, for the march's far steps.
-            Step::DepthPyramid => &self.pyramid,
-            // The sky each sender sees, at half resolution.
-            Step::SenderSky => &self.sender_sky_pass,
-            // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
-            Step::Lighting => &self.lighting,
-            // AO and/or DO from one set of samples.
-            Step::Occlusion => &self.occlusion,
-            // Denoise AO/DO.
-            Step::Blur => &self.blur,
-            // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky
-            // behind and the tone curve, into the output).
-            Step::Composite => &self.composite,
-            // Sky behind everything (HDR plans).
-            Step::Skybox => &self.skybox,
-            // Lights as emissive cubes.
-            Step::LightCubes => &self.light_cubes,
-            // HDR to display (HDR plans).
-            Step::Tonemap => &self.tonemap,
-        }
+    /// The histories the plan keeps across frames.
+    pub fn history(&self) -> &History {
+        &self.history
+    }
+
+    /// The view jumped or what it shows changed: the next frame reuses nothing from the last
+    /// (no history, and its previous camera is its own).
+    pub fn reset_history(&mut self) {
+        self.history.reset();
+        self.frame.forget_previous();
+    }
+
+    /// The frame uniforms of the last frame recorded.
+    pub fn frame_uniforms(&self) -> &uniforms::FrameUniforms {
+        self.frame.uniforms()
     }
 
     pub fn set_mode(&mut self, gpu: &Gpu, mode: Mode) {
@@ -263,12 +220,13 @@ impl Renderer {
 
     pub fn set_lights(&mut self, gpu: &Gpu, lights: Vec<PointLight>) {
         self.lights = lights;
+        self.history.reset();
         self.apply(gpu);
     }
 
     /// Replaces the model and lights.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
-        self.scene = self.gbuffer.upload(gpu, &scene.model);
+        self.scene = self.passes.gbuffer.upload(gpu, &scene.model);
         self.rig = scene.rig;
         self.scene_radius = scene.default_radius();
         self.set_lights(gpu, scene.lights.clone());
@@ -294,7 +252,8 @@ impl Renderer {
             let plan = Self::plan_for(&Settings { mode, ..*settings }, features, keep_hdr);
             // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
             let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
-            let bytes = Targets::bytes_for(size, &plan) + output;
+            let history: u64 = plan.history.iter().map(|h| 2 * targets::texel_bytes(size, h.format)).sum();
+            let bytes = Targets::bytes_for(size, &plan) + history + output;
             budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
                 .map_err(Error::Setting)?;
         }
@@ -305,6 +264,7 @@ impl Renderer {
     pub fn set_sky(&mut self, gpu: &Gpu, sky: &Skybox) -> Result<()> {
         self.sky = SkyGpu::upload(gpu, &self.sky_layout, sky)?;
         self.sky_sh = sky.irradiance;
+        self.history.reset();
         Ok(())
     }
 
@@ -354,6 +314,7 @@ impl Renderer {
     pub fn allocations(&self) -> Vec<(String, u64)> {
         let mut list: Vec<(String, u64)> =
             self.targets.allocations().into_iter().map(|(n, b)| (n.to_string(), b)).collect();
+        list.extend(self.history.all().map(|h| (format!("history_{}", h.spec.name), h.bytes())));
         list.push(("scene_geometry_and_materials".into(), self.scene.bytes));
         list.push(("sky_cubemap".into(), self.sky.bytes));
         list.push(("frame_uniforms_and_lights".into(), self.frame.bytes()));
@@ -385,9 +346,13 @@ impl Renderer {
     ) {
         self.apply(gpu);
         self.upload_frame(gpu, camera, origin);
+        let (history, plan) = (std::mem::take(&mut self.history), self.plan.clone());
+        let state = FrameState { plan: &plan, frame_index: self.frame_uniforms().frame_index, history: &history };
+        self.passes.each(|pass| pass.begin_frame(&state));
+        self.history = history;
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));
-            self.pass(step).record(Recording {
+            self.passes.get(step).record(Recording {
                 encoder,
                 timestamps: self.timer.as_ref().map(|timer| timer.writes(index)),
                 targets: &self.targets,
@@ -399,9 +364,12 @@ impl Renderer {
                 light_order: &self.frame.cube_order,
                 output,
                 origin,
+                history: &self.history,
             });
             encoder.pop_debug_group();
         }
+        // What this frame wrote is what the next one reads.
+        self.history.advance();
         if let Some(timer) = &mut self.timer {
             timer.resolve(encoder);
         }

@@ -63,7 +63,7 @@ impl Target {
 }
 
 /// The bytes of a `size` texture of `format`.
-fn texel_bytes(size: (u32, u32), format: wgpu::TextureFormat) -> u64 {
+pub(crate) fn texel_bytes(size: (u32, u32), format: wgpu::TextureFormat) -> u64 {
     size.0 as u64 * size.1 as u64 * format.block_copy_size(None).unwrap_or(4) as u64
 }
 

@@ -33,6 +33,7 @@ pub struct FrameUniforms {
     pub output_origin: [f32; 2],
     pub _pad1: [f32; 2],
     pub sky_sh: [[f32; 4]; 9],
+    pub previous_world_to_clip: [[f32; 4]; 4],
 }
 
 /// One point light (bind group 0, binding 1, an array); `Light` in `uniforms.wgsl`.

@@ -21,6 +21,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use super::history::HistorySpec;
 use super::settings::SenderSky;
 use crate::{Error, Result};
 
@@ -273,6 +274,8 @@ pub struct Plan {
     /// bounce.
     pub sender_sky: SenderSky,
     pub steps: Vec<Step>,
+    /// The targets kept across frames (see `history.rs`); no step accumulates yet, so none.
+    pub history: Vec<HistorySpec>,
 }
 
 impl Plan {
@@ -312,7 +315,8 @@ impl Plan {
         if !o.display {
             steps.push(Step::Tonemap);
         }
-        Self { mode, decl, features, blur: o.blur && decl.runs_sampling(), display: o.display, sender_sky, steps }
+        let blur = o.blur && decl.runs_sampling();
+        Self { mode, decl, features, blur, display: o.display, sender_sky, steps, history: Vec::new() }
     }
 
     /// The names of the steps, in order.

@@ -17,9 +17,11 @@ pub mod light_cubes;
 pub mod lighting;
 pub mod occlusion;
 pub mod sender_sky;
+pub mod set;
 pub mod skybox;
 pub mod tonemap;
 
+use super::history::History;
 use super::kernel::Variant;
 use super::modes::Plan;
 use super::resources::sampling::OcclusionData;
@@ -46,6 +48,8 @@ pub struct Recording<'a> {
     /// beside it).
     pub output: &'a wgpu::TextureView,
     pub origin: (u32, u32),
+    /// The targets that survive frames: read the last frame's, write this one's.
+    pub history: &'a History,
 }
 
 /// What a pass's bind groups and pipeline are built for.
@@ -69,9 +73,23 @@ pub trait Pass {
     /// keep this default.
     fn prepare(&mut self, _device: &wgpu::Device, _p: &Preparation<'_>) {}
 
+    /// Updates what the pass keeps from frame to frame (a jitter, a frame count), once a frame
+    /// before any pass records, for every pass whether the plan runs it or not. Stateless
+    /// passes keep this default.
+    fn begin_frame(&mut self, _frame: &FrameState<'_>) {}
+
     /// Records the pass. Only steps of the plan are recorded, and only after `prepare`: a pass
     /// recorded otherwise is a bug, and says so.
     fn record(&self, rec: Recording<'_>);
+}
+
+/// What a pass may look at in [`Pass::begin_frame`].
+pub struct FrameState<'a> {
+    pub plan: &'a Plan,
+    /// Counts frames since the renderer was made (wraps).
+    pub frame_index: u32,
+    /// The histories and how many frames each holds (0 after a reset).
+    pub history: &'a History,
 }
 
 /// A bind-group-layout entry for a float texture read by fragment shaders.

@@ -1,0 +1,104 @@
+//! State that lives across frames. Every other screen target is rebuilt whenever the plan or the
+//! size changes; a history is not: it is a pair of textures (ping-pong: the frame reads what the
+//! last frame wrote and writes the other) that survives frames and re-plans until the size or
+//! its own inputs change. The previous frame's camera is beside it, in the frame uniforms
+//! (`previous_world_to_clip`, see `frame.rs`), so a pass can reproject into it.
+//!
+//! A pass that accumulates over frames asks for its history through the plan
+//! ([`Plan::history`](super::Plan::history)), reads [`PingPong::read`], writes
+//! [`PingPong::write`], and may update per-frame state in `Pass::begin_frame`. The renderer swaps
+//! every pair at the end of a frame and resets them when the view jumps or the scene changes.
+//! A plan that asks for none allocates none.
+
+use super::targets::Target;
+
+/// What a history is, and what it is valid for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HistorySpec {
+    pub name: &'static str,
+    pub format: wgpu::TextureFormat,
+    /// A digest of the inputs whose change makes the history meaningless (the settings it
+    /// accumulates under, the model, the sky, the lights): another key drops it.
+    pub key: u64,
+}
+
+/// One history: the texture this frame reads (the last frame's result) and the one it writes.
+pub struct PingPong {
+    pub spec: HistorySpec,
+    pub size: (u32, u32),
+    targets: [Target; 2],
+    /// Which of the two this frame writes.
+    written: usize,
+    /// Frames written since the pair was made or reset.
+    pub frames: u32,
+    /// A serial number of the allocation: a new one each time a pair is made.
+    pub generation: u64,
+}
+
+impl PingPong {
+    /// What the last frame wrote.
+    pub fn read(&self) -> &Target {
+        &self.targets[1 - self.written]
+    }
+
+    /// What this frame writes.
+    pub fn write(&self) -> &Target {
+        &self.targets[self.written]
+    }
+
+    pub fn bytes(&self) -> u64 {
+        self.targets.iter().map(|t| t.bytes).sum()
+    }
+}
+
+/// Every history of the renderer.
+#[derive(Default)]
+pub struct History {
+    pairs: Vec<PingPong>,
+    made: u64,
+}
+
+impl History {
+    /// Keeps each history of `specs` that exists at `size` under the same key, makes the ones
+    /// that do not (with no frames), and drops the histories no spec names any more.
+    pub fn ensure(&mut self, device: &wgpu::Device, size: (u32, u32), specs: &[HistorySpec]) {
+        self.pairs.retain(|p| p.size == size && specs.contains(&p.spec));
+        for spec in specs {
+            if self.get(spec.name).is_none() {
+                self.made += 1;
+                let target = || Target::new(device, spec.name, size, spec.format);
+                let targets = [target(), target()];
+                self.pairs.push(PingPong { spec: *spec, size, targets, written: 0, frames: 0, generation: self.made });
+            }
+        }
+    }
+
+    /// The end of a frame: what each pair wrote becomes what the next frame reads.
+    pub fn advance(&mut self) {
+        for pair in &mut self.pairs {
+            pair.written = 1 - pair.written;
+            pair.frames = pair.frames.saturating_add(1);
+        }
+    }
+
+    /// The view jumped or the scene changed: the next frame starts every history anew (the
+    /// textures stay; a pass reads `frames == 0` as "nothing to reuse").
+    pub fn reset(&mut self) {
+        for pair in &mut self.pairs {
+            pair.frames = 0;
+        }
+    }
+
+    pub fn get(&self, name: &str) -> Option<&PingPong> {
+        self.pairs.iter().find(|p| p.spec.name == name)
+    }
+
+    pub fn all(&self) -> impl Iterator<Item = &PingPong> {
+        self.pairs.iter()
+    }
+
+    /// Bytes held by every pair.
+    pub fn bytes(&self) -> u64 {
+        self.pairs.iter().map(PingPong::bytes).sum()
+    }
+}

@@ -1,0 +1,102 @@
+//! Every pass of the renderer in one place: built together, prepared together, and found by the
+//! step they record. Adding a pass is a field here, its line in [`PassSet::new`], [`PassSet::each`]
+//! and [`PassSet::get`], and its [`Step`] in the plan.
+
+use super::blur::BlurPass;
+use super::composite::CompositePass;
+use super::depth_pyramid::DepthPyramidPass;
+use super::gbuffer::GBufferPass;
+use super::light_cubes::LightCubesPass;
+use super::lighting::LightingPass;
+use super::occlusion::OcclusionPass;
+use super::sender_sky::SenderSkyPass;
+use super::skybox::SkyboxPass;
+use super::tonemap::TonemapPass;
+use super::Pass;
+use crate::gpu::Gpu;
+use crate::render::modes::Step;
+use crate::Result;
+
+pub struct PassSet {
+    pub gbuffer: GBufferPass,
+    pub pyramid: DepthPyramidPass,
+    pub sender_sky: SenderSkyPass,
+    pub lighting: LightingPass,
+    pub occlusion: OcclusionPass,
+    pub blur: BlurPass,
+    pub composite: CompositePass,
+    pub skybox: SkyboxPass,
+    pub light_cubes: LightCubesPass,
+    pub tonemap: TonemapPass,
+}
+
+impl PassSet {
+    /// Builds every pass: what lives as long as the renderer (layouts, shaders, pipelines that
+    /// depend on nothing else). `frame` and `sky` are the layouts of bind groups 0 and 2.
+    pub fn new(
+        gpu: &Gpu,
+        frame: &wgpu::BindGroupLayout,
+        sky: &wgpu::BindGroupLayout,
+        output: wgpu::TextureFormat,
+    ) -> Result<Self> {
+        let device = &gpu.device;
+        Ok(Self {
+            gbuffer: GBufferPass::new(gpu, frame)?,
+            pyramid: DepthPyramidPass::new(device)?,
+            sender_sky: SenderSkyPass::new(device, frame, sky)?,
+            lighting: LightingPass::new(device, frame)?,
+            occlusion: OcclusionPass::new(device, frame, sky)?,
+            blur: BlurPass::new(device, frame)?,
+            composite: CompositePass::new(device, frame, sky, output)?,
+            skybox: SkyboxPass::new(device, frame, sky)?,
+            light_cubes: LightCubesPass::new(device, frame, output)?,
+            tonemap: TonemapPass::new(device, frame, output)?,
+        })
+    }
+
+    /// Calls `f` on every pass, whether the plan runs it or not.
+    pub fn each(&mut self, mut f: impl FnMut(&mut dyn Pass)) {
+        let passes: [&mut dyn Pass; 10] = [
+            &mut self.gbuffer,
+            &mut self.pyramid,
+            &mut self.sender_sky,
+            &mut self.lighting,
+            &mut self.occlusion,
+            &mut self.blur,
+            &mut self.composite,
+            &mut self.skybox,
+            &mut self.light_cubes,
+            &mut self.tonemap,
+        ];
+        for pass in passes {
+            f(pass);
+        }
+    }
+
+    /// The pass that records `step`: the frame's table of contents.
+    pub fn get(&self, step: Step) -> &dyn Pass {
+        match step {
+            // Geometry once: albedo, normal, depth.
+            Step::GBuffer => &self.gbuffer,
+            // The closest depth per block, for the march's far steps.
+            Step::DepthPyramid => &self.pyramid,
+            // The sky each sender sees, at half resolution.
+            Step::SenderSky => &self.sender_sky,
+            // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
+            Step::Lighting => &self.lighting,
+            // AO and/or DO from one set of samples.
+            Step::Occlusion => &self.occlusion,
+            // Denoise AO/DO.
+            Step::Blur => &self.blur,
+            // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky
+            // behind and the tone curve, into the output).
+            Step::Composite => &self.composite,
+            // Sky behind everything (HDR plans).
+            Step::Skybox => &self.skybox,
+            // Lights as emissive cubes.
+            Step::LightCubes => &self.light_cubes,
+            // HDR to display (HDR plans).
+            Step::Tonemap => &self.tonemap,
+        }
+    }
+}
