@@ -8,8 +8,8 @@ use std::time::Instant;
 use clap::Parser;
 
 use ssdo::gpu::Gpu;
-use ssdo::render::capture::{capture, output_texture, CAPTURE_FORMAT};
-use ssdo::render::timing::BenchReport;
+use ssdo::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
+use ssdo::headless::bench::BenchReport;
 use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 
@@ -146,7 +146,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
             print_plan(&renderer)?;
         }
         if args.stats {
-            let stats = ssdo::render::stats::frame_stats(&gpu, &mut renderer, &camera)?;
+            let stats = ssdo::headless::stats::frame_stats(&gpu, &mut renderer, &camera)?;
             if args.json {
                 let buffers: serde_json::Map<String, serde_json::Value> =
                     stats.iter().map(|s| (s.name.to_string(), s.json())).collect();
@@ -166,7 +166,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         batch.stage(&path, &output::png_bytes(&path, &image)?)?;
         if args.raw {
             let exr = args.out.join(format!("{}.exr", mode.name()));
-            batch.stage(&exr, &output::exr_bytes(&exr, &ssdo::render::stats::hdr_image(&gpu, &renderer)?)?)?;
+            batch.stage(&exr, &output::exr_bytes(&exr, &ssdo::headless::stats::hdr_image(&gpu, &renderer)?)?)?;
         }
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
@@ -230,7 +230,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     for mode in Mode::ALL {
         renderer.set_mode(&gpu, mode);
         bar.set_message(mode.name());
-        modes.push((mode, ssdo::render::timing::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
+        modes.push((mode, ssdo::headless::bench::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
         bar.inc(1);
     }
     bar.finish_and_clear();

@@ -4,7 +4,7 @@
 mod common;
 
 use ssdo::gpu::Gpu;
-use ssdo::render::capture::capture;
+use ssdo::headless::capture::capture;
 use ssdo::render::{Mode, Settings, Variant};
 use ssdo::scene::{OrbitCamera, Scene};
 

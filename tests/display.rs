@@ -6,8 +6,8 @@
 mod common;
 
 use common::{gpu, renderer, shoot};
-use ssdo::render::capture::{output_texture, CAPTURE_FORMAT};
-use ssdo::render::readback::read_texture;
+use ssdo::headless::capture::{output_texture, CAPTURE_FORMAT};
+use ssdo::headless::readback::read_texture;
 use ssdo::render::{Mode, Settings, Step, Variant};
 use ssdo::scene::{self, OrbitCamera, Scene};
 

@@ -6,7 +6,7 @@ mod common;
 
 use common::{gpu, looking, renderer, shoot};
 use glam::Vec3;
-use ssdo::render::readback::read_rgba16f;
+use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, Settings, Variant, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, Scene, Skybox};

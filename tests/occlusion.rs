@@ -7,7 +7,7 @@ mod common;
 use common::{gpu, looking, red_wall_scene, renderer, shoot};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
-use ssdo::render::readback::{read_r16f, read_rgba16f};
+use ssdo::headless::readback::{read_r16f, read_rgba16f};
 use ssdo::render::{Mode, Renderer, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
@@ -359,7 +359,7 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
                     assert!(buffer.iter().any(|p| p[0] > 0.0), "{mode} {variant}: DO not all zero");
                 }
             }
-            let normals = ssdo::render::readback::read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
+            let normals = ssdo::headless::readback::read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
             assert!(normals.iter().all(|p| p.iter().all(|c| c.is_finite())));
         }
     }

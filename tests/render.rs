@@ -6,7 +6,7 @@ mod common;
 
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot};
 use glam::{Vec3, Vec4Swizzles};
-use ssdo::render::readback::{read_depth, read_rgba16f, read_surfaces};
+use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
 use ssdo::render::{Settings, Step};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
 

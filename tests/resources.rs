@@ -29,7 +29,7 @@ fn resizes_and_sky_swaps_leave_memory_flat() {
     let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
     let sizes = [(0, 0), (1, 1), (64, 48), (3, 2), (97, 61), (0, 0), (40, 30), (64, 48)];
     let total = |r: &ssdo::render::Renderer| r.allocations().iter().map(|(_, b)| b).sum::<u64>();
-    let output = ssdo::render::capture::output_texture(&gpu, (128, 96));
+    let output = ssdo::headless::capture::output_texture(&gpu, (128, 96));
     let view = output.create_view(&wgpu::TextureViewDescriptor::default());
 
     let mut round = |resizes: usize, swaps: usize| {

@@ -10,7 +10,7 @@ use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::gpu::Gpu;
 use ssdo::reference::{ReferenceScene, TraceSettings};
-use ssdo::render::readback::read_rgba16f;
+use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, SenderSky, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{LightRig, Material, OrbitCamera, Scene, Skybox};

@@ -7,8 +7,8 @@ mod common;
 
 use glam::Vec3;
 use ssdo::gpu::Gpu;
-use ssdo::render::capture::CAPTURE_FORMAT;
-use ssdo::render::stats::frame_stats;
+use ssdo::headless::capture::CAPTURE_FORMAT;
+use ssdo::headless::stats::frame_stats;
 use ssdo::render::{Mode, Renderer, Settings, Variant};
 use ssdo::scene::{builtin, model::load_obj, OrbitCamera, PointLight, Scene, Skybox};
 

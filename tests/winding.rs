@@ -7,7 +7,7 @@ mod common;
 use common::{gpu, looking, renderer, shoot};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
-use ssdo::render::readback::read_rgba16f;
+use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::model::{load_obj, Vertex};

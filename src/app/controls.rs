@@ -68,3 +68,21 @@ impl CameraControls {
         true
     }
 }
+
+/// The mode a key selects: its digit (top row or keypad) through the mode table's keys.
+pub fn mode_for_key(key: winit::keyboard::KeyCode) -> Option<crate::render::Mode> {
+    use winit::keyboard::KeyCode;
+    let digit = match key {
+        KeyCode::Digit1 | KeyCode::Numpad1 => 1,
+        KeyCode::Digit2 | KeyCode::Numpad2 => 2,
+        KeyCode::Digit3 | KeyCode::Numpad3 => 3,
+        KeyCode::Digit4 | KeyCode::Numpad4 => 4,
+        KeyCode::Digit5 | KeyCode::Numpad5 => 5,
+        KeyCode::Digit6 | KeyCode::Numpad6 => 6,
+        KeyCode::Digit7 | KeyCode::Numpad7 => 7,
+        KeyCode::Digit8 | KeyCode::Numpad8 => 8,
+        KeyCode::Digit9 | KeyCode::Numpad9 => 9,
+        _ => return None,
+    };
+    crate::render::Mode::from_key(digit)
+}

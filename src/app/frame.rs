@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use super::loader::Loaded;
 use super::ui::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
-use crate::render::capture::capture;
+use crate::headless::capture::capture;
 use crate::render::Mode;
 use crate::scene::Scene;
 use crate::{compare, output, Result};

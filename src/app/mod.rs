@@ -20,7 +20,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use crate::gpu::{instance_descriptor, Gpu};
-use crate::render::{Mode, Renderer, Settings};
+use crate::render::{Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::spec::SceneArgs;
 use crate::{Error, Result};
@@ -333,19 +333,7 @@ impl Viewer {
     }
 
     fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
-        let digit = match key {
-            KeyCode::Digit1 | KeyCode::Numpad1 => Some(1),
-            KeyCode::Digit2 | KeyCode::Numpad2 => Some(2),
-            KeyCode::Digit3 | KeyCode::Numpad3 => Some(3),
-            KeyCode::Digit4 | KeyCode::Numpad4 => Some(4),
-            KeyCode::Digit5 | KeyCode::Numpad5 => Some(5),
-            KeyCode::Digit6 | KeyCode::Numpad6 => Some(6),
-            KeyCode::Digit7 | KeyCode::Numpad7 => Some(7),
-            KeyCode::Digit8 | KeyCode::Numpad8 => Some(8),
-            KeyCode::Digit9 | KeyCode::Numpad9 => Some(9),
-            _ => None,
-        };
-        if let Some(mode) = digit.and_then(Mode::from_key) {
+        if let Some(mode) = controls::mode_for_key(key) {
             return self.act(Action::Mode(mode));
         }
         match key {

@@ -4,18 +4,15 @@
 //! that list. Switching mode or light count rebuilds the plan and only what the new plan needs
 //! differently; resizing rebuilds the targets and the passes' bind groups.
 
-pub mod capture;
 pub mod frame;
 pub mod history;
 pub mod kernel;
 pub mod modes;
 pub mod passes;
-pub mod readback;
 pub mod resources;
 pub mod settings;
-pub mod stats;
 pub mod targets;
-pub mod timing;
+pub mod timer;
 pub mod uniforms;
 
 use glam::Vec3;
@@ -35,7 +32,7 @@ use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
 pub use settings::{SenderSky, Settings, View, REACH_RADII, THICKNESS_RADII};
 use targets::Targets;
-use timing::GpuTimer;
+use timer::GpuTimer;
 
 pub struct Renderer {
     pub settings: Settings,
@@ -85,7 +82,7 @@ impl Renderer {
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
-        let targets = Targets::new(device, size, &plan);
+        let targets = Targets::new(device, size, &plan.target_set());
         let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
         let scene_gpu = passes.gbuffer.upload(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
@@ -171,7 +168,7 @@ impl Renderer {
     }
 
     fn rebuild_targets(&mut self, gpu: &Gpu) {
-        self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan);
+        self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan.target_set());
         // A history outlives the re-plan unless its size or its own inputs changed.
         self.history.ensure(&gpu.device, self.targets.size, &self.plan.history);
         self.prepare_passes(gpu);
@@ -253,7 +250,7 @@ impl Renderer {
             // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
             let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
             let history: u64 = plan.history.iter().map(|h| 2 * targets::texel_bytes(size, h.format)).sum();
-            let bytes = Targets::bytes_for(size, &plan) + history + output;
+            let bytes = Targets::bytes_for(size, &plan.target_set()) + history + output;
             budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
                 .map_err(Error::Setting)?;
         }

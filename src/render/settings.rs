@@ -2,7 +2,7 @@
 //! and shading settings, what is shown — with their defaults.
 
 use super::kernel::Variant;
-use super::modes::Mode;
+use super::modes::table::Mode;
 use crate::Result;
 
 /// What the window shows: the final image or one of the intermediate buffers.

@@ -2,7 +2,6 @@
 //! plan needs a different set; passes own pipelines and rebuild only their bind groups. A target
 //! that the current plan does not read or write is not allocated at all.
 
-use super::modes::{Plan, TargetSet};
 
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// View-space normal and shininess packed in one u32 (`shaders/common/surface_pack.wgsl`).
@@ -126,6 +125,25 @@ pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
+/// Which screen targets a plan allocates besides the G-buffer (formats below).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TargetSet {
+    /// Linear HDR radiance (`hdr_color`).
+    pub hdr: bool,
+    /// The diffuse radiance SSDO bounces (`bounce_radiance`): the senders' direct light.
+    pub bounce: bool,
+    /// AO alone (`ao_raw`): SSAO.
+    pub ao: bool,
+    /// DO + AO (`do_raw`): SSDO and SSAO+SSDO.
+    pub directional: bool,
+    /// A blurred copy of whichever of the two the plan has.
+    pub blurred: bool,
+    /// The closest-depth pyramid of the march's far steps.
+    pub pyramid: bool,
+    /// The sky each sender sees, at half resolution (`sender_sky`).
+    pub sender_sky: bool,
+}
+
 /// The view of an optional target.
 pub fn view_of(target: &Option<Target>) -> Option<&wgpu::TextureView> {
     target.as_ref().map(|t| &t.view)
@@ -195,9 +213,8 @@ pub struct Targets {
 }
 
 impl Targets {
-    /// Allocates the plan's [`TargetSet`] and the G-buffer.
-    pub fn new(device: &wgpu::Device, size: (u32, u32), plan: &Plan) -> Self {
-        let set = plan.target_set();
+    /// Allocates the G-buffer and the targets of `set` (a plan's [`TargetSet`]).
+    pub fn new(device: &wgpu::Device, size: (u32, u32), set: &TargetSet) -> Self {
         Self {
             size,
             albedo: Target::new(device, "gbuffer_albedo", size, ALBEDO_FORMAT),
@@ -206,16 +223,15 @@ impl Targets {
             hdr: set.hdr.then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
             bounce: set.bounce.then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
             sender_sky: set.sender_sky.then(|| Target::new(device, "sender_sky", half_size(size), DO_FORMAT)),
-            raw: OcclusionTargets::new(device, &set, size, false),
-            blurred: set.blurred.then(|| OcclusionTargets::new(device, &set, size, true)),
+            raw: OcclusionTargets::new(device, set, size, false),
+            blurred: set.blurred.then(|| OcclusionTargets::new(device, set, size, true)),
             pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
         }
     }
 
-    /// The bytes [`Targets::new`] allocates for `plan` at `size`, known before anything is
+    /// The bytes [`Targets::new`] allocates for `set` at `size`, known before anything is
     /// allocated (the memory budget is checked with it).
-    pub fn bytes_for(size: (u32, u32), plan: &Plan) -> u64 {
-        let set = plan.target_set();
+    pub fn bytes_for(size: (u32, u32), set: &TargetSet) -> u64 {
         let when = |wanted: bool, bytes: u64| if wanted { bytes } else { 0 };
         let occlusion = when(set.ao, texel_bytes(size, AO_FORMAT)) + when(set.directional, texel_bytes(size, DO_FORMAT));
         [ALBEDO_FORMAT, NORMAL_FORMAT, DEPTH_FORMAT].map(|f| texel_bytes(size, f)).iter().sum::<u64>()

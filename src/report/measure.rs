@@ -7,8 +7,8 @@ use super::sweep::Config;
 use super::{metrics, plot, NoiseFloor, ReportOptions, Row};
 use crate::gpu::Gpu;
 use crate::reference::{self, Reference};
-use crate::render::capture::capture;
-use crate::render::readback::{read_r16f, read_rgba16f};
+use crate::headless::capture::capture;
+use crate::headless::readback::{read_r16f, read_rgba16f};
 use crate::render::{Mode, Renderer, View};
 use crate::scene::OrbitCamera;
 use crate::{Error, Result};
@@ -76,7 +76,7 @@ impl Bench<'_> {
         let (valid, truth) = (&truth.valid, &truth.reference);
         let Config { mode, variant, samples, steps, blur, pyramid, bounce } = config;
         renderer.settings = config.settings(radius);
-        let ms = crate::render::timing::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
+        let ms = crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
         let image = capture(gpu, renderer, camera)?;
         let s = renderer.settings;
         // The half-float buffers hold radiance × pre-exposure: divided out here.

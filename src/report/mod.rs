@@ -26,8 +26,8 @@ use std::time::Instant;
 
 use crate::gpu::Gpu;
 use crate::reference::{self, ReferenceScene, TraceSettings};
-use crate::render::capture::{capture, CAPTURE_FORMAT};
-use crate::render::readback::read_depth;
+use crate::headless::capture::{capture, CAPTURE_FORMAT};
+use crate::headless::readback::read_depth;
 use crate::render::{Mode, Renderer, SenderSky, Settings, Variant};
 pub use sweep::{planned_configurations, Config};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
@@ -187,7 +187,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     capture(gpu, &mut renderer, &camera)?;
     let depth = read_depth(gpu, &renderer.targets().depth.texture)?;
     let bvh = ReferenceScene::new(&scene.model);
-    let target = crate::render::capture::output_texture(gpu, options.size);
+    let target = crate::headless::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient };
     let sky_name = sky_path.as_ref().map_or_else(|| "the sky".to_string(), |p| p.display().to_string());

@@ -3,6 +3,7 @@
 
 pub mod builtin;
 pub mod camera;
+pub mod files;
 pub mod lights;
 pub mod model;
 pub mod obj_text;

@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use super::model::read_bounded;
+use super::files::read_bounded;
 use crate::{Error, Result};
 
 /// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every

@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::gpu::{Gpu, NO_ADAPTER_HELP};
-use ssdo::render::capture::{capture, CAPTURE_FORMAT};
+use ssdo::headless::capture::{capture, CAPTURE_FORMAT};
 use ssdo::render::{Renderer, Settings};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};

@@ -1,8 +1,8 @@
 //! Offscreen rendering to an image: the same renderer as the window, drawing into an sRGB
 //! texture that is read back.
 
-use super::readback::read_texture;
-use super::Renderer;
+use super::readback::{output_texture_as, read_texture};
+use crate::render::Renderer;
 use crate::gpu::Gpu;
 use crate::scene::OrbitCamera;
 use crate::{Error, Result};
@@ -13,20 +13,6 @@ pub const CAPTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormS
 /// An offscreen output texture of the renderer's size, in the capture format.
 pub fn output_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
     output_texture_as(gpu, size, CAPTURE_FORMAT)
-}
-
-/// A texture the renderer (or a copy pass) draws into and readback copies from.
-pub(crate) fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("capture_output"),
-        size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
 }
 
 /// Renders one frame of the current plan and returns it as an sRGB image. Works with any 8-bit

@@ -67,7 +67,7 @@ pub fn read_surfaces(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>
     Ok(bytemuck::cast_slice::<u8, u32>(&bytes)
         .iter()
         .map(|&bits| {
-            let (n, shininess) = super::targets::unpack_surface(bits);
+            let (n, shininess) = crate::render::targets::unpack_surface(bits);
             [n.x, n.y, n.z, shininess]
         })
         .collect())
@@ -88,12 +88,26 @@ pub fn read_depth(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<f32>> {
     Ok(bytemuck::cast_slice(&bytes).to_vec())
 }
 
+/// A texture the renderer (or a copy pass) draws into and readback copies from.
+pub fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureFormat) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("capture_output"),
+        size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
 fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
     use crate::render::passes::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
     let device = &gpu.device;
     let format = wgpu::TextureFormat::R32Uint;
     let size = depth.size();
-    let target = super::capture::output_texture_as(gpu, (size.width, size.height), format);
+    let target = output_texture_as(gpu, (size.width, size.height), format);
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("depth_copy_layout"),
         entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2)],

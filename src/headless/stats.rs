@@ -3,8 +3,9 @@
 //! values. DO direct and indirect share one buffer (sky·strength + bounce·strength); each is
 //! measured by rendering with the other's strength at 0 (the debug views).
 
+use super::capture::capture;
 use super::readback::{read_r16f, read_rgba16f};
-use super::{capture::capture, Renderer, View};
+use crate::render::{Renderer, View};
 use crate::gpu::Gpu;
 use crate::scene::OrbitCamera;
 use crate::Result;

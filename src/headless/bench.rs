@@ -1,0 +1,162 @@
+//! `ssdo bench`'s measurement: frames rendered, waited for and timed (per pass where the
+//! adapter has timestamp queries), reduced to medians, and its report.
+
+use crate::render::{Mode, Renderer, Settings};
+use crate::gpu::Gpu;
+use crate::scene::OrbitCamera;
+use crate::Result;
+
+/// Medians over measured frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    /// GPU milliseconds of the whole frame (the passes' sum), or wall time without timestamps.
+    pub frame_ms: f64,
+    /// Wall-clock milliseconds from encoding to the GPU going idle.
+    pub wall_ms: f64,
+    /// GPU milliseconds per pass, by name; empty without timestamp queries.
+    pub passes: Vec<(&'static str, f64)>,
+}
+
+/// What `ssdo bench` measured: every mode's frame and pass times with what they were measured
+/// on, as JSON or as the table the command prints.
+pub struct BenchReport {
+    pub device: String,
+    pub software: bool,
+    /// Timestamp queries (GPU time per pass), or synchronised wall time per frame.
+    pub timestamps: bool,
+    pub size: (u32, u32),
+    pub frames: usize,
+    pub settings: Settings,
+    pub modes: Vec<(Mode, Measurement)>,
+}
+
+impl BenchReport {
+    fn frame(&self, mode: Mode) -> f64 {
+        self.modes.iter().find(|(m, _)| *m == mode).map_or(f64::NAN, |(_, r)| r.frame_ms)
+    }
+
+    /// SSDO over SSAO, and SSAO+SSDO over SSDO, frame times.
+    pub fn ratios(&self) -> (f64, f64) {
+        (self.frame(Mode::Ssdo) / self.frame(Mode::Ssao), self.frame(Mode::Both) / self.frame(Mode::Ssdo))
+    }
+
+    pub fn json(&self) -> serde_json::Value {
+        let modes: serde_json::Map<String, serde_json::Value> = self
+            .modes
+            .iter()
+            .map(|(mode, r)| {
+                let passes: serde_json::Map<String, serde_json::Value> =
+                    r.passes.iter().map(|(n, ms)| (n.to_string(), serde_json::json!(ms))).collect();
+                (
+                    mode.name().to_string(),
+                    serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes }),
+                )
+            })
+            .collect();
+        let (ssdo_over_ssao, both_over_ssdo) = self.ratios();
+        let s = &self.settings;
+        serde_json::json!({
+            "device": self.device,
+            "software": self.software,
+            "timing": if self.timestamps { "timestamp" } else { "wall" },
+            "size": [self.size.0, self.size.1],
+            "frames": self.frames,
+            "variant": s.variant.name(),
+            "samples": s.samples,
+            "blur": s.blur,
+            "modes": modes,
+            "ratios": { "ssdo_over_ssao": ssdo_over_ssao, "both_over_ssdo": both_over_ssdo },
+        })
+    }
+
+    pub fn table(&self) -> String {
+        use std::fmt::Write as _;
+        let s = &self.settings;
+        let mut out = String::new();
+        let software = if self.software { " — a CPU rasteriser, not a GPU" } else { "" };
+        let method = if self.timestamps {
+            "timestamp queries (GPU time per pass)"
+        } else {
+            "synchronised wall time per frame (no timestamp queries)"
+        };
+        let count = if s.variant.marches() {
+            format!("{} slices × {} steps", s.slices, s.steps)
+        } else {
+            format!("{} samples", s.samples)
+        };
+        let _ = writeln!(out, "device: {}{software}", self.device);
+        let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames", self.frames);
+        let blur = if s.blur { "on" } else { "off" };
+        let _ = writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.variant);
+        for (mode, r) in &self.modes {
+            let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
+            let _ = writeln!(
+                out,
+                "{:>5}: frame {:8.2} ms (wall {:8.2} ms)  {}",
+                mode.name(),
+                r.frame_ms,
+                r.wall_ms,
+                passes.join(", ")
+            );
+        }
+        let (ssdo_over_ssao, both_over_ssdo) = self.ratios();
+        let _ = writeln!(out, "SSDO/SSAO frame-time ratio {ssdo_over_ssao:.3}; Both/SSDO {both_over_ssdo:.3}");
+        out
+    }
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    match values.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => values[n / 2],
+        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
+    }
+}
+
+/// Renders `frames` frames into `output` after two warm-up frames (the first compiles shaders on
+/// a software driver), each submitted and waited for, and returns the medians. Enable timing on
+/// the renderer first for per-pass GPU times.
+pub fn measure(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    camera: &OrbitCamera,
+    output: &wgpu::TextureView,
+    frames: usize,
+) -> Result<Measurement> {
+    renderer.apply(gpu);
+    let names = renderer.plan().step_names();
+    let (mut totals, mut walls) = (Vec::new(), Vec::new());
+    let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    for frame in 0..frames + 2 {
+        let started = std::time::Instant::now();
+        let mut encoder =
+            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("measure_encoder") });
+        renderer.encode(gpu, &mut encoder, camera, output);
+        gpu.queue.submit([encoder.finish()]);
+        renderer.timings_submitted();
+        gpu.wait()?;
+        let wall = started.elapsed().as_secs_f64() * 1e3;
+        let steps = renderer.read_timings(gpu)?;
+        if frame < 2 {
+            continue;
+        }
+        walls.push(wall);
+        match steps {
+            Some(steps) => {
+                totals.push(steps.iter().map(|(_, ms)| ms).sum());
+                for ((_, ms), list) in steps.iter().zip(per_pass.iter_mut()) {
+                    list.push(*ms);
+                }
+            }
+            None => totals.push(wall),
+        }
+    }
+    gpu.check()?;
+    let passes = if per_pass.iter().all(|p| p.is_empty()) {
+        Vec::new()
+    } else {
+        names.into_iter().zip(per_pass).map(|(n, mut v)| (n, median(&mut v))).collect()
+    };
+    Ok(Measurement { frame_ms: median(&mut totals), wall_ms: median(&mut walls), passes })
+}
