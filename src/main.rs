@@ -196,8 +196,10 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
 fn print_plan(renderer: &Renderer) -> Result<()> {
     let plan = renderer.plan();
     let mut text = format!("plan {}:", plan.mode);
-    for name in plan.step_names() {
-        text += &format!("\n  pass {name}");
+    let names = |ids: &[ssdo::render::TargetId]| ids.iter().map(|t| t.name()).collect::<Vec<_>>().join(" ");
+    for (step, io) in plan.io() {
+        let (name, reads, writes) = (step.name_in(plan.mode), names(&io.reads), names(&io.writes));
+        text += &format!("\n  pass {name} reads [{reads}] writes [{writes}]");
     }
     let allocations = renderer.allocations();
     for (name, bytes) in &allocations {

@@ -24,7 +24,7 @@ use crate::{Error, Result};
 use frame::FrameData;
 use history::History;
 pub use kernel::Variant;
-pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, TargetSet};
+pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
 use passes::set::PassSet;
 use passes::{FrameState, Preparation, Recording};
 use resources::sampling::OcclusionData;

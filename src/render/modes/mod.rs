@@ -18,7 +18,10 @@
 //! and the tone map; `--no-blur` drops the blur and its targets; the march with `--depth-pyramid`
 //! adds the pyramid in the DO modes.
 
+mod io;
 pub mod table;
+
+pub use io::{StepIo, TargetId};
 
 pub use table::{Mode, ModeDecl, MODES};
 
@@ -184,17 +187,18 @@ impl Plan {
         self.has(Step::Lighting) && self.features.lights > 0
     }
 
-    /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth).
+    /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth):
+    /// those its steps write (see `io.rs`).
     pub fn target_set(&self) -> TargetSet {
-        let samples = self.decl.runs_sampling();
+        let writes = |id| self.writes(id);
         TargetSet {
-            hdr: self.keeps_hdr(),
-            bounce: self.has(Step::Lighting),
-            ao: samples && !self.decl.directional_occlusion,
-            directional: self.decl.directional_occlusion,
-            blurred: self.blur,
-            pyramid: self.has(Step::DepthPyramid),
-            sender_sky: self.has(Step::SenderSky),
+            hdr: writes(TargetId::Hdr),
+            bounce: writes(TargetId::Bounce),
+            ao: writes(TargetId::AoRaw),
+            directional: writes(TargetId::DoRaw),
+            blurred: writes(TargetId::AoBlurred) || writes(TargetId::DoBlurred),
+            pyramid: writes(TargetId::Pyramid),
+            sender_sky: writes(TargetId::SenderSky),
         }
     }
 
@@ -211,6 +215,78 @@ impl Plan {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every plan the options can make.
+    fn all_plans() -> Vec<Plan> {
+        let mut plans = Vec::new();
+        for mode in Mode::ALL {
+            for lights in [0, 8] {
+                for bits in 0..16u32 {
+                    for sender_sky in SenderSky::ALL {
+                        let [blur, pyramid, display, indirect] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+                        let o = PlanOptions { blur, pyramid, display, indirect, sender_sky };
+                        plans.push(Plan::new(mode, SceneFeatures { lights }, o));
+                    }
+                }
+            }
+        }
+        plans
+    }
+
+    #[test]
+    fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_write() {
+        for plan in all_plans() {
+            let io = plan.io();
+            for (i, (step, step_io)) in io.iter().enumerate() {
+                for read in &step_io.reads {
+                    let earlier = io[..i].iter().any(|(_, e)| e.writes.contains(read));
+                    assert!(earlier, "{:?}: {step:?} reads {} before any step writes it", plan.steps, read.name());
+                }
+            }
+            assert!(plan.writes(TargetId::Output), "{:?}: nothing reaches the output", plan.steps);
+            // The set by hand, as the plan's rules say it.
+            let sampled = plan.decl.runs_sampling();
+            let t = plan.target_set();
+            assert_eq!(t.hdr, plan.keeps_hdr(), "{:?}", plan.steps);
+            assert_eq!(t.bounce, plan.has(Step::Lighting));
+            assert_eq!((t.ao, t.directional), (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion));
+            assert_eq!(t.blurred, plan.blur);
+            assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DepthPyramid), plan.has(Step::SenderSky)));
+        }
+    }
+
+    #[test]
+    fn the_architecture_pages_mode_table_is_what_the_plans_are() {
+        let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/ARCHITECTURE.md")).unwrap();
+        let lit = SceneFeatures { lights: 8 };
+        let mut previous: Option<Vec<String>> = None;
+        let mut rows = 0;
+        for line in page.lines().filter(|l| l.starts_with("| ")) {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let Some(mode) = MODES.iter().find(|d| d.title == cells[1]).map(|d| d.mode) else { continue };
+            let plan = Plan::new(mode, lit, PlanOptions::default());
+            assert_eq!(cells[2].replace(" → ", ", "), plan.step_names().join(", "), "{mode}: steps");
+            let mut named: Vec<String> = cells[3].split('`').skip(1).step_by(2).map(String::from).collect();
+            if cells[3].starts_with("as ") {
+                named = previous.clone().expect("'as' names an earlier row");
+            }
+            let mut written: Vec<String> = plan
+                .io()
+                .iter()
+                .flat_map(|(_, io)| io.writes.clone())
+                .filter(|t| !t.in_gbuffer() && *t != TargetId::Output)
+                .map(|t| t.name().to_string())
+                .collect();
+            written.sort();
+            written.dedup();
+            let mut sorted = named.clone();
+            sorted.sort();
+            assert_eq!(sorted, written, "{mode}: targets besides the G-buffer");
+            previous = Some(named);
+            rows += 1;
+        }
+        assert_eq!(rows, MODES.len(), "one row a mode in ARCHITECTURE.md");
+    }
 
     #[test]
     fn every_mode_has_one_row_with_its_own_key_and_names() {
