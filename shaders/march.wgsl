@@ -116,7 +116,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     let p = view_position(position, depth) + n * occ.bias;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
     let slices = max(slice_count, 1u);
-    let steps = max(u32(occ.steps), 1u);
+    let steps = max(occ.steps, 1u);
     let reach = max(occ.reach, radius);
     let thickness = max(occ.thickness, 0.0);
     let size = frame.viewport.xy;
@@ -300,7 +300,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
 }
 
 fn evaluate_pixel(position: vec2<f32>) -> Occlusion {
-    return evaluate(position, u32(occ.slices), vec2<i32>(position));
+    return evaluate(position, occ.slices, vec2<i32>(position));
 }
 
 // SSAO: AO alone, into a one-channel target.

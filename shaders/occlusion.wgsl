@@ -84,7 +84,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     let p = view_position(position, depth);
     let radius = occ.radius;
     let bias = occ.bias;
-    let count = min(u32(occ.sample_count), MAX_SAMPLES);
+    let count = min(occ.sample_count, MAX_SAMPLES);
     let tbn = tangent_frame(n, pixel);
     let size = vec2<i32>(frame.viewport.xy);
 

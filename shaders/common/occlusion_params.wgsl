@@ -13,7 +13,7 @@ struct OcclusionParams {
     radius: f32,
     bias: f32,
     // samples per pixel (points and classic variants)
-    sample_count: f32,
+    sample_count: u32,
     // the sky cube map's mip level a sample's solid angle reads
     sky_mip: f32,
     // multiply SSDO's sky light and its bounce
@@ -24,8 +24,8 @@ struct OcclusionParams {
     sender_sky_strength: f32,
     _pad0: f32,
     // The march (shaders/march.wgsl): slices and steps per side...
-    slices: f32,
-    steps: f32,
+    slices: u32,
+    steps: u32,
     // ...reach (view units: how far the sky's visibility and the bounce are looked for) and
     // thickness (view units: how deep a surface in the depth buffer is taken to be)
     reach: f32,

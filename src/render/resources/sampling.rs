@@ -55,11 +55,11 @@ impl OcclusionData {
             self.kernel_key = Some((params.variant, samples));
         }
         let u = self.uniforms.as_mut();
-        (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as f32, params.sky_mip);
+        (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as u32, params.sky_mip);
         (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
         u.sender_sky_strength = params.sender_sky_strength;
         (u.slices, u.steps, u.reach, u.thickness) =
-            (params.slices as f32, params.steps as f32, params.reach, params.thickness);
+            (params.slices as u32, params.steps as u32, params.reach, params.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
     }
 }
