@@ -11,16 +11,11 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
     let s = settings;
     let mut lines = vec![format!("{}  [{}]", s.mode.title(), s.mode.key())];
     if !s.mode.declaration().runs_sampling() {
-        let light = if s.variant == crate::render::Variant::Classic { "ambient" } else { "sky + ambient" };
+        let light = s.variant.decl().composite.label();
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {
         let blur = if s.blur { "blurred" } else { "no blur" };
-        let count = if s.variant.marches() {
-            format!("{} slices × {} steps", s.slices, s.steps)
-        } else {
-            format!("{} samples", s.samples)
-        };
-        lines.push(format!("{} variant, {count}, radius {radius:.3}, {blur}", s.variant));
+        lines.push(format!("{} variant, {}, radius {radius:.3}, {blur}", s.variant, s.count_label()));
     }
     lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
     lines

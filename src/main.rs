@@ -18,11 +18,13 @@ mod cli;
 use cli::*;
 
 fn run_report(args: &ReportArgs) -> Result<()> {
-    if let Some(&bad) = args.samples.iter().find(|s| !(1..=256).contains(*s)) {
-        return Err(Error::Setting(format!("--samples {bad}: each count must be between 1 and 256")));
+    use ssdo::render::{SAMPLES, SLICES, STEPS};
+    for &n in &args.samples {
+        SAMPLES.check(n)?;
     }
-    if let Some(&(slices, steps)) = args.march.iter().find(|(a, b)| !(1..=32).contains(a) || !(1..=64).contains(b)) {
-        return Err(Error::Setting(format!("--march {slices}x{steps}: slices must be 1-32 and steps 1-64")));
+    for &(slices, steps) in &args.march {
+        SLICES.check(slices)?;
+        STEPS.check(steps)?;
     }
     if args.samples.is_empty() || args.radius.is_empty() || args.march.is_empty() {
         return Err(Error::Setting("--samples, --march and --radius must each give at least one".into()));

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::render::{Mode, SenderSky, Settings, Variant, View};
+use crate::render::{Mode, SenderSky, Settings, Variant, View, SAMPLES, SLICES, STEPS};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
 
@@ -92,10 +92,10 @@ pub struct RenderArgs {
     #[arg(long)]
     pub samples: Option<usize>,
     /// The march: slices (directions around the view vector) per pixel, 1-32
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = SLICES.default)]
     pub slices: usize,
     /// The march: steps along each side of a slice, 1-64 (half within the radius)
-    #[arg(long, default_value_t = 12)]
+    #[arg(long, default_value_t = STEPS.default)]
     pub steps: usize,
     /// The march's reach, in model units [default: 24 radii]
     #[arg(long, allow_hyphen_values = true)]
@@ -256,27 +256,15 @@ impl SceneArgs {
 
 impl RenderArgs {
     pub fn settings(&self, mode: Mode) -> Result<Settings> {
-        let base = match self.variant {
-            Variant::March | Variant::Points => Settings::default(),
-            Variant::Classic => Settings::classic(),
-        };
-        let samples = self.samples.unwrap_or(base.samples);
-        if !(1..=256).contains(&samples) {
-            return Err(Error::Setting(format!("--samples {samples}: must be between 1 and 256")));
-        }
+        let base = Settings::for_variant(self.variant);
+        let samples = SAMPLES.check(self.samples.unwrap_or(base.samples))?;
         let radius = self.radius.map(|r| non_negative("radius", r)).transpose()?;
-        if !(1..=32).contains(&self.slices) || !(1..=64).contains(&self.steps) {
-            return Err(Error::Setting(format!(
-                "--slices {} --steps {}: slices must be 1-32 and steps 1-64",
-                self.slices, self.steps
-            )));
-        }
         Ok(Settings {
             mode,
             variant: self.variant,
             samples,
-            slices: self.slices,
-            steps: self.steps,
+            slices: SLICES.check(self.slices)?,
+            steps: STEPS.check(self.steps)?,
             reach: self.reach.map(|r| non_negative("reach", r)).transpose()?,
             thickness: self.thickness.map(|r| non_negative("thickness", r)).transpose()?,
             depth_pyramid: self.depth_pyramid,

@@ -393,14 +393,14 @@ fn kernels_stay_inside_the_unit_hemisphere() {
     use ssdo::render::kernel::{kernel, rotations};
     for variant in Variant::ALL {
         for n in [1, 16, 256] {
-            let k = kernel(variant, n);
+            let k = kernel(variant.decl().kernel, n);
             assert_eq!(k.len(), n);
             assert!(k.iter().all(|s| s.z >= 0.0 && s.length() <= 1.0 + 1e-6 && s.length() > 0.0), "{variant} {n}");
         }
-        assert!(rotations(variant).iter().all(|r| r[0].is_finite() && r[1].is_finite()));
+        assert!(rotations(variant.decl().kernel).iter().all(|r| r[0].is_finite() && r[1].is_finite()));
     }
     // Default directions cover the hemisphere evenly: the mean cosine of a uniform hemisphere is 1/2.
-    let k = kernel(Variant::Points, 256);
+    let k = kernel(Variant::Points.decl().kernel, 256);
     let mean_cos = k.iter().map(|s| s.normalize().z).sum::<f32>() / 256.0;
     assert!((mean_cos - 0.5).abs() < 0.03, "mean cos {mean_cos}");
 }

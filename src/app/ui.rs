@@ -119,11 +119,9 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.separator();
 
             ui.label("Sampling");
-            if settings.variant.marches() {
-                ui.add(egui::Slider::new(&mut settings.slices, 1..=32).logarithmic(true).text("slices"));
-                ui.add(egui::Slider::new(&mut settings.steps, 1..=64).logarithmic(true).text("steps per side"));
-            } else {
-                ui.add(egui::Slider::new(&mut settings.samples, 1..=256).logarithmic(true).text("samples"));
+            for count in settings.variant.decl().counts {
+                let value = settings.count_mut(count.id);
+                ui.add(egui::Slider::new(value, count.range()).logarithmic(true).text(count.label));
             }
             // A length with a scene-derived default: the slider shows the default until moved.
             let length = |ui: &mut egui::Ui, value: &mut Option<f32>, default: f32, max: f32, text: &str| {
@@ -135,7 +133,7 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                 }
             };
             length(ui, &mut settings.radius, default_radius, default_radius * 5.0, "radius");
-            if settings.variant.marches() {
+            if settings.variant.decl().marched_lengths {
                 let reach = default_radius * crate::render::REACH_RADII;
                 let thickness = default_radius * crate::render::THICKNESS_RADII;
                 length(ui, &mut settings.reach, reach, reach * 4.0, "reach");

@@ -79,11 +79,7 @@ impl BenchReport {
         } else {
             "synchronised wall time per frame (no timestamp queries)"
         };
-        let count = if s.variant.marches() {
-            format!("{} slices × {} steps", s.slices, s.steps)
-        } else {
-            format!("{} samples", s.samples)
-        };
+        let count = s.count_label();
         let _ = writeln!(out, "device: {}{software}", self.device);
         let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames", self.frames);
         let blur = if s.blur { "on" } else { "off" };

@@ -5,7 +5,8 @@ use glam::{Vec3, Vec4Swizzles};
 use super::kernel;
 use super::resources::sampling::SamplingParams;
 use super::settings::{View, REACH_RADII, THICKNESS_RADII};
-use super::uniforms::{self, mat, FrameUniforms, GpuLight};
+use super::uniforms::{mat, FrameUniforms, GpuLight};
+use super::variant::{SAMPLES, SLICES, STEPS};
 use crate::scene::{LightRig, OrbitCamera, PointLight};
 
 /// What the frame uniforms are computed from, besides the camera and the scene.
@@ -251,14 +252,14 @@ impl super::Renderer {
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.runs_sampling() {
             let radius = self.radius();
-            let samples = s.samples.clamp(1, uniforms::MAX_SAMPLES);
+            let samples = SAMPLES.clamp(s.samples);
             // The march reads the sky once per group of sectors: slices × 4 directions.
-            let directions = if s.variant.marches() { s.slices.clamp(1, 32) * 4 } else { samples };
+            let directions = s.variant.decl().sky_directions(samples, s.slices);
             let params = SamplingParams {
                 variant: s.variant,
                 samples,
-                slices: s.slices.clamp(1, 32),
-                steps: s.steps.clamp(1, 64),
+                slices: SLICES.clamp(s.slices),
+                steps: STEPS.clamp(s.steps),
                 reach: self.reach(),
                 thickness: self.thickness(),
                 radius,

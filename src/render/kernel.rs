@@ -12,64 +12,10 @@
 //! normalised, scaled by a random length and by lerp(0.1, 1, (i/N)²) — and 16 random rotation
 //! vectors in the tangent plane, from a fixed seed.
 
-use std::fmt;
-use std::str::FromStr;
-
 use glam::Vec3;
 use rand::{rngs::StdRng, RngExt, SeedableRng};
 
-use crate::{Error, Result};
-
-/// Which algorithm family the occlusion, blur and composite passes follow.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Variant {
-    /// The depth buffer marched per direction (slices × steps) for AO, sky and bounce, out to a
-    /// reach beyond the AO radius (`shaders/march.wgsl`); bilateral blur. The default: the
-    /// report's lowest error at the default time budget.
-    #[default]
-    March,
-    /// The paper's point sampling (Ritschel et al. 2009) with normalised estimators, a stratified
-    /// kernel and bilateral blur: each direction tested at one point within the radius.
-    Points,
-    /// The classic SSAO chapter's SSAO (LearnOpenGL) and the SSDO course project's SSDO, reproduced as written.
-    Classic,
-}
-
-impl Variant {
-    pub const ALL: [Variant; 3] = [Variant::March, Variant::Points, Variant::Classic];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Variant::March => "march",
-            Variant::Points => "points",
-            Variant::Classic => "classic",
-        }
-    }
-
-    /// Whether the sampling pass marches `slices` × `steps` rather than taking `samples` points.
-    pub fn marches(self) -> bool {
-        self == Variant::March
-    }
-}
-
-impl fmt::Display for Variant {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Variant {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        match s.to_ascii_lowercase().as_str() {
-            "default" => Ok(Variant::default()),
-            "march" => Ok(Variant::March),
-            "points" => Ok(Variant::Points),
-            "classic" => Ok(Variant::Classic),
-            _ => Err(Error::Setting(format!("unknown variant '{s}' (expected march, points, classic or default)"))),
-        }
-    }
-}
+pub use super::variant::Kernel;
 
 /// The smallest cos θ of a default-kernel direction: directions within 3° of the tangent plane
 /// only pick up the surface's own depth error (they carry 0.3% of the cosine weight).
@@ -91,9 +37,9 @@ fn radical_inverse_3(mut i: u32) -> f32 {
 }
 
 /// `n` tangent-space offsets for a unit radius.
-pub fn kernel(variant: Variant, n: usize) -> Vec<Vec3> {
-    match variant {
-        Variant::Points | Variant::March => {
+pub fn kernel(kind: Kernel, n: usize) -> Vec<Vec3> {
+    match kind {
+        Kernel::Stratified => {
             let golden = std::f32::consts::PI * (3.0 - 5.0f32.sqrt());
             (0..n)
                 .map(|i| {
@@ -105,7 +51,7 @@ pub fn kernel(variant: Variant, n: usize) -> Vec<Vec3> {
                 })
                 .collect()
         }
-        Variant::Classic => {
+        Kernel::Classic => {
             let mut rng = StdRng::seed_from_u64(0x55A0);
             (0..n)
                 .map(|i| {
@@ -121,11 +67,11 @@ pub fn kernel(variant: Variant, n: usize) -> Vec<Vec3> {
 }
 
 /// The 16 entries of the 4x4 rotation tile, row by row.
-pub fn rotations(variant: Variant) -> [[f32; 4]; 16] {
+pub fn rotations(kind: Kernel) -> [[f32; 4]; 16] {
     const BAYER: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
     let mut out = [[0.0; 4]; 16];
-    match variant {
-        Variant::Points | Variant::March => {
+    match kind {
+        Kernel::Stratified => {
             // xy: the points' rotation; z: the march's slice offset; w: its step offset (another
             // order of the same 16 values, so slices and steps do not jitter together).
             for (entry, b) in out.iter_mut().zip(BAYER) {
@@ -134,7 +80,7 @@ pub fn rotations(variant: Variant) -> [[f32; 4]; 16] {
                 *entry = [angle.cos(), angle.sin(), (b as f32 + 0.5) / 16.0, (step + 0.5) / 16.0];
             }
         }
-        Variant::Classic => {
+        Kernel::Classic => {
             let mut rng = StdRng::seed_from_u64(0x4015E);
             for entry in &mut out {
                 *entry = [rng.random::<f32>() * 2.0 - 1.0, rng.random::<f32>() * 2.0 - 1.0, 0.0, 0.0];
@@ -158,22 +104,22 @@ mod tests {
 
     #[test]
     fn kernels_lie_in_the_unit_hemisphere_and_are_the_same_every_time() {
-        for variant in Variant::ALL {
+        for kind in [Kernel::Stratified, Kernel::Classic] {
             for n in [1, 16, 64, 256] {
-                let k = kernel(variant, n);
+                let k = kernel(kind, n);
                 assert_eq!(k.len(), n);
-                assert!(k.iter().all(|v| v.z >= 0.0 && v.length() <= 1.0 + 1e-6), "{variant} {n}");
-                assert_eq!(k, kernel(variant, n), "{variant} {n}: deterministic");
+                assert!(k.iter().all(|v| v.z >= 0.0 && v.length() <= 1.0 + 1e-6), "{kind:?} {n}");
+                assert_eq!(k, kernel(kind, n), "{kind:?} {n}: deterministic");
             }
         }
         // The default kernel spreads its directions: their mean points up, not to one side.
-        let mean = kernel(Variant::Points, 64).iter().map(|v| v.normalize()).sum::<Vec3>() / 64.0;
+        let mean = kernel(Kernel::Stratified, 64).iter().map(|v| v.normalize()).sum::<Vec3>() / 64.0;
         assert!(mean.x.abs() < 0.05 && mean.y.abs() < 0.05 && mean.z > 0.4, "{mean}");
     }
 
     #[test]
     fn rotations_are_unit_angles_and_slice_offsets_cover_the_tile() {
-        let r = rotations(Variant::Points);
+        let r = rotations(Kernel::Stratified);
         assert!(r.iter().all(|e| ((e[0] * e[0] + e[1] * e[1]) - 1.0).abs() < 1e-5));
         let mut offsets: Vec<f32> = r.iter().map(|e| e[2]).collect();
         offsets.sort_by(f32::total_cmp);

@@ -14,6 +14,7 @@ pub mod settings;
 pub mod targets;
 pub mod timer;
 pub mod uniforms;
+pub mod variant;
 
 use glam::Vec3;
 
@@ -23,7 +24,7 @@ use crate::budget::{self, Share};
 use crate::{Error, Result};
 use frame::FrameData;
 use history::History;
-pub use kernel::Variant;
+pub use variant::{Count, Variant, VariantDecl, SAMPLES, SLICES, STEPS};
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
 use passes::set::PassSet;
 use passes::{FrameState, Preparation, Recording};
@@ -147,7 +148,7 @@ impl Renderer {
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
     /// frame) unless HDR is kept or a debug view needs the tone-map pass.
     fn plan_for(settings: &Settings, features: SceneFeatures, keep_hdr: bool) -> Plan {
-        let pyramid = settings.variant.marches() && settings.depth_pyramid;
+        let pyramid = settings.variant.decl().marched_lengths && settings.depth_pyramid;
         let display = !keep_hdr && settings.view == View::Final;
         let options = PlanOptions {
             blur: settings.blur,

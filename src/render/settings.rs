@@ -1,7 +1,7 @@
 //! What the user can change without reloading anything — the mode, the variant, the sampling
 //! and shading settings, what is shown — with their defaults.
 
-use super::kernel::Variant;
+use super::variant::{Variant, SAMPLES, SLICES, STEPS};
 use super::modes::table::Mode;
 use crate::Result;
 
@@ -171,10 +171,10 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             mode: Mode::Off,
-            variant: Variant::March,
-            samples: 16,
-            slices: 2,
-            steps: 12,
+            variant: Variant::default(),
+            samples: SAMPLES.default,
+            slices: SLICES.default,
+            steps: STEPS.default,
             reach: None,
             thickness: None,
             depth_pyramid: false,
@@ -187,7 +187,7 @@ impl Default for Settings {
             sender_sky: SenderSky::March,
             blur: true,
             exposure: 1.0,
-            ambient: 0.1,
+            ambient: Variant::default().decl().default_ambient,
             sky_scale: 1.0,
             view: View::Final,
         }
@@ -195,9 +195,40 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// The defaults of `variant`: the shared ones, with the variant's own samples and ambient.
+    pub fn for_variant(variant: Variant) -> Self {
+        let d = variant.decl();
+        Self { variant, samples: d.default_samples, ambient: d.default_ambient, ..Self::default() }
+    }
+
     /// The classic variant's defaults: 64 samples and the SSDO course report's `albedo·0.5·AO` ambient.
     pub fn classic() -> Self {
-        Self { variant: Variant::Classic, samples: 64, ambient: 0.5, ..Self::default() }
+        Self::for_variant(Variant::Classic)
+    }
+
+    /// The value of a sampling count.
+    pub fn count(&self, id: super::variant::CountId) -> usize {
+        use super::variant::CountId;
+        match id {
+            CountId::Samples => self.samples,
+            CountId::Slices => self.slices,
+            CountId::Steps => self.steps,
+        }
+    }
+
+    /// A sampling count to change (the panel's sliders).
+    pub fn count_mut(&mut self, id: super::variant::CountId) -> &mut usize {
+        use super::variant::CountId;
+        match id {
+            CountId::Samples => &mut self.samples,
+            CountId::Slices => &mut self.slices,
+            CountId::Steps => &mut self.steps,
+        }
+    }
+
+    /// "2 slices × 12 steps" or "16 samples": the counts this variant takes.
+    pub fn count_label(&self) -> String {
+        self.variant.decl().count_label(self.samples, self.slices, self.steps)
     }
 }
 

@@ -84,7 +84,7 @@ pub struct OcclusionParams {
 }
 
 /// Largest kernel the occlusion pass takes.
-pub const MAX_SAMPLES: usize = 256;
+pub const MAX_SAMPLES: usize = super::variant::SAMPLES.max;
 
 pub fn mat(m: Mat4) -> [[f32; 4]; 4] {
     m.to_cols_array_2d()

@@ -76,11 +76,7 @@ impl Report {
                     let points: Vec<(f64, f64)> =
                         line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
                     let colour = colours[m];
-                    let style = match variant {
-                        Variant::March => colour.stroke_width(3),
-                        Variant::Points => colour.mix(0.8).stroke_width(2),
-                        Variant::Classic => colour.mix(0.5).stroke_width(1),
-                    };
+                    let style = colour.mix(variant.decl().plot_opacity).stroke_width(variant.decl().plot_width);
                     let label = format!("{} {}", mode.title(), variant);
                     chart
                         .draw_series(LineSeries::new(points.clone(), style))

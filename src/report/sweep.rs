@@ -2,6 +2,7 @@
 //! radius. The count is known before anything renders, so the report can say its planned work.
 
 use super::ReportOptions;
+use crate::render::variant::{Sampler, VARIANTS};
 use crate::render::{Mode, SenderSky, Settings, Variant};
 
 /// One configuration the report renders and measures at a radius.
@@ -20,8 +21,6 @@ pub struct Config {
     pub bounce: Option<SenderSky>,
 }
 
-/// The variants, in the order the report measures them.
-pub const VARIANTS: [Variant; 3] = [Variant::Classic, Variant::Points, Variant::March];
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
 /// the first radius measures it: once with the sky-lit composite (under the default variant's
@@ -31,15 +30,19 @@ pub const VARIANTS: [Variant; 3] = [Variant::Classic, Variant::Points, Variant::
 pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
     let base = Settings::default();
     let mut configs = Vec::new();
-    for variant in VARIANTS {
-        if first_radius && variant != Variant::Points {
+    let default = Variant::default().decl();
+    // The default variant last, so the table's slowest rows are measured warm.
+    for decl in VARIANTS.iter().rev() {
+        let variant = decl.variant;
+        // Off has no sampling: measured once for each composite, under the default variant's name
+        // for the sky-lit one.
+        if first_radius && (variant == default.variant || decl.composite != default.composite) {
             let off = Config { mode: Mode::Off, variant, samples: 0, steps: 0, blur: false, pyramid: false, bounce: None };
             configs.push(off);
         }
-        let counts: Vec<(usize, usize)> = if variant.marches() {
-            options.march.clone()
-        } else {
-            options.samples.iter().map(|&n| (n, 0)).collect()
+        let counts: Vec<(usize, usize)> = match decl.sampler {
+            Sampler::March => options.march.clone(),
+            Sampler::Points => options.samples.iter().map(|&n| (n, 0)).collect(),
         };
         for mode in Mode::sampled() {
             let directional = mode.declaration().directional_occlusion;
@@ -47,7 +50,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             for &(samples, steps) in &counts {
                 let at = |blur, pyramid, bounce| Config { mode, variant, samples, steps, blur, pyramid, bounce };
                 configs.extend([at(true, false, bounce), at(false, false, bounce)]);
-                if variant.marches() && directional {
+                if decl.marched_lengths && directional {
                     configs.push(at(true, true, bounce));
                 }
                 if variant == Variant::default() && directional && (samples, steps) == (base.slices, base.steps) {
@@ -74,7 +77,7 @@ impl Config {
     /// all meet one truth.
     pub fn settings(&self, radius: f32) -> Settings {
         let base = Settings::default();
-        let marches = self.variant.marches();
+        let marches = self.variant.decl().sampler == Sampler::March;
         let (slices, steps) = if marches { (self.samples, self.steps) } else { (base.slices, base.steps) };
         // No bounce (`none`) is the bounce's strength at 0.
         let no_bounce = self.bounce.is_none() && self.mode.declaration().directional_occlusion;

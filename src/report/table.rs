@@ -14,10 +14,12 @@ fn cell(v: Option<f64>, digits: usize) -> String {
 impl Row {
     /// "16" samples, or "4×8" slices × steps for the march ("4×8 pyramid" with the pyramid).
     pub(super) fn count_label(variant: Variant, samples: usize, steps: usize, pyramid: bool) -> String {
-        match (variant.marches(), pyramid) {
-            (true, false) => format!("{samples}×{steps}"),
-            (true, true) => format!("{samples}×{steps} pyramid"),
-            _ => samples.to_string(),
+        // A row's `samples` holds the slices where the variant marches.
+        let short = variant.decl().count_short(samples, samples, steps);
+        if pyramid {
+            format!("{short} pyramid")
+        } else {
+            short
         }
     }
 

@@ -1,7 +1,7 @@
 //! Denoise of the sampling pass's output (`shaders/blur.wgsl`): a 4x4 window, bilateral (plane
 //! distance and normal agreement) in the default variant, the classic box blur otherwise.
 
-use super::super::kernel::Variant;
+use super::super::variant::Blur;
 use super::occlusion::Outputs;
 use super::{
     color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
@@ -51,7 +51,7 @@ impl Pass for BlurPass {
             self.bind_group = None;
             return;
         };
-        let key = Key { outputs: Outputs::of(plan), bilateral: variant != Variant::Classic };
+        let key = Key { outputs: Outputs::of(plan), bilateral: variant.decl().blur == Blur::Bilateral };
         let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
         self.pipeline.ensure(key, |key| {
             let f = |b: bool| b as u8 as f64;

@@ -5,7 +5,7 @@
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
 //! (display).
 
-use super::super::kernel::Variant;
+use super::super::variant::{Composite, Variant};
 use super::super::modes::Plan;
 use super::super::targets::{view_or, HDR_FORMAT};
 use super::super::View;
@@ -35,7 +35,7 @@ impl Key {
             additive: plan.lighting_writes_direct(),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
-            classic: variant == Variant::Classic,
+            classic: variant.decl().composite == Composite::ClassicAmbient,
             white_albedo,
             display: plan.display,
         }

@@ -24,7 +24,7 @@ pub mod tonemap;
 
 pub use bindings::*;
 use super::history::History;
-use super::kernel::Variant;
+use super::variant::Variant;
 use super::modes::Plan;
 use super::resources::sampling::OcclusionData;
 use super::resources::scene::SceneGpu;

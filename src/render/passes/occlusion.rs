@@ -3,7 +3,7 @@
 //! classic) and whether there is a bounce buffer are override constants. The pipeline is built
 //! for what the plan needs and rebuilt only when that changes.
 
-use super::super::kernel::Variant;
+use super::super::variant::{Estimator, Sampler};
 use super::super::modes::{Plan, Step};
 use super::super::targets::{AO_FORMAT, DO_FORMAT};
 use super::{
@@ -105,8 +105,8 @@ impl Pass for OcclusionPass {
         }
         let key = Key {
             outputs: Outputs::of(plan),
-            classic: variant == Variant::Classic,
-            march: variant.marches(),
+            classic: variant.decl().estimator == Estimator::Classic,
+            march: variant.decl().sampler == Sampler::March,
             pyramid: plan.has(Step::DepthPyramid),
         };
         self.pipeline.ensure(key, |key| {

@@ -2,7 +2,8 @@
 //! when the variant or the sample count changes), the radius, bias, strengths and the march's
 //! slices, steps, reach and thickness. Read by the sampling pass and the blur.
 
-use super::super::kernel::{self, Variant};
+use super::super::kernel;
+use super::super::variant::Variant;
 use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
 
 /// Sampling parameters for one frame.
@@ -48,10 +49,10 @@ impl OcclusionData {
     pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
         let samples = params.samples.clamp(1, MAX_SAMPLES);
         if self.kernel_key != Some((params.variant, samples)) {
-            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant, samples)) {
+            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant.decl().kernel, samples)) {
                 *slot = k.extend(0.0).into();
             }
-            self.uniforms.rotations = kernel::rotations(params.variant);
+            self.uniforms.rotations = kernel::rotations(params.variant.decl().kernel);
             self.kernel_key = Some((params.variant, samples));
         }
         let u = self.uniforms.as_mut();
