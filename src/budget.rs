@@ -166,8 +166,7 @@ pub fn fit_images(sizes: &[(u32, u32)], room: u64) -> Vec<(u32, u32)> {
     let mut total: u64 = out.iter().map(|&s| bytes(s)).sum();
     while total > room {
         // The largest that can still shrink; on a tie the last named, so the first keep most.
-        let Some(i) = (0..out.len()).filter(|&i| out[i] != (1, 1)).max_by_key(|&i| (bytes(out[i]), i))
-        else {
+        let Some(i) = (0..out.len()).filter(|&i| out[i] != (1, 1)).max_by_key(|&i| (bytes(out[i]), i)) else {
             break;
         };
         let (w, h) = out[i];

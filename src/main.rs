@@ -8,8 +8,8 @@ use std::time::Instant;
 use clap::Parser;
 
 use ssdo::gpu::Gpu;
-use ssdo::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
 use ssdo::headless::bench::BenchReport;
+use ssdo::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
 use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 

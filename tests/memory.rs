@@ -67,7 +67,11 @@ fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
     let (model, peak) = peak_during(|| ssdo::scene::model::load_obj_with_budget(&quad, 16 << 20).unwrap());
     let map = model.materials[0].diffuse_map.as_ref().unwrap();
     assert_eq!((map.width, map.height), (2048, 2048), "halved until 16 MiB of RGBA8 holds it");
-    assert!(model.warnings.iter().any(|w| w.contains("downscaled from 8192x8192 to 2048x2048")), "{:?}", model.warnings);
+    assert!(
+        model.warnings.iter().any(|w| w.contains("downscaled from 8192x8192 to 2048x2048")),
+        "{:?}",
+        model.warnings
+    );
     // The grey decode (64 MiB) and the result (16 MiB) at most; decoding to RGBA8 first would
     // have held 256 MiB, and a float resize of that twice as much again.
     assert!(peak < 100 * MIB, "the load peaked at {} MiB", peak / MIB);
@@ -82,9 +86,12 @@ fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
     let mut mtl = String::new();
     let mut obj = String::from("mtllib m.mtl\n");
     for i in 0..8u32 {
-        image::RgbImage::from_pixel(512, 512, image::Rgb([i as u8 * 30, 100, 50])).save(d.join(format!("t{i}.png"))).unwrap();
+        image::RgbImage::from_pixel(512, 512, image::Rgb([i as u8 * 30, 100, 50]))
+            .save(d.join(format!("t{i}.png")))
+            .unwrap();
         mtl += &format!("newmtl m{i}\nKd 1 1 1\nmap_Kd t{i}.png\n");
-        obj += &format!("v {i} 0 0\nv {i} 0 1\nv {i}.5 0 0\nusemtl m{i}\nf {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+        obj +=
+            &format!("v {i} 0 0\nv {i} 0 1\nv {i}.5 0 0\nusemtl m{i}\nf {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
     }
     std::fs::write(d.join("m.mtl"), mtl).unwrap();
     std::fs::write(d.join("m.obj"), obj).unwrap();

@@ -192,8 +192,16 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(c);
     // Scales and offsets in the file's own coordinates, beyond what --scale takes: scaled to a
     // unit radius or moved to the origin at load (with a warning), then like any model.
-    list.push(with_model("1e-20 across in its own coordinates", "--model tiny.obj", placed_obj(dir, "tiny.obj", 1e-20, 0.0)));
-    list.push(with_model("1e12 across in its own coordinates", "--model huge.obj", placed_obj(dir, "huge.obj", 1e12, 0.0)));
+    list.push(with_model(
+        "1e-20 across in its own coordinates",
+        "--model tiny.obj",
+        placed_obj(dir, "tiny.obj", 1e-20, 0.0),
+    ));
+    list.push(with_model(
+        "1e12 across in its own coordinates",
+        "--model huge.obj",
+        placed_obj(dir, "huge.obj", 1e12, 0.0),
+    ));
     list.push(with_model("1e4 radii from the origin", "--model offset.obj", placed_obj(dir, "offset.obj", 1.0, 1e4)));
     list.push(with_model(
         "1e-9 across, 1e5 radii from the origin",

@@ -101,7 +101,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.label("Mode (keys 1-4)");
             ui.horizontal_wrapped(|ui| {
                 for mode in Mode::ALL {
-                    if ui.selectable_label(settings.mode == mode, format!("{} {}", mode.key(), mode.title())).clicked() {
+                    if ui.selectable_label(settings.mode == mode, format!("{} {}", mode.key(), mode.title())).clicked()
+                    {
                         actions.push(Action::Mode(mode));
                     }
                 }

@@ -1,8 +1,8 @@
 //! `ssdo bench`'s measurement: frames rendered, waited for and timed (per pass where the
 //! adapter has timestamp queries), reduced to medians, and its report.
 
-use crate::render::{Mode, Renderer, Settings};
 use crate::gpu::Gpu;
+use crate::render::{Mode, Renderer, Settings};
 use crate::scene::OrbitCamera;
 use crate::Result;
 

@@ -2,8 +2,8 @@
 //! texture that is read back.
 
 use super::readback::{output_texture_as, read_texture};
-use crate::render::Renderer;
 use crate::gpu::Gpu;
+use crate::render::Renderer;
 use crate::scene::OrbitCamera;
 use crate::{Error, Result};
 

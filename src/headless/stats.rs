@@ -5,8 +5,8 @@
 
 use super::capture::capture;
 use super::readback::{read_r16f, read_rgba16f};
-use crate::render::{Renderer, View};
 use crate::gpu::Gpu;
+use crate::render::{Renderer, View};
 use crate::scene::OrbitCamera;
 use crate::Result;
 

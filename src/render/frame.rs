@@ -82,7 +82,17 @@ impl FrameData {
         let cube_order = Self::order_buffer(device, 1);
         let (light_capacity, frame_index, previous_world_to_clip) = (1, 0, None);
         let last = bytemuck::Zeroable::zeroed();
-        Self { layout, bind_group, uniforms, lights, cube_order, light_capacity, frame_index, previous_world_to_clip, last }
+        Self {
+            layout,
+            bind_group,
+            uniforms,
+            lights,
+            cube_order,
+            light_capacity,
+            frame_index,
+            previous_world_to_clip,
+            last,
+        }
     }
 
     fn order_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {

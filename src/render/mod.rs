@@ -18,13 +18,12 @@ pub mod variant;
 
 use glam::Vec3;
 
+use crate::budget::{self, Share};
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
-use crate::budget::{self, Share};
 use crate::{Error, Result};
 use frame::FrameData;
 use history::History;
-pub use variant::{Count, Variant, VariantDecl, SAMPLES, SLICES, STEPS};
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
 use passes::set::PassSet;
 use passes::{FrameState, Preparation, Recording};
@@ -34,6 +33,7 @@ use resources::sky::{sky_layout, SkyGpu};
 pub use settings::{SenderSky, Settings, View, REACH_RADII, THICKNESS_RADII};
 use targets::Targets;
 use timer::GpuTimer;
+pub use variant::{Count, Variant, VariantDecl, SAMPLES, SLICES, STEPS};
 
 pub struct Renderer {
     pub settings: Settings,

@@ -1,8 +1,8 @@
 //! What the user can change without reloading anything — the mode, the variant, the sampling
 //! and shading settings, what is shown — with their defaults.
 
-use super::variant::{Variant, SAMPLES, SLICES, STEPS};
 use super::modes::table::Mode;
+use super::variant::{Variant, SAMPLES, SLICES, STEPS};
 use crate::Result;
 
 /// What the window shows: the final image or one of the intermediate buffers.

@@ -2,7 +2,6 @@
 //! plan needs a different set; passes own pipelines and rebuild only their bind groups. A target
 //! that the current plan does not read or write is not allocated at all.
 
-
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// View-space normal and shininess packed in one u32 (`shaders/common/surface_pack.wgsl`).
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
@@ -233,7 +232,8 @@ impl Targets {
     /// allocated (the memory budget is checked with it).
     pub fn bytes_for(size: (u32, u32), set: &TargetSet) -> u64 {
         let when = |wanted: bool, bytes: u64| if wanted { bytes } else { 0 };
-        let occlusion = when(set.ao, texel_bytes(size, AO_FORMAT)) + when(set.directional, texel_bytes(size, DO_FORMAT));
+        let occlusion =
+            when(set.ao, texel_bytes(size, AO_FORMAT)) + when(set.directional, texel_bytes(size, DO_FORMAT));
         [ALBEDO_FORMAT, NORMAL_FORMAT, DEPTH_FORMAT].map(|f| texel_bytes(size, f)).iter().sum::<u64>()
             + when(set.hdr, texel_bytes(size, HDR_FORMAT))
             + when(set.bounce, texel_bytes(size, BOUNCE_FORMAT))

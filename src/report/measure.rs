@@ -6,9 +6,9 @@ use glam::Vec3;
 use super::sweep::Config;
 use super::{metrics, plot, NoiseFloor, ReportOptions, Row};
 use crate::gpu::Gpu;
-use crate::reference::{self, Reference};
 use crate::headless::capture::capture;
 use crate::headless::readback::{read_r16f, read_rgba16f};
+use crate::reference::{self, Reference};
 use crate::render::{Mode, Renderer, View};
 use crate::scene::OrbitCamera;
 use crate::{Error, Result};
@@ -71,7 +71,14 @@ pub(super) struct Bench<'a> {
 impl Bench<'_> {
     /// Times `config` at `radius`, renders it, and measures it against `truth`. `maps`: write
     /// the error maps of this configuration.
-    pub fn measure(&self, renderer: &mut Renderer, config: Config, radius: f32, truth: &Truth, maps: bool) -> Result<Row> {
+    pub fn measure(
+        &self,
+        renderer: &mut Renderer,
+        config: Config,
+        radius: f32,
+        truth: &Truth,
+        maps: bool,
+    ) -> Result<Row> {
         let (gpu, camera, ambient) = (self.gpu, self.camera, self.ambient);
         let (valid, truth) = (&truth.valid, &truth.reference);
         let Config { mode, variant, samples, steps, blur, pyramid, bounce } = config;

@@ -25,13 +25,13 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::gpu::Gpu;
-use crate::reference::{self, ReferenceScene, TraceSettings};
 use crate::headless::capture::{capture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
+use crate::reference::{self, ReferenceScene, TraceSettings};
 use crate::render::{Mode, Renderer, SenderSky, Settings, Variant};
-pub use sweep::{planned_configurations, Config};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
+pub use sweep::{planned_configurations, Config};
 
 /// A sampling radius to sweep: a multiple of the scene's default, or a length in model units.
 #[derive(Clone, Copy, Debug, PartialEq)]

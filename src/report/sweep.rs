@@ -21,7 +21,6 @@ pub struct Config {
     pub bounce: Option<SenderSky>,
 }
 
-
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
 /// the first radius measures it: once with the sky-lit composite (under the default variant's
 /// name; points gives the same image) and once for classic. Every sampled mode is measured at
@@ -37,7 +36,8 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         // Off has no sampling: measured once for each composite, under the default variant's name
         // for the sky-lit one.
         if first_radius && (variant == default.variant || decl.composite != default.composite) {
-            let off = Config { mode: Mode::Off, variant, samples: 0, steps: 0, blur: false, pyramid: false, bounce: None };
+            let off =
+                Config { mode: Mode::Off, variant, samples: 0, steps: 0, blur: false, pyramid: false, bounce: None };
             configs.push(off);
         }
         let counts: Vec<(usize, usize)> = match decl.sampler {
@@ -146,7 +146,15 @@ mod tests {
 
     #[test]
     fn no_bounce_is_a_bounce_of_strength_zero_and_counts_reach_the_variant_they_belong_to() {
-        let none = Config { mode: Mode::Ssdo, variant: Variant::March, samples: 4, steps: 16, blur: true, pyramid: false, bounce: None };
+        let none = Config {
+            mode: Mode::Ssdo,
+            variant: Variant::March,
+            samples: 4,
+            steps: 16,
+            blur: true,
+            pyramid: false,
+            bounce: None,
+        };
         let s = none.settings(0.5);
         assert_eq!((s.indirect_strength, s.slices, s.steps, s.radius), (0.0, 4, 16, Some(0.5)));
         let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };

@@ -249,10 +249,6 @@ fn decode_texture(
     }
     let image = image::DynamicImage::from_decoder(decoder).map_err(cannot)?;
     let (w, h) = planned.unwrap_or(original);
-    let rgba = if (w, h) == original {
-        image.into_rgba8()
-    } else {
-        image.thumbnail_exact(w, h).into_rgba8()
-    };
+    let rgba = if (w, h) == original { image.into_rgba8() } else { image.thumbnail_exact(w, h).into_rgba8() };
     Ok((TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba.into_raw()) }, original))
 }

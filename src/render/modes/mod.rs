@@ -26,8 +26,8 @@ pub use io::{StepIo, TargetId};
 pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
-pub use super::targets::TargetSet;
 use super::settings::SenderSky;
+pub use super::targets::TargetSet;
 
 /// What the scene brings that changes the plan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -249,7 +249,10 @@ mod tests {
             let t = plan.target_set();
             assert_eq!(t.hdr, plan.keeps_hdr(), "{:?}", plan.steps);
             assert_eq!(t.bounce, plan.has(Step::Lighting));
-            assert_eq!((t.ao, t.directional), (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion));
+            assert_eq!(
+                (t.ao, t.directional),
+                (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion)
+            );
             assert_eq!(t.blurred, plan.blur);
             assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DepthPyramid), plan.has(Step::SenderSky)));
         }

@@ -5,16 +5,14 @@
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
 //! (display).
 
-use super::super::variant::{Composite, Variant};
 use super::super::modes::Plan;
 use super::super::targets::{view_or, HDR_FORMAT};
+use super::super::variant::{Composite, Variant};
 use super::super::View;
-use super::{
-    color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc, FullscreenPass,
-    KeyedPipeline,
-};
-use super::{Pass, Preparation, Recording};
-use crate::{shaders, Result};
+use super::state::PassState;
+use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc};
+use super::{Pass, PassContext, Preparation, Recording};
+use crate::Result;
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,39 +41,17 @@ impl Key {
 }
 
 pub struct CompositePass {
-    module: wgpu::ShaderModule,
-    layout: wgpu::BindGroupLayout,
-    frame_layout: wgpu::BindGroupLayout,
-    sky_layout: wgpu::BindGroupLayout,
+    state: PassState<Key>,
     /// The output's format (display plans draw into it).
     output: wgpu::TextureFormat,
-    pipeline: KeyedPipeline<Key>,
-    bind_group: Option<wgpu::BindGroup>,
 }
 
 impl CompositePass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        sky_layout: &wgpu::BindGroupLayout,
-        output: wgpu::TextureFormat,
-    ) -> Result<Self> {
-        let module = shaders::module(device, "composite.wgsl")?;
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let [a, n, d] = gbuffer_entries();
         let input = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("composite_layout"),
-            entries: &[a, n, d, input(3), input(4), input(5)],
-        });
-        Ok(Self {
-            module,
-            layout,
-            frame_layout: frame_layout.clone(),
-            sky_layout: sky_layout.clone(),
-            output,
-            pipeline: KeyedPipeline::new(),
-            bind_group: None,
-        })
+        let layout = cx.layout("composite_layout", &[a, n, d, input(3), input(4), input(5)]);
+        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", true, layout)?, output: cx.output })
     }
 }
 
@@ -86,10 +62,8 @@ impl Pass for CompositePass {
         let Preparation { targets, plan, variant, unused, view, .. } = *p;
         let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
-        let (module, frame_layout, layout, sky_layout) =
-            (&self.module, &self.frame_layout, &self.layout, &self.sky_layout);
         let output = self.output;
-        self.pipeline.ensure(key, |key| {
+        self.state.ensure(key, |key, module, layouts| {
             let f = |b: bool| b as u8 as f64;
             let blend = (key.additive && !key.display).then_some(wgpu::BlendState {
                 color: wgpu::BlendComponent {
@@ -105,7 +79,7 @@ impl Pass for CompositePass {
                     label: "composite_pipeline",
                     module,
                     entry: "fs_main",
-                    bind_group_layouts: &[Some(frame_layout), Some(layout), Some(sky_layout)],
+                    bind_group_layouts: layouts,
                     targets: &[Some(wgpu::ColorTargetState {
                         format: if key.display { output } else { HDR_FORMAT },
                         blend,
@@ -136,34 +110,18 @@ impl Pass for CompositePass {
             // where it is the attachment and cannot also be bound).
             if plan.display { view_or(&targets.hdr, unused) } else { unused },
         ];
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("composite_bind_group"),
-            layout: &self.layout,
-            entries: &super::view_entries(&views),
-        }));
+        self.state.bind(device, &super::view_entries(&views));
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, sky, output, origin, .. } = rec;
-        let sky = &sky.bind_group;
-        let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else {
-            unreachable!("the composite recorded before `prepare`")
-        };
+        let (key, _, _) = self.state.ready();
         let (w, h) = targets.size;
         let (attachment, viewport) = match (key.display, &targets.hdr) {
             (false, Some(hdr)) => (color_attachment(&hdr.view, !key.additive), None),
             (true, _) => (color_attachment(output, true), Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32])),
             (false, None) => unreachable!("an HDR plan always has its HDR target"),
         };
-        FullscreenPass {
-            label: "composite_pass",
-            attachments: &[attachment],
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups: &[(0, frame), (1, bind_group), (2, sky)],
-            viewport,
-        }
-        .record(encoder);
+        self.state.draw((encoder, timestamps), &[attachment], (frame, Some(&sky.bind_group)), viewport);
     }
 }

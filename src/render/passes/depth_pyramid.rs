@@ -4,7 +4,7 @@
 
 use super::super::targets::PYRAMID_FORMAT;
 use super::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
-use super::{Pass, Preparation, Recording};
+use super::{Pass, PassContext, Preparation, Recording};
 use crate::{shaders, Result};
 
 pub struct DepthPyramidPass {
@@ -34,7 +34,8 @@ fn unused(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::TextureVi
 }
 
 impl DepthPyramidPass {
-    pub fn new(device: &wgpu::Device) -> Result<Self> {
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let device = cx.device;
         let module = shaders::module(device, "depth_pyramid.wgsl")?;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth_pyramid_layout"),

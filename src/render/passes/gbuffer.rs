@@ -10,7 +10,7 @@ use wgpu::util::DeviceExt;
 use super::super::resources::scene::{upload_texture, Draw, SceneGpu};
 use super::super::targets::{ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
 use super::super::uniforms::MaterialParams;
-use super::{Pass, Recording};
+use super::{Pass, PassContext, Recording};
 use crate::gpu::Gpu;
 use crate::scene::model::TextureImage;
 use crate::scene::{Model, Vertex};
@@ -26,27 +26,12 @@ pub struct GBufferPass {
 }
 
 impl GBufferPass {
-    pub fn new(gpu: &Gpu, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let device = &gpu.device;
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let (device, frame_layout) = (cx.device, cx.frame_layout);
         let module = shaders::module(device, "gbuffer.wgsl")?;
-        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("gbuffer_material_layout"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                super::texture_entry(1, true, wgpu::TextureViewDimension::D2),
-                super::texture_entry(2, true, wgpu::TextureViewDimension::D2),
-                super::sampler_entry(3),
-            ],
-        });
+        let map = |binding| super::texture_entry(binding, true, wgpu::TextureViewDimension::D2);
+        let material_entries = [super::uniform_entry(0), map(1), map(2), super::sampler_entry(3)];
+        let material_layout = cx.layout("gbuffer_material_layout", &material_entries);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer_pipeline_layout"),
             bind_group_layouts: &[Some(frame_layout), Some(&material_layout)],

@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 
 use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{color_attachment, depth_entry};
-use super::{Pass, Preparation, Recording};
+use super::{Pass, PassContext, Preparation, Recording};
 use crate::{shaders, Result};
 
 /// The 36 corners of a unit cube's 12 triangles (±1 on each axis).
@@ -36,11 +36,8 @@ pub struct LightCubesPass {
 }
 
 impl LightCubesPass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        output: wgpu::TextureFormat,
-    ) -> Result<Self> {
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let (device, frame_layout, output) = (cx.device, cx.frame_layout, cx.output);
         let module = shaders::module(device, "light_cubes.wgsl")?;
         let depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("light_cubes_depth_layout"),

@@ -7,13 +7,11 @@
 
 use super::super::modes::{Plan, Step};
 use super::super::settings::SenderSky;
-use super::super::targets::{view_of, view_or, Targets, BOUNCE_FORMAT, HDR_FORMAT};
-use super::{
-    cleared_attachments, fullscreen_pipeline, gbuffer_entries, texture_entry, view_entries, FullscreenDesc,
-    FullscreenPass,
-};
-use super::{KeyedPipeline, Pass, Preparation, Recording};
-use crate::{shaders, Result};
+use super::super::targets::{view_of, view_or, BOUNCE_FORMAT, HDR_FORMAT};
+use super::state::{flag, PassState, PipelineSpec};
+use super::{cleared_attachments, gbuffer_entries, texture_entry, view_entries};
+use super::{Pass, PassContext, Preparation, Recording};
+use crate::Result;
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,43 +28,14 @@ impl Key {
 }
 
 pub struct LightingPass {
-    module: wgpu::ShaderModule,
-    frame_layout: wgpu::BindGroupLayout,
-    layout: wgpu::BindGroupLayout,
-    pipeline: KeyedPipeline<Key>,
-    bind_group: Option<wgpu::BindGroup>,
+    state: PassState<Key>,
 }
 
 impl LightingPass {
-    pub fn new(device: &wgpu::Device, frame_layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let module = shaders::module(device, "lighting.wgsl")?;
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let [a, n, d] = gbuffer_entries();
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("lighting_layout"),
-            entries: &[a, n, d, texture_entry(3, false, wgpu::TextureViewDimension::D2)],
-        });
-        Ok(Self {
-            module,
-            frame_layout: frame_layout.clone(),
-            layout,
-            pipeline: KeyedPipeline::new(),
-            bind_group: None,
-        })
-    }
-
-    fn bind_group(
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-        targets: &Targets,
-        unused: &wgpu::TextureView,
-    ) -> wgpu::BindGroup {
-        let views =
-            [&targets.albedo.view, &targets.normal.view, &targets.depth.view, view_or(&targets.sender_sky, unused)];
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("lighting_bind_group"),
-            layout,
-            entries: &view_entries(&views),
-        })
+        let layout = cx.layout("lighting_layout", &[a, n, d, texture_entry(3, false, wgpu::TextureViewDimension::D2)]);
+        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false, layout)? })
     }
 }
 
@@ -74,51 +43,31 @@ impl Pass for LightingPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, unused, .. } = *p;
         if !plan.has(Step::Lighting) {
-            self.pipeline.clear();
-            self.bind_group = None;
+            self.state.clear();
             return;
         }
-        self.bind_group = Some(Self::bind_group(device, &self.layout, targets, unused));
-        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
-        self.pipeline.ensure(Key::of(plan), |key| {
-            let f = |b: bool| b as u8 as f64;
-            let both = [Some(HDR_FORMAT.into()), Some(BOUNCE_FORMAT.into())];
-            let bounce = [Some(BOUNCE_FORMAT.into())];
-            fullscreen_pipeline(
-                device,
-                &FullscreenDesc {
-                    label: "lighting_pipeline",
-                    module,
-                    entry: if key.lights { "fs_main" } else { "fs_bounce" },
-                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
-                    targets: if key.lights { &both } else { &bounce },
-                    depth: None,
-                    constants: &[("LIGHTS", f(key.lights)), ("SENDER_SKY", key.sender_sky.shader_code())],
-                },
-            )
+        let views =
+            [&targets.albedo.view, &targets.normal.view, &targets.depth.view, view_or(&targets.sender_sky, unused)];
+        self.state.bind(device, &view_entries(&views));
+        self.state.ensure_fullscreen(device, Key::of(plan), |key| {
+            let hdr = key.lights.then(|| HDR_FORMAT.into());
+            PipelineSpec {
+                entry: if key.lights { "fs_main" } else { "fs_bounce" },
+                targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
+                constants: vec![("LIGHTS", flag(key.lights)), ("SENDER_SKY", key.sender_sky.shader_code())],
+            }
         });
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, .. } = rec;
-        let (Some((key, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else {
-            unreachable!("the lighting pass recorded before `prepare`")
-        };
+        let (key, _, _) = self.state.ready();
         let bounce = view_of(&targets.bounce);
         let attachments = if key.lights {
             cleared_attachments(&[view_of(&targets.hdr), bounce])
         } else {
             cleared_attachments(&[bounce])
         };
-        FullscreenPass {
-            label: "lighting_pass",
-            attachments: &attachments,
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups: &[(0, frame), (1, bind_group)],
-            viewport: None,
-        }
-        .record(encoder);
+        self.state.draw((encoder, timestamps), &attachments, (frame, None), None);
     }
 }

@@ -20,17 +20,18 @@ pub mod occlusion;
 pub mod sender_sky;
 pub mod set;
 pub mod skybox;
+pub mod state;
 pub mod tonemap;
 
-pub use bindings::*;
 use super::history::History;
-use super::variant::Variant;
 use super::modes::Plan;
 use super::resources::sampling::OcclusionData;
 use super::resources::scene::SceneGpu;
 use super::resources::sky::SkyGpu;
 use super::targets::Targets;
+use super::variant::Variant;
 use super::View;
+pub use bindings::*;
 
 /// Everything a pass records one step of a frame from.
 pub struct Recording<'a> {
@@ -83,6 +84,23 @@ pub trait Pass {
     /// Records the pass. Only steps of the plan are recorded, and only after `prepare`: a pass
     /// recorded otherwise is a bug, and says so.
     fn record(&self, rec: Recording<'_>);
+}
+
+/// What every pass is built from: the device, the layouts of bind groups 0 (frame) and 2 (sky)
+/// that all passes share, and the format of the output a display plan draws into.
+pub struct PassContext<'a> {
+    pub gpu: &'a crate::gpu::Gpu,
+    pub device: &'a wgpu::Device,
+    pub frame_layout: &'a wgpu::BindGroupLayout,
+    pub sky_layout: &'a wgpu::BindGroupLayout,
+    pub output: wgpu::TextureFormat,
+}
+
+impl PassContext<'_> {
+    /// A bind group layout named after its pass.
+    pub fn layout(&self, name: &str, entries: &[wgpu::BindGroupLayoutEntry]) -> wgpu::BindGroupLayout {
+        self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(name), entries })
+    }
 }
 
 /// What a pass may look at in [`Pass::begin_frame`].

@@ -3,14 +3,12 @@
 //! classic) and whether there is a bounce buffer are override constants. The pipeline is built
 //! for what the plan needs and rebuilt only when that changes.
 
-use super::super::variant::{Estimator, Sampler};
 use super::super::modes::{Plan, Step};
 use super::super::targets::{AO_FORMAT, DO_FORMAT};
-use super::{
-    color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc,
-    FullscreenPass, KeyedPipeline,
-};
-use super::{Pass, Preparation, Recording};
+use super::super::variant::{Estimator, Sampler};
+use super::state::PassState;
+use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
+use super::{Pass, PassContext, Preparation, Recording};
 use crate::{shaders, Result};
 
 /// What a plan's sampling (and blur) pass produces.
@@ -66,31 +64,15 @@ impl Key {
 }
 
 pub struct OcclusionPass {
-    module: wgpu::ShaderModule,
+    /// The points' shader (`occlusion.wgsl`) and its state; the march's shader beside it.
+    state: PassState<Key>,
     march_module: wgpu::ShaderModule,
-    layout: wgpu::BindGroupLayout,
-    pipeline_layouts: [wgpu::BindGroupLayout; 2],
-    pipeline: KeyedPipeline<Key>,
-    bind_group: Option<wgpu::BindGroup>,
 }
 
 impl OcclusionPass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        sky_layout: &wgpu::BindGroupLayout,
-    ) -> Result<Self> {
-        let module = shaders::module(device, "occlusion.wgsl")?;
-        let march_module = shaders::module(device, "march.wgsl")?;
-        let layout = sampling_layout(device, "occlusion_layout");
-        Ok(Self {
-            module,
-            march_module,
-            layout,
-            pipeline_layouts: [frame_layout.clone(), sky_layout.clone()],
-            pipeline: KeyedPipeline::new(),
-            bind_group: None,
-        })
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let state = PassState::new(cx, "occlusion", "occlusion.wgsl", true, sampling_layout(cx, "occlusion_layout"))?;
+        Ok(Self { state, march_module: shaders::module(cx.device, "march.wgsl")? })
     }
 }
 
@@ -99,8 +81,7 @@ impl Pass for OcclusionPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, variant, unused, .. } = *p;
         if !plan.decl.runs_sampling() {
-            self.pipeline.clear();
-            self.bind_group = None;
+            self.state.clear();
             return;
         }
         let key = Key {
@@ -109,16 +90,16 @@ impl Pass for OcclusionPass {
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.has(Step::DepthPyramid),
         };
-        self.pipeline.ensure(key, |key| {
+        let march_module = &self.march_module;
+        self.state.ensure(key, |key, points_module, layouts| {
             let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
-            let [frame, sky] = &self.pipeline_layouts;
             fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
                     label: "occlusion_pipeline",
-                    module: if key.march { &self.march_module } else { &self.module },
+                    module: if key.march { march_module } else { points_module },
                     entry,
-                    bind_group_layouts: &[Some(frame), Some(&self.layout), Some(sky)],
+                    bind_group_layouts: layouts,
                     targets: &[Some(key.outputs.format().into())],
                     depth: None,
                     constants: &key.constants(),
@@ -126,66 +107,34 @@ impl Pass for OcclusionPass {
             )
         });
         let bounce = targets.bounce.as_ref().map_or(unused, |t| &t.view);
-        self.bind_group = Some(sampling_bind_group(device, &self.layout, p, bounce));
+        self.state.bind(device, &sampling_entries(p, bounce));
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let sky = &sky.bind_group;
-        let (Some((_, pipeline)), Some(bind_group), Some(output)) =
-            (self.pipeline.get(), &self.bind_group, targets.raw.output())
-        else {
-            unreachable!("the sampling pass recorded before `prepare` or in a plan without it")
-        };
-        FullscreenPass {
-            label: "occlusion_pass",
-            attachments: &[color_attachment(&output.view, true)],
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups: &[(0, frame), (1, bind_group), (2, sky)],
-            viewport: None,
-        }
-        .record(encoder);
+        let output = targets.raw.output().expect("a plan with a sampling step has its target");
+        let attachments = [color_attachment(&output.view, true)];
+        self.state.draw((encoder, timestamps), &attachments, (frame, Some(&sky.bind_group)), None);
     }
 }
 
 /// The layout of a sampling pass's bind group 1 (the sampling pass and the sender-sky march):
 /// the G-buffer, the parameters, the bounce source and the depth pyramid.
-pub fn sampling_layout(device: &wgpu::Device, label: &'static str) -> wgpu::BindGroupLayout {
+pub fn sampling_layout(cx: &PassContext<'_>, label: &'static str) -> wgpu::BindGroupLayout {
     let [a, n, d] = gbuffer_entries();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &[
-            a,
-            n,
-            d,
-            uniform_entry(3),
-            texture_entry(4, false, wgpu::TextureViewDimension::D2),
-            super::uint_entry(5),
-        ],
-    })
+    let bounce = texture_entry(4, false, wgpu::TextureViewDimension::D2);
+    cx.layout(label, &[a, n, d, uniform_entry(3), bounce, super::uint_entry(5)])
 }
 
 /// Bind group 1 of a sampling pass for the prepared targets, with `bounce` as its bounce source.
-pub fn sampling_bind_group(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    p: &Preparation<'_>,
-    bounce: &wgpu::TextureView,
-) -> wgpu::BindGroup {
+pub fn sampling_entries<'a>(p: &Preparation<'a>, bounce: &'a wgpu::TextureView) -> Vec<wgpu::BindGroupEntry<'a>> {
     let Preparation { targets, data, unused_pyramid, .. } = *p;
     let pyramid = targets.pyramid.as_ref().map_or(unused_pyramid, |p| &p.view);
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("sampling_bind_group"),
-        layout,
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.albedo.view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.normal.view) },
-            wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&targets.depth.view) },
-            wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
-            wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(pyramid) },
-        ],
-    })
+    let mut entries = super::view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]);
+    entries.extend([
+        wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
+        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
+        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(pyramid) },
+    ]);
+    entries
 }

@@ -5,85 +5,48 @@
 
 use super::super::modes::Step;
 use super::super::targets::DO_FORMAT;
-use super::occlusion::{sampling_bind_group, sampling_layout};
-use super::{color_attachment, fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline};
-use super::{Pass, Preparation, Recording};
-use crate::{shaders, Result};
+use super::color_attachment;
+use super::occlusion::{sampling_entries, sampling_layout};
+use super::state::{flag, PassState, PipelineSpec};
+use super::{Pass, PassContext, Preparation, Recording};
+use crate::Result;
 
 pub struct SenderSkyPass {
-    module: wgpu::ShaderModule,
-    layout: wgpu::BindGroupLayout,
-    pipeline_layouts: [wgpu::BindGroupLayout; 2],
     /// Keyed by whether the far steps read the depth pyramid.
-    pipeline: KeyedPipeline<bool>,
-    bind_group: Option<wgpu::BindGroup>,
+    state: PassState<bool>,
 }
 
 impl SenderSkyPass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        sky_layout: &wgpu::BindGroupLayout,
-    ) -> Result<Self> {
-        Ok(Self {
-            module: shaders::module(device, "march.wgsl")?,
-            layout: sampling_layout(device, "sender_sky_layout"),
-            pipeline_layouts: [frame_layout.clone(), sky_layout.clone()],
-            pipeline: KeyedPipeline::new(),
-            bind_group: None,
-        })
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let layout = sampling_layout(cx, "sender_sky_layout");
+        Ok(Self { state: PassState::new(cx, "sender_sky", "march.wgsl", true, layout)? })
     }
 }
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         if !p.plan.has(Step::SenderSky) {
-            self.pipeline.clear();
-            self.bind_group = None;
+            self.state.clear();
             return;
         }
-        let [frame, sky] = &self.pipeline_layouts;
-        let (module, layout) = (&self.module, &self.layout);
-        self.pipeline.ensure(p.plan.has(Step::DepthPyramid), |pyramid| {
-            let f = |b: bool| b as u8 as f64;
-            fullscreen_pipeline(
-                device,
-                &FullscreenDesc {
-                    label: "sender_sky_pipeline",
-                    module,
-                    entry: "fs_sender",
-                    bind_group_layouts: &[Some(frame), Some(layout), Some(sky)],
-                    targets: &[Some(DO_FORMAT.into())],
-                    depth: None,
-                    constants: &[
-                        ("COMPUTE_AO", 0.0),
-                        ("COMPUTE_DO", 1.0),
-                        ("INDIRECT", 0.0),
-                        ("USE_PYRAMID", f(pyramid)),
-                    ],
-                },
-            )
+        self.state.ensure_fullscreen(device, p.plan.has(Step::DepthPyramid), |pyramid| PipelineSpec {
+            entry: "fs_sender",
+            targets: vec![Some(DO_FORMAT.into())],
+            constants: vec![
+                ("COMPUTE_AO", 0.0),
+                ("COMPUTE_DO", 1.0),
+                ("INDIRECT", 0.0),
+                ("USE_PYRAMID", flag(pyramid)),
+            ],
         });
         // The bounce source is what this pass feeds; it reads none.
-        self.bind_group = Some(sampling_bind_group(device, &self.layout, p, p.unused));
+        self.state.bind(device, &sampling_entries(p, p.unused));
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let (Some((_, pipeline)), Some(bind_group), Some(output)) =
-            (self.pipeline.get(), &self.bind_group, targets.sender_sky.as_ref())
-        else {
-            unreachable!("the sender-sky march recorded before `prepare` or in a plan without it")
-        };
-        FullscreenPass {
-            label: "sender_sky_pass",
-            attachments: &[color_attachment(&output.view, true)],
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups: &[(0, frame), (1, bind_group), (2, &sky.bind_group)],
-            viewport: None,
-        }
-        .record(encoder);
+        let output = targets.sender_sky.as_ref().expect("a plan with the sender-sky march has its target");
+        let attachments = [color_attachment(&output.view, true)];
+        self.state.draw((encoder, timestamps), &attachments, (frame, Some(&sky.bind_group)), None);
     }
 }

@@ -12,7 +12,7 @@ use super::occlusion::OcclusionPass;
 use super::sender_sky::SenderSkyPass;
 use super::skybox::SkyboxPass;
 use super::tonemap::TonemapPass;
-use super::Pass;
+use super::{Pass, PassContext};
 use crate::gpu::Gpu;
 use crate::render::modes::Step;
 use crate::Result;
@@ -39,18 +39,18 @@ impl PassSet {
         sky: &wgpu::BindGroupLayout,
         output: wgpu::TextureFormat,
     ) -> Result<Self> {
-        let device = &gpu.device;
+        let cx = PassContext { gpu, device: &gpu.device, frame_layout: frame, sky_layout: sky, output };
         Ok(Self {
-            gbuffer: GBufferPass::new(gpu, frame)?,
-            pyramid: DepthPyramidPass::new(device)?,
-            sender_sky: SenderSkyPass::new(device, frame, sky)?,
-            lighting: LightingPass::new(device, frame)?,
-            occlusion: OcclusionPass::new(device, frame, sky)?,
-            blur: BlurPass::new(device, frame)?,
-            composite: CompositePass::new(device, frame, sky, output)?,
-            skybox: SkyboxPass::new(device, frame, sky)?,
-            light_cubes: LightCubesPass::new(device, frame, output)?,
-            tonemap: TonemapPass::new(device, frame, output)?,
+            gbuffer: GBufferPass::new(&cx)?,
+            pyramid: DepthPyramidPass::new(&cx)?,
+            sender_sky: SenderSkyPass::new(&cx)?,
+            lighting: LightingPass::new(&cx)?,
+            occlusion: OcclusionPass::new(&cx)?,
+            blur: BlurPass::new(&cx)?,
+            composite: CompositePass::new(&cx)?,
+            skybox: SkyboxPass::new(&cx)?,
+            light_cubes: LightCubesPass::new(&cx)?,
+            tonemap: TonemapPass::new(&cx)?,
         })
     }
 

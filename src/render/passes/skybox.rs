@@ -3,7 +3,7 @@
 
 use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{color_attachment, fullscreen_pipeline, FullscreenDesc, FullscreenPass};
-use super::{Pass, Recording};
+use super::{Pass, PassContext, Recording};
 use crate::{shaders, Result};
 
 pub struct SkyboxPass {
@@ -11,18 +11,14 @@ pub struct SkyboxPass {
 }
 
 impl SkyboxPass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        sky_layout: &wgpu::BindGroupLayout,
-    ) -> Result<Self> {
-        let module = shaders::module(device, "skybox.wgsl")?;
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let module = shaders::module(cx.device, "skybox.wgsl")?;
         let pipeline = fullscreen_pipeline(
-            device,
+            cx.device,
             &FullscreenDesc {
                 label: "skybox_pipeline",
                 module: &module,
-                bind_group_layouts: &[Some(frame_layout), None, Some(sky_layout)],
+                bind_group_layouts: &[Some(cx.frame_layout), None, Some(cx.sky_layout)],
                 entry: "fs_main",
                 targets: &[Some(HDR_FORMAT.into())],
                 depth: Some(wgpu::DepthStencilState {

@@ -6,12 +6,10 @@
 use super::super::modes::Plan;
 use super::super::targets::view_or;
 use super::super::View;
-use super::{
-    color_attachment, depth_entry, fullscreen_pipeline, texture_entry, view_entries, FullscreenDesc, FullscreenPass,
-    KeyedPipeline,
-};
-use super::{Pass, Preparation, Recording};
-use crate::{shaders, Result};
+use super::state::{flag, PassState, PipelineSpec};
+use super::{color_attachment, depth_entry, texture_entry, view_entries};
+use super::{Pass, PassContext, Preparation, Recording};
+use crate::Result;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
@@ -35,34 +33,16 @@ impl Key {
 }
 
 pub struct TonemapPass {
-    module: wgpu::ShaderModule,
-    layout: wgpu::BindGroupLayout,
-    frame_layout: wgpu::BindGroupLayout,
+    state: PassState<Key>,
     output: wgpu::TextureFormat,
-    pipeline: KeyedPipeline<Key>,
-    bind_group: Option<wgpu::BindGroup>,
 }
 
 impl TonemapPass {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        output: wgpu::TextureFormat,
-    ) -> Result<Self> {
-        let module = shaders::module(device, "tonemap.wgsl")?;
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let float = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("tonemap_layout"),
-            entries: &[float(0), float(1), super::normal_entry(2), depth_entry(3), float(4), float(5)],
-        });
-        Ok(Self {
-            module,
-            layout,
-            frame_layout: frame_layout.clone(),
-            output,
-            pipeline: KeyedPipeline::new(),
-            bind_group: None,
-        })
+        let entries = [float(0), float(1), super::normal_entry(2), depth_entry(3), float(4), float(5)];
+        let layout = cx.layout("tonemap_layout", &entries);
+        Ok(Self { state: PassState::new(cx, "tonemap", "tonemap.wgsl", false, layout)?, output: cx.output })
     }
 }
 
@@ -71,26 +51,16 @@ impl Pass for TonemapPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, view, unused, .. } = *p;
         let key = Key::of(plan, view);
-        let (module, frame_layout, layout) = (&self.module, &self.frame_layout, &self.layout);
-        self.pipeline.ensure(key, |key| {
-            let f = |b: bool| b as u8 as f64;
-            fullscreen_pipeline(
-                device,
-                &FullscreenDesc {
-                    label: "tonemap_pipeline",
-                    module,
-                    entry: "fs_main",
-                    bind_group_layouts: &[Some(frame_layout), Some(layout)],
-                    targets: &[Some(self.output.into())],
-                    depth: None,
-                    constants: &[
-                        ("OUTPUT_SRGB", f(self.output.is_srgb())),
-                        ("VIEW", key.view as f64),
-                        ("HAS_AO", f(key.ao)),
-                        ("HAS_DO", f(key.directional)),
-                    ],
-                },
-            )
+        let output = self.output;
+        self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
+            entry: "fs_main",
+            targets: vec![Some(output.into())],
+            constants: vec![
+                ("OUTPUT_SRGB", flag(output.is_srgb())),
+                ("VIEW", key.view as f64),
+                ("HAS_AO", flag(key.ao)),
+                ("HAS_DO", flag(key.directional)),
+            ],
         });
         let occlusion = targets.occlusion();
         let views = [
@@ -101,28 +71,13 @@ impl Pass for TonemapPass {
             view_or(&occlusion.ao, unused),
             view_or(&occlusion.directional, unused),
         ];
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("tonemap_bind_group"),
-            layout: &self.layout,
-            entries: &view_entries(&views),
-        }));
+        self.state.bind(device, &view_entries(&views));
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, output, origin, .. } = rec;
-        let (Some((_, pipeline)), Some(bind_group)) = (self.pipeline.get(), &self.bind_group) else {
-            unreachable!("the tone map recorded before `prepare`")
-        };
         let (w, h) = targets.size;
-        FullscreenPass {
-            label: "tonemap_pass",
-            attachments: &[color_attachment(output, true)],
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups: &[(0, frame), (1, bind_group)],
-            viewport: Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32]),
-        }
-        .record(encoder);
+        let viewport = Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32]);
+        self.state.draw((encoder, timestamps), &[color_attachment(output, true)], (frame, None), viewport);
     }
 }

@@ -3,8 +3,8 @@
 //! slices, steps, reach and thickness. Read by the sampling pass and the blur.
 
 use super::super::kernel;
-use super::super::variant::Variant;
 use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
+use super::super::variant::Variant;
 
 /// Sampling parameters for one frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,7 +49,8 @@ impl OcclusionData {
     pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
         let samples = params.samples.clamp(1, MAX_SAMPLES);
         if self.kernel_key != Some((params.variant, samples)) {
-            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant.decl().kernel, samples)) {
+            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant.decl().kernel, samples))
+            {
                 *slot = k.extend(0.0).into();
             }
             self.uniforms.rotations = kernel::rotations(params.variant.decl().kernel);

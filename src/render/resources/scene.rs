@@ -2,7 +2,6 @@
 //! the material maps with their mip chains. The G-buffer pass fills it (`GBufferPass::upload`,
 //! which owns the material layout and sampler) and draws it.
 
-
 use rayon::prelude::*;
 
 use crate::gpu::Gpu;
@@ -65,7 +64,12 @@ pub(crate) fn upload_texture(
     let write = |level: u32, (w, h): (u32, u32), texels: &[u8]| {
         let origin = wgpu::Origin3d::ZERO;
         gpu.queue.write_texture(
-            wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: level, origin, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: level,
+                origin,
+                aspect: wgpu::TextureAspect::All,
+            },
             texels,
             wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
             wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },

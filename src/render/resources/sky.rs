@@ -3,8 +3,8 @@
 //! floats end at 65504, so a brighter sky is stored divided by a scale that the shaders multiply
 //! back in f32. Bind group 2 of the passes that read it.
 
-use crate::render::passes::bindings::{sampler_entry, texture_entry};
 use crate::gpu::Gpu;
+use crate::render::passes::bindings::{sampler_entry, texture_entry};
 use crate::scene::Skybox;
 use crate::Result;
 

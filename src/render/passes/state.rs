@@ -1,0 +1,139 @@
+//! What every full-screen pass with a bind group of its own keeps: its shader, the layout of its
+//! group 1, the layouts its pipelines are built with, its pipeline for the current key, and its
+//! bind group for the current targets. `new` builds the first three once; `prepare` fills the
+//! other two (or clears them where the plan has no such step); `record` takes them ready.
+
+use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext};
+use crate::{shaders, Result};
+
+/// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
+/// constants (booleans as 0 or 1).
+pub struct PipelineSpec {
+    pub entry: &'static str,
+    pub targets: Vec<Option<wgpu::ColorTargetState>>,
+    pub constants: Vec<(&'static str, f64)>,
+}
+
+/// An override constant's value for a flag.
+pub fn flag(b: bool) -> f64 {
+    b as u8 as f64
+}
+
+pub struct PassState<K> {
+    /// The pass's name: its labels and its messages.
+    pub name: &'static str,
+    pub module: wgpu::ShaderModule,
+    /// Group 1, the pass's own inputs.
+    pub layout: wgpu::BindGroupLayout,
+    /// Group 0, the frame uniforms and lights.
+    frame_layout: wgpu::BindGroupLayout,
+    /// Group 2, the sky, for the passes that read it.
+    sky_layout: Option<wgpu::BindGroupLayout>,
+    pub pipeline: KeyedPipeline<K>,
+    pub bind_group: Option<wgpu::BindGroup>,
+}
+
+impl<K: PartialEq + Copy> PassState<K> {
+    /// Loads `shaders/<shader>`; `layout` is group 1's, and `sky` says whether group 2 (the sky)
+    /// follows it.
+    pub fn new(
+        cx: &PassContext<'_>,
+        name: &'static str,
+        shader: &str,
+        sky: bool,
+        layout: wgpu::BindGroupLayout,
+    ) -> Result<Self> {
+        Ok(Self {
+            name,
+            module: shaders::module(cx.device, shader)?,
+            layout,
+            frame_layout: cx.frame_layout.clone(),
+            sky_layout: sky.then(|| cx.sky_layout.clone()),
+            pipeline: KeyedPipeline::new(),
+            bind_group: None,
+        })
+    }
+
+    /// The pipeline for `key`: `build` makes it (from the key, the shader and groups 0, 1 and,
+    /// with the sky, 2) when the current one is for another key.
+    pub fn ensure(
+        &mut self,
+        key: K,
+        build: impl FnOnce(K, &wgpu::ShaderModule, &[Option<&wgpu::BindGroupLayout>]) -> wgpu::RenderPipeline,
+    ) {
+        let mut layouts = vec![Some(&self.frame_layout), Some(&self.layout)];
+        layouts.extend(self.sky_layout.as_ref().map(Some));
+        let module = &self.module;
+        self.pipeline.ensure(key, |key| build(key, module, &layouts));
+    }
+
+    /// [`PassState::ensure`] for the usual case: a full-screen pipeline of this pass's own shader
+    /// and groups, labelled after the pass, with what `spec` gives for the key.
+    pub fn ensure_fullscreen(&mut self, device: &wgpu::Device, key: K, spec: impl FnOnce(K) -> PipelineSpec) {
+        let label = format!("{}_pipeline", self.name);
+        self.ensure(key, |key, module, layouts| {
+            let spec = spec(key);
+            let desc = FullscreenDesc {
+                label: &label,
+                module,
+                entry: spec.entry,
+                bind_group_layouts: layouts,
+                targets: &spec.targets,
+                depth: None,
+                constants: &spec.constants,
+            };
+            fullscreen_pipeline(device, &desc)
+        });
+    }
+
+    /// Makes group 1 from `entries`.
+    pub fn bind(&mut self, device: &wgpu::Device, entries: &[wgpu::BindGroupEntry<'_>]) {
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("{}_bind_group", self.name)),
+            layout: &self.layout,
+            entries,
+        }));
+    }
+
+    /// Drops the pipeline and bind group: the plan has no step for this pass.
+    pub fn clear(&mut self) {
+        self.pipeline.clear();
+        self.bind_group = None;
+    }
+
+    /// Records the pass (a full-screen triangle) into `attachments`, with `frame` as group 0,
+    /// its own group 1, and `sky` as group 2 where the pass reads it; `viewport` places the image
+    /// in a larger output.
+    pub fn draw<'a>(
+        &'a self,
+        rec: (&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'a>>),
+        attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
+        groups: (&'a wgpu::BindGroup, Option<&'a wgpu::BindGroup>),
+        viewport: Option<[f32; 4]>,
+    ) {
+        let (encoder, timestamps) = rec;
+        let (_, pipeline, own) = self.ready();
+        let (frame, sky) = groups;
+        let all = [(0, frame), (1, own)];
+        let with_sky;
+        let bind_groups: &[(u32, &wgpu::BindGroup)] = match sky {
+            Some(sky) => {
+                with_sky = [(0, frame), (1, own), (2, sky)];
+                &with_sky
+            }
+            None => &all,
+        };
+        let label = format!("{}_pass", self.name);
+        FullscreenPass { label: &label, attachments, depth: None, timestamps, pipeline, bind_groups, viewport }
+            .record(encoder);
+    }
+
+    /// The pipeline (with its key) and the bind group. A pass recorded before `prepare`, or in a
+    /// plan without it, is a bug, and says so.
+    pub fn ready(&self) -> (&K, &wgpu::RenderPipeline, &wgpu::BindGroup) {
+        match (self.pipeline.get(), &self.bind_group) {
+            (Some((key, pipeline)), Some(group)) => (key, pipeline, group),
+            _ => unreachable!("the {} pass recorded before `prepare`, or in a plan without it", self.name),
+        }
+    }
+}
