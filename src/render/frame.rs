@@ -2,11 +2,7 @@
 
 use glam::{Vec3, Vec4Swizzles};
 
-use super::kernel;
-use super::resources::sampling::SamplingParams;
-use super::settings::{View, REACH_RADII, THICKNESS_RADII};
 use super::uniforms::{mat, FrameUniforms, GpuLight};
-use super::variant::{SAMPLES, SLICES, STEPS};
 use crate::scene::{LightRig, OrbitCamera, PointLight};
 
 /// What the frame uniforms are computed from, besides the camera and the scene.
@@ -209,78 +205,6 @@ impl FrameData {
             queue.write_buffer(&self.cube_order, 0, bytemuck::cast_slice(&order));
         }
         self.frame_index = self.frame_index.wrapping_add(1);
-    }
-}
-
-/// What the frame's uniforms and the sampling parameters are computed from: the settings, the
-/// scene's scale, the sky and the lights.
-impl super::Renderer {
-    /// The factor between radiance and what the half-float buffers (HDR, bounce, DO) hold.
-    ///
-    /// Half floats end at 65504; a sky of 1e5 or a thousand lights would overflow them. Each
-    /// frame scales radiance by `min(1, 4096 / peak)`, where `peak` bounds the frame's brightest
-    /// radiance (the sky's peak, the ambient, and every light's irradiance at its clamp
-    /// distance), and the tone mapper divides it back out. Readers of those buffers divide too.
-    pub fn pre_exposure(&self) -> f32 {
-        let s = &self.settings;
-        let sky = self.sky.peak * s.sky_scale * s.sky_strength.max(1.0);
-        let min_d2 = (self.rig.min_distance * self.rig.min_distance).max(f32::MIN_POSITIVE);
-        let lights: f32 = self.lights.iter().map(|l| l.intensity * l.color.max_element() / min_d2).sum();
-        pre_exposure_for(sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0)))
-    }
-
-    /// The sampling radius in use, in model units.
-    pub fn radius(&self) -> f32 {
-        self.settings.radius.unwrap_or(self.scene_radius)
-    }
-
-    /// The march's reach in use, in model units (never below the radius).
-    pub fn reach(&self) -> f32 {
-        self.settings.reach.unwrap_or(REACH_RADII * self.scene_radius).max(self.radius())
-    }
-
-    /// The march's surface thickness in use, in model units.
-    pub fn thickness(&self) -> f32 {
-        self.settings.thickness.unwrap_or(THICKNESS_RADII * self.scene_radius)
-    }
-
-    /// Writes this frame's uniforms and, when the plan samples, the sampling parameters.
-    pub(super) fn upload_frame(&mut self, gpu: &crate::gpu::Gpu, camera: &OrbitCamera, origin: (u32, u32)) {
-        let s = self.settings;
-        let inputs = FrameInputs {
-            size: self.targets.size,
-            exposure: s.exposure,
-            ambient: Vec3::splat(s.ambient),
-            sky_scale: s.sky_scale * self.sky.encode_scale,
-            sky_mips: self.sky.mip_levels,
-            pre_exposure: self.pre_exposure(),
-            ao_strength: s.ao_strength,
-            ao_power: s.ao_power,
-            sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
-            output_origin: origin,
-        };
-        self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
-        if self.plan.decl.runs_sampling() {
-            let radius = self.radius();
-            let samples = SAMPLES.clamp(s.samples);
-            // The march reads the sky once per group of sectors: slices × 4 directions.
-            let directions = s.variant.decl().sky_directions(samples, s.slices);
-            let params = SamplingParams {
-                variant: s.variant,
-                samples,
-                slices: SLICES.clamp(s.slices),
-                steps: STEPS.clamp(s.steps),
-                reach: self.reach(),
-                thickness: self.thickness(),
-                radius,
-                bias: s.bias * radius,
-                sky_mip: kernel::sky_mip_level(self.sky.size, directions),
-                sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
-                indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
-                sender_sky_strength: s.sky_strength,
-            };
-            self.occlusion_data.update(&gpu.queue, &params);
-        }
     }
 }
 

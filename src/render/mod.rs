@@ -4,6 +4,7 @@
 //! that list. Switching mode or light count rebuilds the plan and only what the new plan needs
 //! differently; resizing rebuilds the targets and the passes' bind groups.
 
+mod derived;
 pub mod frame;
 pub mod history;
 pub mod kernel;
