@@ -135,6 +135,15 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     assert!(message.contains("memory budget for geometry") && message.contains("--memory-budget"), "{message}");
     assert!(peak < MIB, "sized from a stream of the file, yet {} KiB were held", peak >> 10);
 
+    // 64 MiB of zero bytes (a sparse file, as a disk full of nothing gives): refused by name
+    // from the same stream, never read whole.
+    let zeros = dir.path().join("zeros.obj");
+    std::fs::File::create(&zeros).unwrap().set_len(64 << 20).unwrap();
+    let (result, peak) = peak_during(|| ssdo::scene::model::load_obj(&zeros));
+    let message = result.unwrap_err().to_string();
+    assert!(message.contains("zeros.obj") && message.contains("holds only zero bytes"), "{message}");
+    assert!(peak < MIB, "a file of zeros was held: {} KiB", peak >> 10);
+
     // Targets: refused from the plan, before a device exists; what fits passes.
     let settings = Settings::default();
     let features = SceneFeatures { lights: 8 };
