@@ -117,11 +117,10 @@ pub(crate) struct ReportArgs {
     /// Image size, WIDTHxHEIGHT
     #[arg(long, default_value = "320x240", value_parser = parse_size)]
     pub(crate) size: Size,
-    /// Sample counts of the points and classic variants to sweep, comma-separated (each 1-256,
-    /// at most 16 counts)
+    /// Sample counts of the points and classic variants to sweep (the help states the range)
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     pub(crate) samples: Vec<usize>,
-    /// Slices x steps of the march variant to sweep, comma-separated (at most 16)
+    /// Slices x steps of the march variant to sweep (the help states the ranges)
     #[arg(long, default_value = "1x8,2x8,2x12,4x16", value_delimiter = ',', value_parser = parse_march)]
     pub(crate) march: Vec<(usize, usize)>,
     /// Sampling radii to sweep, comma-separated: multiples of the scene's default (2x) or lengths
@@ -190,6 +189,59 @@ pub(crate) struct BenchArgs {
     /// the sky and the tone map are passes of their own
     #[arg(long)]
     pub(crate) hdr: bool,
+}
+
+impl Cli {
+    /// Parses the command line, with the sampling counts' help texts written from their
+    /// declarations (`render::variant`), so a range is stated in one place.
+    pub(crate) fn try_parse_with_ranges() -> Result<Self, clap::Error> {
+        use clap::{CommandFactory, FromArgMatches};
+        use ssdo::render::{Count, SAMPLES, SLICES, STEPS};
+        let range = |c: &Count| format!("{}-{}", c.min, c.max);
+        let classic = ssdo::render::Variant::Classic.decl().default_samples;
+        let render_help = |command: clap::Command| {
+            command
+                .mut_arg("samples", |a| {
+                    a.help(format!(
+                        "Samples per pixel of the points and classic variants, {} [default: {}; classic {classic}]",
+                        range(&SAMPLES),
+                        SAMPLES.default
+                    ))
+                })
+                .mut_arg("slices", |a| {
+                    a.help(format!(
+                        "The march: slices (directions around the view vector) per pixel, {}",
+                        range(&SLICES)
+                    ))
+                })
+                .mut_arg("steps", |a| {
+                    a.help(format!(
+                        "The march: steps along each side of a slice, {} (half within the radius)",
+                        range(&STEPS)
+                    ))
+                })
+        };
+        let mut command = Self::command();
+        for name in ["view", "capture", "bench"] {
+            command = command.mut_subcommand(name, render_help);
+        }
+        command = command.mut_subcommand("report", |c| {
+            c.mut_arg("samples", |a| {
+                a.help(format!(
+                    "Sample counts of the points and classic variants to sweep, comma-separated (each {}, at most {MAX_SWEEP} counts)",
+                    range(&SAMPLES)
+                ))
+            })
+            .mut_arg("march", |a| {
+                a.help(format!(
+                    "Slices x steps of the march variant to sweep, comma-separated (slices {}, steps {}; at most {MAX_SWEEP})",
+                    range(&SLICES),
+                    range(&STEPS)
+                ))
+            })
+        });
+        Self::from_arg_matches(&command.try_get_matches()?)
+    }
 }
 
 impl ViewArgs {

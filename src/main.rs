@@ -5,8 +5,6 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use clap::Parser;
-
 use ssdo::gpu::Gpu;
 use ssdo::headless::bench::BenchReport;
 use ssdo::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
@@ -294,7 +292,7 @@ fn main() -> ExitCode {
         .format_timestamp(None)
         .init();
     // The parser's errors in this program's one-line form (help and version print as usual).
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_with_ranges() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => {
             let _ = e.print();

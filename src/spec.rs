@@ -88,13 +88,14 @@ pub struct RenderArgs {
     /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the classic SSAO chapter and the SSDO course project)
     #[arg(long, default_value = "default", value_parser = parse_variant)]
     pub variant: Variant,
-    /// Samples per pixel of the points and classic variants, 1-256 [default: 16; classic 64]
+    /// Samples per pixel of the points and classic variants (the help states the range from
+    /// `render::SAMPLES`)
     #[arg(long)]
     pub samples: Option<usize>,
-    /// The march: slices (directions around the view vector) per pixel, 1-32
+    /// The march: slices per pixel (range: `render::SLICES`)
     #[arg(long, default_value_t = SLICES.default)]
     pub slices: usize,
-    /// The march: steps along each side of a slice, 1-64 (half within the radius)
+    /// The march: steps along each side of a slice (range: `render::STEPS`)
     #[arg(long, default_value_t = STEPS.default)]
     pub steps: usize,
     /// The march's reach, in model units [default: 24 radii]
