@@ -27,6 +27,16 @@ pub enum Error {
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
+/// The value named `s` (any letter case) among `named`, or a setting error that lists the names:
+/// how every named choice (mode, variant, view, sender sky) is read from the command line.
+pub fn by_name<T: Copy>(what: &str, s: &str, named: impl IntoIterator<Item = (&'static str, T)>) -> Result<T> {
+    let named: Vec<(&str, T)> = named.into_iter().collect();
+    named.iter().find(|(name, _)| name.eq_ignore_ascii_case(s)).map(|&(_, value)| value).ok_or_else(|| {
+        let names: Vec<&str> = named.iter().map(|&(name, _)| name).collect();
+        Error::Setting(format!("unknown {what} '{s}' (expected {})", names.join(", ")))
+    })
+}
+
 impl Error {
     pub fn input(path: impl AsRef<Path>, problem: impl Into<String>) -> Self {
         Error::Input { path: path.as_ref().to_path_buf(), problem: problem.into() }

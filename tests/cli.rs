@@ -4,17 +4,9 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-use common::{has_adapter, run_ssdo as ssdo};
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn error_line(output: &Output) -> String {
-    stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
-}
+use common::{error_line, has_adapter, refused, run_ssdo as ssdo, stderr};
 
 #[test]
 fn capture_writes_the_png_and_no_temporary_files() {
@@ -169,9 +161,7 @@ fn sampling_settings_are_validated() {
         (vec!["capture", "--radius", "-1"], "--radius"),
         (vec!["bench", "--frames", "0"], "'0' for '--frames"),
     ] {
-        let result = ssdo(&args);
-        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
-        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+        refused(&args, 2, needle);
     }
     let result = ssdo(&["capture", "--variant", "fancy"]);
     assert_eq!(result.status.code(), Some(2));

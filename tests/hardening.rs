@@ -5,17 +5,9 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-use common::{has_adapter, run_ssdo as ssdo};
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn error_line(output: &Output) -> String {
-    stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
-}
+use common::{error_line, has_adapter, refused, run_ssdo as ssdo, stderr};
 
 /// The binary with `args`, on the test's backend, standard output going to `stdout`.
 fn ssdo_into(args: &[&str], stdout: std::process::Stdio) -> std::process::Child {
@@ -87,25 +79,20 @@ fn the_memory_budget_is_one_flag_and_refuses_before_the_work() {
         (vec!["report", "--memory-budget", "2Q"], "the unit must be K, M, G or T"),
         (vec!["bench", "--memory-budget", "10M"], "at least 64 MiB"),
     ] {
-        let result = ssdo(&args);
-        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
-        assert!(error_line(&result).contains(needle), "{args:?}: {}", error_line(&result));
+        refused(&args, 2, needle);
     }
     // Targets are sized from the plan before a device or a model is touched.
-    let result = ssdo(&["capture", "--size", "16384x16384", "--mode", "off", "--memory-budget", "1G"]);
-    assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
-    let line = error_line(&result);
-    assert!(line.contains("16384x16384 in Off would need") && line.contains("render targets"), "{line}");
+    let args = ["capture", "--size", "16384x16384", "--mode", "off", "--memory-budget", "1G"];
+    let line = refused(&args, 2, "16384x16384 in Off would need");
+    assert!(line.contains("render targets"), "{line}");
     // A model: one polygon of two million corners is refused by name from a stream of its file.
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("polygon.obj");
     let corners: Vec<&str> = ["1", "2", "3", "4", "5", "6"].iter().copied().cycle().take(2_000_000).collect();
     let text = format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nv 0 0 1\nv 1 0 1\nf {}\n", corners.join(" "));
     std::fs::write(&path, text).unwrap();
-    let result = ssdo(&["capture", "--model", path.to_str().unwrap(), "--memory-budget", "512M", "--mode", "off"]);
-    assert_eq!(result.status.code(), Some(3), "{}", stderr(&result));
-    let line = error_line(&result);
-    assert!(line.contains("polygon.obj: 1999998 triangles would need"), "{line}");
+    let args = ["capture", "--model", path.to_str().unwrap(), "--memory-budget", "512M", "--mode", "off"];
+    refused(&args, 3, "polygon.obj: 1999998 triangles would need");
 }
 
 #[test]
@@ -116,9 +103,7 @@ fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
         (vec!["capture", "--pitch", "-NaN"], "--pitch NaN: must be a finite number"),
         (vec!["capture", "--exposure", "-inf"], "--exposure -inf"),
     ] {
-        let result = ssdo(&args);
-        assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
-        assert!(error_line(&result).contains(needle), "{args:?}: {}", stderr(&result));
+        refused(&args, 2, needle);
     }
     // A glTF (or any other known kind) given as a model is named as such, not read as an OBJ
     // with "no triangles".

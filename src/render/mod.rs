@@ -345,10 +345,9 @@ impl Renderer {
     ) {
         self.apply(gpu);
         self.upload_frame(gpu, camera, origin);
-        let (history, plan) = (std::mem::take(&mut self.history), self.plan.clone());
-        let state = FrameState { plan: &plan, frame_index: self.frame_uniforms().frame_index, history: &history };
+        let frame_index = self.frame.uniforms().frame_index;
+        let state = FrameState { plan: &self.plan, frame_index, history: &self.history };
         self.passes.each(|pass| pass.begin_frame(&state));
-        self.history = history;
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));
             self.passes.get(step).record(Recording {

@@ -65,10 +65,7 @@ impl View {
 impl std::str::FromStr for View {
     type Err = crate::Error;
     fn from_str(s: &str) -> Result<Self> {
-        View::ALL.into_iter().find(|v| v.name().eq_ignore_ascii_case(s)).ok_or_else(|| {
-            let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
-            crate::Error::Setting(format!("unknown view '{s}' (expected one of {})", names.join(", ")))
-        })
+        crate::error::by_name("view", s, View::ALL.map(|v| (v.name(), v)))
     }
 }
 
@@ -114,9 +111,7 @@ impl SenderSky {
 impl std::str::FromStr for SenderSky {
     type Err = crate::Error;
     fn from_str(s: &str) -> Result<Self> {
-        SenderSky::ALL.into_iter().find(|v| v.name().eq_ignore_ascii_case(s)).ok_or_else(|| {
-            crate::Error::Setting(format!("unknown sender sky '{s}' (expected march, irradiance or off)"))
-        })
+        crate::error::by_name("sender sky", s, SenderSky::ALL.map(|v| (v.name(), v)))
     }
 }
 

@@ -258,13 +258,8 @@ impl fmt::Display for Variant {
 impl FromStr for Variant {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        if s.eq_ignore_ascii_case("default") {
-            return Ok(Variant::default());
-        }
-        VARIANTS.iter().find(|d| d.name.eq_ignore_ascii_case(s)).map(|d| d.variant).ok_or_else(|| {
-            let names: Vec<&str> = VARIANTS.iter().map(|d| d.name).collect();
-            Error::Setting(format!("unknown variant '{s}' (expected {} or default)", names.join(", ")))
-        })
+        let named = VARIANTS.iter().map(|d| (d.name, d.variant)).chain([("default", Variant::default())]);
+        crate::error::by_name("variant", s, named)
     }
 }
 
@@ -286,6 +281,6 @@ mod tests {
         assert_eq!(SLICES.check(33).unwrap_err().to_string(), "--slices 33: must be a whole number between 1 and 32");
         assert_eq!(STEPS.clamp(0), 1);
         let err = "ssao".parse::<Variant>().unwrap_err().to_string();
-        assert!(err.contains("expected march, points, classic or default"), "{err}");
+        assert!(err.contains("expected march, points, classic, default"), "{err}");
     }
 }

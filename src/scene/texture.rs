@@ -55,8 +55,8 @@ fn content_key(bytes: &[u8]) -> ContentKey {
 }
 
 impl TextureCache {
-    /// Reads the header of every distinct picture the texture statements name (not the pixels)
-    /// and plans each one's size: all of them together within `room` bytes of RGBA8, the
+    /// Reads every distinct picture the texture statements name (its bytes, for the content
+    /// key, and its header; the pixels are not decoded) and plans each one's size: all of them together within `room` bytes of RGBA8, the
     /// largest halved first (see [`crate::budget::fit_images`]). A file that cannot be read is
     /// left to [`load_texture`] to report.
     pub(super) fn plan<'a>(dir: &Path, arguments: impl IntoIterator<Item = &'a str>, room: u64) -> Self {

@@ -91,6 +91,26 @@ pub fn run_ssdo(args: &[&str]) -> std::process::Output {
         .expect("the binary runs")
 }
 
+/// What the binary wrote to standard error.
+pub fn stderr(output: &std::process::Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// The binary's `ssdo: error:` line (empty when there is none).
+pub fn error_line(output: &std::process::Output) -> String {
+    stderr(output).lines().find(|l| l.starts_with("ssdo: error:")).unwrap_or_default().to_owned()
+}
+
+/// Runs the binary with `args`, which must exit with `code` and an error line containing
+/// `needle`; returns that line.
+pub fn refused(args: &[&str], code: i32, needle: &str) -> String {
+    let result = run_ssdo(args);
+    assert_eq!(result.status.code(), Some(code), "{args:?}: {}", stderr(&result));
+    let line = error_line(&result);
+    assert!(line.contains(needle), "{args:?}: {}", stderr(&result));
+    line
+}
+
 /// Whether there is an adapter to render on; under `CI=true` a missing one fails the test with
 /// the install hint.
 pub fn has_adapter() -> bool {

@@ -190,7 +190,8 @@ impl Plan {
     /// The screen targets this plan allocates besides the G-buffer (albedo, normal, depth):
     /// those its steps write (see `io.rs`).
     pub fn target_set(&self) -> TargetSet {
-        let writes = |id| self.writes(id);
+        let written: Vec<TargetId> = self.steps.iter().flat_map(|s| s.io(self).writes).collect();
+        let writes = |id| written.contains(&id);
         TargetSet {
             hdr: writes(TargetId::Hdr),
             bounce: writes(TargetId::Bounce),

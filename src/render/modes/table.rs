@@ -126,10 +126,7 @@ impl fmt::Display for Mode {
 impl FromStr for Mode {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        MODES.iter().find(|d| d.name.eq_ignore_ascii_case(s)).map(|d| d.mode).ok_or_else(|| {
-            let names: Vec<&str> = MODES.iter().map(|d| d.name).collect();
-            Error::Setting(format!("unknown mode '{s}' (expected {})", names.join(", ")))
-        })
+        crate::error::by_name("mode", s, MODES.iter().map(|d| (d.name, d.mode)))
     }
 }
 

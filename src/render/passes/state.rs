@@ -22,6 +22,8 @@ pub fn flag(b: bool) -> f64 {
 pub struct PassState<K> {
     /// The pass's name: its labels and its messages.
     pub name: &'static str,
+    /// The render pass's label (`<name>_pass`), made once rather than every frame.
+    pass_label: String,
     pub module: wgpu::ShaderModule,
     /// Group 1, the pass's own inputs.
     pub layout: wgpu::BindGroupLayout,
@@ -45,6 +47,7 @@ impl<K: PartialEq + Copy> PassState<K> {
     ) -> Result<Self> {
         Ok(Self {
             name,
+            pass_label: format!("{name}_pass"),
             module: shaders::module(cx.device, shader)?,
             layout,
             frame_layout: cx.frame_layout.clone(),
@@ -123,9 +126,16 @@ impl<K: PartialEq + Copy> PassState<K> {
             }
             None => &all,
         };
-        let label = format!("{}_pass", self.name);
-        FullscreenPass { label: &label, attachments, depth: None, timestamps, pipeline, bind_groups, viewport }
-            .record(encoder);
+        FullscreenPass {
+            label: &self.pass_label,
+            attachments,
+            depth: None,
+            timestamps,
+            pipeline,
+            bind_groups,
+            viewport,
+        }
+        .record(encoder);
     }
 
     /// The pipeline (with its key) and the bind group. A pass recorded before `prepare`, or in a
