@@ -126,7 +126,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     let far_steps = steps - near_steps;
     // AO alone counts occluders within R only: the far steps would change nothing.
     let last_step = select(near_steps, steps, COMPUTE_DO);
-    let noise = occ.rotations[u32(tile.x & 3) + 4u * u32(tile.y & 3)];
+    // The tile's slice and step offsets, moved on by this frame's entry of the schedule.
+    let tile_noise = occ.rotations[u32(tile.x & 3) + 4u * u32(tile.y & 3)];
+    let noise = vec4<f32>(tile_noise.xy, fract(tile_noise.zw + occ.schedule.xy));
 
     var total = 0.0;
     var occluded_near = 0.0;

@@ -58,9 +58,12 @@ fn basis(n: vec3<f32>) -> mat3x3<f32> {
     return mat3x3<f32>(vec3<f32>(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3<f32>(b, s + n.y * n.y * a, -n.y), n);
 }
 
-// Tangent frame at `pixel`, rotated by the pixel's entry of the 4x4 rotation tile.
+// Tangent frame at `pixel`, rotated by the pixel's entry of the 4x4 rotation tile, turned by
+// this frame's angle of the schedule.
 fn tangent_frame(n: vec3<f32>, pixel: vec2<i32>) -> mat3x3<f32> {
-    let r = occ.rotations[u32(pixel.x & 3) + 4u * u32(pixel.y & 3)];
+    let tile = occ.rotations[u32(pixel.x & 3) + 4u * u32(pixel.y & 3)].xy;
+    let turn = occ.schedule.zw;
+    let r = vec2<f32>(tile.x * turn.x - tile.y * turn.y, tile.x * turn.y + tile.y * turn.x);
     let b = basis(n);
     if CLASSIC {
         // Gram-Schmidt of the tile's random view-space vector, as the source does.

@@ -133,6 +133,14 @@ pub(crate) struct ReportArgs {
     /// Frames timed per configuration (after two warm-up frames), 1-10000
     #[arg(long, default_value_t = 20, value_parser = parse_frames)]
     pub(crate) frames: usize,
+    /// Frames averaged to sweep, comma-separated (each 1-64; 1 is a single frame); each
+    /// accumulated row renders that many frames and measures the last
+    #[arg(long, default_value = "1,4,16", value_delimiter = ',')]
+    pub(crate) accumulate: Vec<usize>,
+    /// Degrees the camera turns about the model each frame of an accumulated row, ending in the
+    /// truth's view: those rows are measured still and turning (0: still only)
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) orbit: f32,
     /// Number of random point lights, 0-4096
     #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = ssdo::spec::parse_lights)]
     pub(crate) lights: usize,
@@ -196,7 +204,7 @@ impl Cli {
     /// declarations (`render::variant`), so a range is stated in one place.
     pub(crate) fn try_parse_with_ranges() -> Result<Self, clap::Error> {
         use clap::{CommandFactory, FromArgMatches};
-        use ssdo::render::{Count, SAMPLES, SLICES, STEPS};
+        use ssdo::render::{Count, ACCUMULATE, SAMPLES, SLICES, STEPS};
         let range = |c: &Count| format!("{}-{}", c.min, c.max);
         let classic = ssdo::render::Variant::Classic.decl().default_samples;
         let render_help = |command: clap::Command| {
@@ -218,6 +226,12 @@ impl Cli {
                     a.help(format!(
                         "The march: steps along each side of a slice, {} (half within the radius)",
                         range(&STEPS)
+                    ))
+                })
+                .mut_arg("accumulate", |a| {
+                    a.help(format!(
+                        "Frames averaged with the camera still, {} (1: none); headless commands render this many frames of the still camera and keep the last",
+                        range(&ACCUMULATE)
                     ))
                 })
         };

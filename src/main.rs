@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use ssdo::gpu::Gpu;
 use ssdo::headless::bench::BenchReport;
-use ssdo::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
+use ssdo::headless::capture::{capture_converged, output_texture, CAPTURE_FORMAT};
 use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 
@@ -16,18 +16,28 @@ mod cli;
 use cli::*;
 
 fn run_report(args: &ReportArgs) -> Result<()> {
-    use ssdo::render::{SAMPLES, SLICES, STEPS};
+    use ssdo::render::{ACCUMULATE, SAMPLES, SLICES, STEPS};
     for &n in &args.samples {
         SAMPLES.check(n)?;
     }
+    for &n in &args.accumulate {
+        ACCUMULATE.check(n)?;
+    }
+    ssdo::spec::in_range("orbit", args.orbit, -90.0, 90.0)?;
     for &(slices, steps) in &args.march {
         SLICES.check(slices)?;
         STEPS.check(steps)?;
     }
-    if args.samples.is_empty() || args.radius.is_empty() || args.march.is_empty() {
-        return Err(Error::Setting("--samples, --march and --radius must each give at least one".into()));
+    if args.samples.is_empty() || args.radius.is_empty() || args.march.is_empty() || args.accumulate.is_empty() {
+        return Err(Error::Setting("--samples, --march, --radius and --accumulate must each give at least one".into()));
     }
-    for (name, count) in [("samples", args.samples.len()), ("march", args.march.len()), ("radius", args.radius.len())] {
+    let lists = [
+        ("samples", args.samples.len()),
+        ("march", args.march.len()),
+        ("radius", args.radius.len()),
+        ("accumulate", args.accumulate.len()),
+    ];
+    for (name, count) in lists {
         if count > MAX_SWEEP {
             return Err(Error::Setting(format!("--{name}: {count} values; a sweep takes at most {MAX_SWEEP}")));
         }
@@ -42,6 +52,8 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         radii: args.radius.clone(),
         samples_per_pixel: args.spp,
         frames: args.frames,
+        accumulate: args.accumulate.clone(),
+        orbit: args.orbit,
         lights: args.lights,
         seed: args.seed,
         out: args.out.clone(),
@@ -161,7 +173,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
             }
         }
         let started = Instant::now();
-        let image = capture(&gpu, &mut renderer, &camera)?;
+        let image = capture_converged(&gpu, &mut renderer, &camera)?;
         let path = args.out.join(format!("{}.png", mode.name()));
         batch.stage(&path, &output::png_bytes(&path, &image)?)?;
         if args.raw {

@@ -23,6 +23,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("occlusion.wgsl", include_str!("../shaders/occlusion.wgsl")),
     ("march.wgsl", include_str!("../shaders/march.wgsl")),
     ("blur.wgsl", include_str!("../shaders/blur.wgsl")),
+    ("temporal.wgsl", include_str!("../shaders/temporal.wgsl")),
     ("composite.wgsl", include_str!("../shaders/composite.wgsl")),
     ("skybox.wgsl", include_str!("../shaders/skybox.wgsl")),
     ("light_cubes.wgsl", include_str!("../shaders/light_cubes.wgsl")),

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::render::{Mode, SenderSky, Settings, Variant, View, SAMPLES, SLICES, STEPS};
+use crate::render::{Mode, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
 
@@ -133,6 +133,10 @@ pub struct RenderArgs {
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
     pub no_blur: bool,
+    /// Frames averaged with the camera still (range: `render::ACCUMULATE`; 1: none): headless
+    /// commands render this many frames of the still camera and keep the last
+    #[arg(long, default_value_t = ACCUMULATE.default)]
+    pub accumulate: usize,
     /// Exposure applied before tone mapping
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -277,6 +281,7 @@ impl RenderArgs {
             indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
             sender_sky: self.sender_sky,
             blur: !self.no_blur,
+            accumulate: ACCUMULATE.check(self.accumulate)?,
             exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
             sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,

@@ -265,10 +265,21 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     let mut r = renderer(&gpu, &lit, &sky, (32, 24), settings(Mode::Off));
     let expect = [
         (Mode::Off, vec!["gbuffer", "composite", "skybox", "light_cubes", "tonemap"]),
-        (Mode::Ssao, vec!["gbuffer", "ssao", "blur", "composite", "skybox", "light_cubes", "tonemap"]),
+        (Mode::Ssao, vec!["gbuffer", "ssao", "blur", "temporal", "composite", "skybox", "light_cubes", "tonemap"]),
         (
             Mode::Ssdo,
-            vec!["gbuffer", "sender_sky", "lighting", "ssdo", "blur", "composite", "skybox", "light_cubes", "tonemap"],
+            vec![
+                "gbuffer",
+                "sender_sky",
+                "lighting",
+                "ssdo",
+                "blur",
+                "temporal",
+                "composite",
+                "skybox",
+                "light_cubes",
+                "tonemap",
+            ],
         ),
         (
             Mode::Both,
@@ -278,6 +289,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
                 "lighting",
                 "ssao_ssdo",
                 "blur",
+                "temporal",
                 "composite",
                 "skybox",
                 "light_cubes",
@@ -315,26 +327,31 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     r.set_lights(&gpu, Vec::new());
     assert_eq!(
         r.plan().step_names(),
-        vec!["gbuffer", "sender_sky", "lighting", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]
+        vec!["gbuffer", "sender_sky", "lighting", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
     );
     assert!(names(&r).iter().any(|n| n.starts_with("bounce")));
     // No lights and senders lit by the point lights alone: nothing to bounce, no lighting pass.
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
     r.apply(&gpu);
-    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.starts_with("bounce") || n == "sender_sky"));
     // A bounce of strength 0 runs none of it either, whatever lights the senders.
     r.settings.sender_sky = ssdo::render::SenderSky::March;
     r.settings.indirect_strength = 0.0;
     r.apply(&gpu);
-    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "composite", "skybox", "tonemap"]);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]);
     r.settings.indirect_strength = 1.0;
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
     // No blur: no blur pass and no blurred targets.
     r.settings.blur = false;
     r.apply(&gpu);
-    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "composite", "skybox", "tonemap"]);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "temporal", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.ends_with("blurred")));
+    // One frame: no temporal pass, no accumulated target, no history.
+    r.settings.accumulate = 1;
+    r.apply(&gpu);
+    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "composite", "skybox", "tonemap"]);
+    assert!(!names(&r).iter().any(|n| n.ends_with("accumulated") || n.starts_with("history_")));
 }
 
 #[test]

@@ -122,6 +122,8 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
         radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 64,
         frames: 1,
+        accumulate: vec![1],
+        orbit: 0.0,
         lights: 8,
         seed: 1,
         out: out.path().to_path_buf(),
@@ -168,7 +170,7 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
     assert!(csv.starts_with(
-        "mode,variant,samples,steps,pyramid,blur,bounce,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse"
+        "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse"
     ));
     assert_eq!(
         csv.lines().count(),
@@ -239,6 +241,8 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
             radii: vec![RadiusChoice::Times(1.0)],
             samples_per_pixel: 8,
             frames: 1,
+            accumulate: vec![1],
+            orbit: 0.0,
             lights,
             seed: 1,
             out: dir.path().join("out"),
@@ -280,6 +284,8 @@ fn tiny_report(
         radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 4,
         frames: 1,
+        accumulate: vec![1],
+        orbit: 0.0,
         lights: 2,
         seed: 1,
         out: out.to_path_buf(),

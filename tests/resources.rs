@@ -115,7 +115,7 @@ fn a_history_survives_re_plans_that_do_not_concern_it_and_is_dropped_on_resize()
 }
 
 #[test]
-fn the_frame_uniforms_carry_the_previous_camera_and_no_plan_allocates_history_yet() {
+fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_allocates_history() {
     let Some(gpu) = common::gpu() else { return };
     let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
     let sky = Skybox::constant(Vec3::ONE);
@@ -135,13 +135,23 @@ fn the_frame_uniforms_carry_the_previous_camera_and_no_plan_allocates_history_ye
     renderer.reset_history();
     common::shoot(&gpu, &mut renderer, &b);
     assert_eq!(previous(&renderer), clip(&b), "after a reset the previous camera is the frame's own");
-    // Nothing accumulates yet: no plan asks for a history, so none is allocated.
-    for mode in Mode::ALL {
-        renderer.set_mode(&gpu, mode);
-        renderer.resize(&gpu, 41, 30).unwrap();
-        common::shoot(&gpu, &mut renderer, &a);
-        assert_eq!(renderer.history().bytes(), 0, "{mode}");
-        assert!(renderer.allocations().iter().all(|(name, _)| !name.starts_with("history_")));
-        renderer.resize(&gpu, 40, 30).unwrap();
+    // A plan that accumulates keeps the temporal pass's two pairs, counted among the
+    // allocations; one that does not (Off, or one frame) allocates none.
+    for accumulate in [1, 16] {
+        renderer.settings.accumulate = accumulate;
+        for mode in Mode::ALL {
+            renderer.set_mode(&gpu, mode);
+            renderer.resize(&gpu, 41, 30).unwrap();
+            common::shoot(&gpu, &mut renderer, &a);
+            let kept = accumulate > 1 && mode != Mode::Off;
+            let names: Vec<String> = renderer.allocations().into_iter().map(|(n, _)| n).collect();
+            let histories: Vec<&String> = names.iter().filter(|n| n.starts_with("history_")).collect();
+            assert_eq!(histories, if kept { vec!["history_occlusion", "history_surface"] } else { vec![] }, "{mode}");
+            // Two textures each: the average (8 or 2 bytes a pixel) and the surface (8 bytes).
+            let per_pixel = if mode == Mode::Ssao { 2 + 8 } else { 8 + 8 };
+            let want = if kept { 2 * per_pixel * 41 * 30 } else { 0 };
+            assert_eq!(renderer.history().bytes(), want, "{mode}, {accumulate} frames");
+            renderer.resize(&gpu, 40, 30).unwrap();
+        }
     }
 }

@@ -105,6 +105,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             _pad1,
             sky_sh,
             previous_world_to_clip,
+            previous_clip_to_world,
         }
     );
     same_layout!(
@@ -131,6 +132,11 @@ fn uniform_structs_match_wgsl_member_for_member() {
             steps,
             reach,
             thickness,
+            schedule,
+            accumulate,
+            motion_accumulate,
+            history_frames,
+            _pad1,
         }
     );
 }

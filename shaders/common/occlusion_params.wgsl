@@ -30,4 +30,14 @@ struct OcclusionParams {
     // thickness (view units: how deep a surface in the depth buffer is taken to be)
     reach: f32,
     thickness: f32,
+    // This frame's entry of the sample schedule (src/render/kernel.rs `schedule`): xy added to
+    // the march's slice and step offsets (mod 1), zw the (cos, sin) the points' rotation turns
+    // by; (0, 0, 1, 0) on a frame that does not accumulate.
+    schedule: vec4<f32>,
+    // The temporal pass (shaders/temporal.wgsl): the most frames a still pixel averages, the
+    // most a moving one does, and the frames its history holds (0: nothing to reuse).
+    accumulate: u32,
+    motion_accumulate: u32,
+    history_frames: u32,
+    _pad1: f32,
 }

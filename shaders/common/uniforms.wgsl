@@ -40,6 +40,8 @@ struct Frame {
     // World space to the previous frame's clip space (this frame's own on a first frame or
     // after a reset): where a static surface was on screen a frame ago, for reprojection.
     previous_world_to_clip: mat4x4<f32>,
+    // Its inverse: a pixel of the previous frame and its depth back to world space.
+    previous_clip_to_world: mat4x4<f32>,
 }
 
 struct Light {

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use super::loader::Loaded;
 use super::ui::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
-use crate::headless::capture::capture;
+use crate::headless::capture::{capture_converged, capture_settled};
 use crate::render::Mode;
 use crate::scene::Scene;
 use crate::{compare, output, Result};
@@ -31,14 +31,18 @@ impl Viewer {
                 self.scene.relight(lights, seed);
                 self.renderer.set_lights(&self.gpu, self.scene.lights.clone());
             }
-            Action::ResetCamera => self.camera = self.home,
+            Action::ResetCamera => {
+                self.camera = self.home;
+                // A jump, not a move: nothing of the last view is kept.
+                self.renderer.reset_history();
+            }
             Action::Screenshot => {
                 let path = self.screenshot_dir.join(format!(
                     "screenshot-{}-{}.png",
                     timestamp(),
                     self.renderer.settings.mode.name()
                 ));
-                let result = capture(&self.gpu, &mut self.renderer, &self.camera)
+                let result = capture_settled(&self.gpu, &mut self.renderer, &self.camera)
                     .and_then(|image| output::save_png(&path, &image));
                 match result {
                     Ok(()) => self.panel.say(format!("saved {}", path.display()), false),
@@ -58,7 +62,7 @@ impl Viewer {
         let mut panels = Vec::new();
         for m in Mode::ALL {
             self.renderer.set_mode(&self.gpu, m);
-            let image = capture(&self.gpu, &mut self.renderer, &self.camera);
+            let image = capture_converged(&self.gpu, &mut self.renderer, &self.camera);
             let caption = compare::caption(
                 &self.renderer.settings,
                 self.renderer.radius(),

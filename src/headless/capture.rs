@@ -37,3 +37,47 @@ pub fn capture(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Resu
     image::RgbaImage::from_raw(size.0, size.1, bytes)
         .ok_or_else(|| Error::Gpu("readback returned the wrong number of bytes".into()))
 }
+
+/// Renders one frame for each camera without reading anything back: the frames an average
+/// takes in before the one that is kept.
+pub fn render_frames(gpu: &Gpu, renderer: &mut Renderer, cameras: impl IntoIterator<Item = OrbitCamera>) -> Result<()> {
+    let texture = output_texture_as(gpu, renderer.size(), renderer.output_format());
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    for camera in cameras {
+        let mut encoder =
+            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("accumulate_encoder") });
+        renderer.encode(gpu, &mut encoder, &camera, &view);
+        gpu.queue.submit([encoder.finish()]);
+    }
+    gpu.check()
+}
+
+/// The converged image of a still camera: the average started anew, and every frame the plan
+/// averages (`Renderer::accumulation`) rendered, the last one read back. One frame where the
+/// plan does not accumulate.
+pub fn capture_converged(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
+    capture_path(gpu, renderer, |_| *camera)
+}
+
+/// Like [`capture_converged`], with the camera moving: `camera_at(k)` is the camera `k` frames
+/// before the last (so `camera_at(0)` is the view of the image returned).
+pub fn capture_path(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    camera_at: impl Fn(u32) -> OrbitCamera,
+) -> Result<image::RgbaImage> {
+    renderer.apply(gpu);
+    renderer.reset_history();
+    let frames = renderer.accumulation();
+    render_frames(gpu, renderer, (1..frames).rev().map(&camera_at))?;
+    capture(gpu, renderer, &camera_at(0))
+}
+
+/// The still camera's converged image from where the average stands: the frames it still lacks
+/// rendered first (the viewer's screenshot, after however many frames it has shown).
+pub fn capture_settled(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
+    renderer.apply(gpu);
+    let missing = renderer.accumulation().saturating_sub(renderer.frames_accumulated() + 1);
+    render_frames(gpu, renderer, (0..missing).map(|_| *camera))?;
+    capture(gpu, renderer, camera)
+}

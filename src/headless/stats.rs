@@ -3,7 +3,7 @@
 //! values. DO direct and indirect share one buffer (sky·strength + bounce·strength); each is
 //! measured by rendering with the other's strength at 0 (the debug views).
 
-use super::capture::capture;
+use super::capture::capture_converged;
 use super::readback::{read_r16f, read_rgba16f};
 use crate::gpu::Gpu;
 use crate::render::{Renderer, View};
@@ -59,7 +59,7 @@ pub fn frame_stats(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> 
 fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<Vec<BufferStats>> {
     let mut stats = Vec::new();
     renderer.settings.view = View::Final;
-    capture(gpu, renderer, camera)?;
+    capture_converged(gpu, renderer, camera)?;
     let pre = renderer.pre_exposure();
     let decl = *renderer.plan().mode.declaration();
     let targets = renderer.targets().occlusion();
@@ -76,7 +76,7 @@ fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<V
     if decl.directional_occlusion {
         for (view, name) in [(View::DoDirect, "do_direct"), (View::DoIndirect, "do_indirect")] {
             renderer.settings.view = view;
-            capture(gpu, renderer, camera)?;
+            capture_converged(gpu, renderer, camera)?;
             let target = renderer.targets().occlusion().directional.as_ref().expect("a DO mode has a DO target");
             let values = read_rgba16f(gpu, &target.texture)?;
             stats.push(BufferStats::of(name, values.iter().flat_map(|p| [p[0], p[1], p[2]]).map(|v| v / pre)));

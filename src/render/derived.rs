@@ -7,7 +7,8 @@ use glam::Vec3;
 use super::frame::{pre_exposure_for, FrameInputs};
 use super::kernel;
 use super::resources::sampling::SamplingParams;
-use super::settings::{View, REACH_RADII, THICKNESS_RADII};
+use super::modes::OCCLUSION_HISTORY;
+use super::settings::{View, MOTION_ACCUMULATE, REACH_RADII, THICKNESS_RADII};
 use super::variant::{SAMPLES, SLICES, STEPS};
 use super::Renderer;
 use crate::scene::OrbitCamera;
@@ -65,6 +66,9 @@ impl Renderer {
             let samples = SAMPLES.clamp(s.samples);
             // The march reads the sky once per group of sectors: slices × 4 directions.
             let directions = s.variant.decl().sky_directions(samples, s.slices);
+            // The frames the temporal pass's history holds: this frame's place in the schedule.
+            let held = self.history.get(OCCLUSION_HISTORY).map_or(0, |h| h.frames);
+            let accumulate = if self.plan.accumulates() { s.accumulate as u32 } else { 1 };
             let params = SamplingParams {
                 variant: s.variant,
                 samples,
@@ -78,6 +82,10 @@ impl Renderer {
                 sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
                 indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
                 sender_sky_strength: s.sky_strength,
+                schedule: kernel::schedule(held),
+                accumulate,
+                motion_accumulate: accumulate.min(MOTION_ACCUMULATE),
+                history_frames: held,
             };
             self.occlusion_data.update(&gpu.queue, &params);
         }

@@ -178,6 +178,7 @@ impl FrameData {
             _pad1: [0.0; 2],
             sky_sh: inputs.sky_sh.map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
             previous_world_to_clip: mat(previous),
+            previous_clip_to_world: mat(previous.inverse()),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.last = uniforms;

@@ -49,6 +49,17 @@ impl PingPong {
     pub fn bytes(&self) -> u64 {
         self.targets.iter().map(|t| t.bytes).sum()
     }
+
+    /// Which of the two this frame writes (0 or 1): a pass that binds the read side prepares a
+    /// bind group for each and picks this one's.
+    pub fn parity(&self) -> usize {
+        self.written
+    }
+
+    /// What a frame of `parity` reads (the other frame's write).
+    pub fn read_side(&self, parity: usize) -> &Target {
+        &self.targets[1 - parity]
+    }
 }
 
 /// Every history of the renderer.

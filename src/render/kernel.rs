@@ -90,6 +90,26 @@ pub fn rotations(kind: Kernel) -> [[f32; 4]; 16] {
     out
 }
 
+/// The additive recurrences of the sample schedule: steps whose multiples leave no gap wider than
+/// 2/N among the first N (both have continued fractions of small terms): the golden ratio for
+/// the march's slice offset and the points' rotation, √2 − 1 for the march's step offset.
+const GOLDEN: f64 = 0.618_033_988_749_894_8;
+const SILVER: f64 = std::f64::consts::SQRT_2 - 1.0;
+
+/// The sample schedule of frame `index` of an accumulation (0 on its first frame): what every
+/// pixel adds to its tile entry, xy to the march's slice and step offsets (mod 1) and zw the
+/// (cos, sin) the points' rotation is turned by. Frame 0 adds nothing, so a frame that does not
+/// accumulate samples exactly as before. The offsets are additive recurrences: each pixel's
+/// offsets over N frames are N well-spread values of [0, 1) (a Weyl sequence), and so are the
+/// 16 entries of a tile over N frames seen through the blur's 4x4 window, since an irrational
+/// step never falls back onto the tile's sixteenths.
+pub fn schedule(index: u32) -> [f32; 4] {
+    let k = index as f64;
+    let offset = |alpha: f64| (k * alpha).fract() as f32;
+    let angle = std::f64::consts::TAU * (k * GOLDEN).fract();
+    [offset(GOLDEN), offset(SILVER), angle.cos() as f32, angle.sin() as f32]
+}
+
 /// Mip level of a cube map of face size `size` whose texels cover the solid angle one of `n`
 /// hemisphere samples stands for (2π/n); a texel at a face centre covers about (2/size)².
 pub fn sky_mip_level(size: u32, n: usize) -> f32 {
@@ -126,6 +146,23 @@ mod tests {
         for (i, o) in offsets.iter().enumerate() {
             assert!((o - (i as f32 + 0.5) / 16.0).abs() < 1e-6, "all 16 slice offsets once");
         }
+    }
+
+    #[test]
+    fn the_schedule_adds_nothing_on_the_first_frame_and_spreads_every_later_one() {
+        assert_eq!(schedule(0), [0.0, 0.0, 1.0, 0.0]);
+        for frames in [4u32, 16, 64] {
+            for dim in 0..2 {
+                // N offsets of one pixel: no gap wider than 2/N, so N frames of one slice cover
+                // the half circle about as evenly as N slices.
+                let mut v: Vec<f32> = (0..frames).map(|k| schedule(k)[dim]).collect();
+                v.sort_by(f32::total_cmp);
+                v.push(v[0] + 1.0);
+                let widest = v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f32::max);
+                assert!(widest < 2.0 / frames as f32, "dim {dim}, {frames} frames: gap {widest}");
+            }
+        }
+        assert!((0..64).all(|k| { let s = schedule(k); (s[2] * s[2] + s[3] * s[3] - 1.0).abs() < 1e-5 }));
     }
 
     #[test]

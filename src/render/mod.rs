@@ -31,10 +31,10 @@ use passes::{FrameState, Preparation, Recording};
 use resources::sampling::OcclusionData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
-pub use settings::{SenderSky, Settings, View, REACH_RADII, THICKNESS_RADII};
+pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE, REACH_RADII, THICKNESS_RADII};
 use targets::Targets;
 use timer::GpuTimer;
-pub use variant::{Count, Variant, VariantDecl, SAMPLES, SLICES, STEPS};
+pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
 pub struct Renderer {
     pub settings: Settings,
@@ -55,8 +55,10 @@ pub struct Renderer {
     /// The same for the depth pyramid's integer format.
     unused_pyramid: wgpu::TextureView,
     targets: Targets,
-    /// Targets that survive frames and re-plans (none until a pass accumulates).
+    /// Targets that survive frames and re-plans (the temporal pass's).
     history: History,
+    /// The settings the history was accumulated under: another meaning starts it anew.
+    history_settings: Settings,
     scene: SceneGpu,
     sky: SkyGpu,
     passes: PassSet,
@@ -85,6 +87,8 @@ impl Renderer {
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan.target_set());
+        let mut history = History::default();
+        history.ensure(device, size, &plan.history);
         let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
         let scene_gpu = passes.gbuffer.upload(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
@@ -106,7 +110,8 @@ impl Renderer {
             unused,
             unused_pyramid,
             targets,
-            history: History::default(),
+            history,
+            history_settings: settings,
             scene: scene_gpu,
             sky: sky_gpu,
             passes,
@@ -157,6 +162,7 @@ impl Renderer {
             display,
             indirect: settings.indirect_strength > 0.0,
             sender_sky: settings.sender_sky,
+            accumulate: settings.accumulates(),
         };
         Plan::new(settings.mode, features, options)
     }
@@ -189,6 +195,7 @@ impl Renderer {
             data: &self.occlusion_data,
             unused: &self.unused,
             unused_pyramid: &self.unused_pyramid,
+            history: &self.history,
         };
         let device = &gpu.device;
         self.passes.each(|pass| pass.prepare(device, &preparation));
@@ -198,6 +205,21 @@ impl Renderer {
     /// The histories the plan keeps across frames.
     pub fn history(&self) -> &History {
         &self.history
+    }
+
+    /// The frames a still camera renders before its image is the converged one: the number
+    /// averaged where the plan accumulates, 1 otherwise.
+    pub fn accumulation(&self) -> u32 {
+        if self.plan.accumulates() {
+            self.settings.accumulate as u32
+        } else {
+            1
+        }
+    }
+
+    /// The frames of the current view the temporal pass's history holds (0 without one).
+    pub fn frames_accumulated(&self) -> u32 {
+        self.history.get(modes::OCCLUSION_HISTORY).map_or(0, |h| h.frames)
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last
@@ -344,6 +366,11 @@ impl Renderer {
         origin: (u32, u32),
     ) {
         self.apply(gpu);
+        // A setting that changes what is averaged starts the average anew.
+        if !self.settings.same_history(&self.history_settings) {
+            self.history.reset();
+            self.history_settings = self.settings;
+        }
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;
         let state = FrameState { plan: &self.plan, frame_index, history: &self.history };

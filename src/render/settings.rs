@@ -2,7 +2,7 @@
 //! and shading settings, what is shown — with their defaults.
 
 use super::modes::table::Mode;
-use super::variant::{Variant, SAMPLES, SLICES, STEPS};
+use super::variant::{Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
 use crate::Result;
 
 /// What the window shows: the final image or one of the intermediate buffers.
@@ -152,6 +152,10 @@ pub struct Settings {
     pub sender_sky: SenderSky,
     /// Denoise the sampling output.
     pub blur: bool,
+    /// Frames the temporal pass averages at most with the camera still (1 to 64; 1 turns the
+    /// pass and its history off). Each frame's samples follow the schedule, so N still frames
+    /// are N independent sample sets.
+    pub accumulate: usize,
     /// Multiplies HDR radiance before tone mapping.
     pub exposure: f32,
     /// Constant ambient radiance (grey), multiplied by albedo and AO.
@@ -181,6 +185,7 @@ impl Default for Settings {
             indirect_strength: 1.0,
             sender_sky: SenderSky::March,
             blur: true,
+            accumulate: ACCUMULATE.default,
             exposure: 1.0,
             ambient: Variant::default().decl().default_ambient,
             sky_scale: 1.0,
@@ -208,6 +213,7 @@ impl Settings {
             CountId::Samples => self.samples,
             CountId::Slices => self.slices,
             CountId::Steps => self.steps,
+            CountId::Accumulate => self.accumulate,
         }
     }
 
@@ -218,7 +224,20 @@ impl Settings {
             CountId::Samples => &mut self.samples,
             CountId::Slices => &mut self.slices,
             CountId::Steps => &mut self.steps,
+            CountId::Accumulate => &mut self.accumulate,
         }
+    }
+
+    /// Whether the temporal pass runs: more than one frame is averaged and something is sampled.
+    pub fn accumulates(&self) -> bool {
+        self.accumulate > 1
+    }
+
+    /// Whether `other` gives the temporal pass's history the same meaning: every setting but the
+    /// exposure (applied after it) and the number of frames averaged is the same.
+    pub fn same_history(&self, other: &Settings) -> bool {
+        let plain = |s: &Settings| Settings { exposure: 1.0, accumulate: 1, ..*s };
+        plain(self) == plain(other)
     }
 
     /// "2 slices × 12 steps" or "16 samples": the counts this variant takes.
@@ -226,6 +245,11 @@ impl Settings {
         self.variant.decl().count_label(self.samples, self.slices, self.steps)
     }
 }
+
+/// The most frames the temporal pass averages where the view moves (`shaders/temporal.wgsl`):
+/// screen-space occlusion changes with what the view shows, so a moving pixel keeps at most this
+/// many frames' worth of its past (a blend of at least 1/8, as kajiya's).
+pub const MOTION_ACCUMULATE: u32 = 8;
 
 /// The march's default reach and thickness, in default sampling radii (a tenth of the scene's
 /// bounding radius each): far enough to see the walls of a room from its middle; thin enough that

@@ -137,6 +137,8 @@ pub struct TargetSet {
     pub directional: bool,
     /// A blurred copy of whichever of the two the plan has.
     pub blurred: bool,
+    /// Its average over frames (`ao_accumulated` / `do_accumulated`), the temporal pass's output.
+    pub accumulated: bool,
     /// The closest-depth pyramid of the march's far steps.
     pub pyramid: bool,
     /// The sky each sender sees, at half resolution (`sender_sky`).
@@ -159,7 +161,15 @@ pub fn view_or<'a>(target: &'a Option<Target>, unused: &'a wgpu::TextureView) ->
     view_of(target).unwrap_or(unused)
 }
 
-/// The sampling pass's outputs (raw, or blurred): whichever the plan computes.
+/// Which output of the sampling chain a set of [`OcclusionTargets`] holds.
+#[derive(Clone, Copy)]
+enum Stage {
+    Raw,
+    Blurred,
+    Accumulated,
+}
+
+/// The sampling pass's outputs (raw, blurred or accumulated): whichever the plan computes.
 pub struct OcclusionTargets {
     /// Ambient occlusion in [0, 1] (SSAO only).
     pub ao: Option<Target>,
@@ -168,13 +178,15 @@ pub struct OcclusionTargets {
 }
 
 impl OcclusionTargets {
-    fn new(device: &wgpu::Device, set: &TargetSet, size: (u32, u32), blurred: bool) -> Self {
-        let name = |raw: &'static str, blur: &'static str| if blurred { blur } else { raw };
+    /// The pair named `ao_<stage>` and `do_<stage>`: `raw`, `blurred` or `accumulated`.
+    fn new(device: &wgpu::Device, set: &TargetSet, size: (u32, u32), stage: Stage) -> Self {
+        let (ao, directional) = match stage {
+            Stage::Raw => ("ao_raw", "do_raw"),
+            Stage::Blurred => ("ao_blurred", "do_blurred"),
+            Stage::Accumulated => ("ao_accumulated", "do_accumulated"),
+        };
         let make = |wanted: bool, name: &'static str, format| wanted.then(|| Target::new(device, name, size, format));
-        Self {
-            ao: make(set.ao, name("ao_raw", "ao_blurred"), AO_FORMAT),
-            directional: make(set.directional, name("do_raw", "do_blurred"), DO_FORMAT),
-        }
+        Self { ao: make(set.ao, ao, AO_FORMAT), directional: make(set.directional, directional, DO_FORMAT) }
     }
 
     /// The one target the sampling pass (and the blur) writes.
@@ -207,6 +219,8 @@ pub struct Targets {
     pub raw: OcclusionTargets,
     /// What the blur writes (when the plan blurs).
     pub blurred: Option<OcclusionTargets>,
+    /// What the temporal pass writes (when the plan accumulates).
+    pub accumulated: Option<OcclusionTargets>,
     /// The closest-depth pyramid the march reads (when the plan builds one).
     pub pyramid: Option<Pyramid>,
 }
@@ -222,8 +236,9 @@ impl Targets {
             hdr: set.hdr.then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
             bounce: set.bounce.then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
             sender_sky: set.sender_sky.then(|| Target::new(device, "sender_sky", half_size(size), DO_FORMAT)),
-            raw: OcclusionTargets::new(device, set, size, false),
-            blurred: set.blurred.then(|| OcclusionTargets::new(device, set, size, true)),
+            raw: OcclusionTargets::new(device, set, size, Stage::Raw),
+            blurred: set.blurred.then(|| OcclusionTargets::new(device, set, size, Stage::Blurred)),
+            accumulated: set.accumulated.then(|| OcclusionTargets::new(device, set, size, Stage::Accumulated)),
             pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
         }
     }
@@ -238,7 +253,7 @@ impl Targets {
             + when(set.hdr, texel_bytes(size, HDR_FORMAT))
             + when(set.bounce, texel_bytes(size, BOUNCE_FORMAT))
             + when(set.sender_sky, texel_bytes(half_size(size), DO_FORMAT))
-            + occlusion * (1 + set.blurred as u64)
+            + occlusion * (1 + set.blurred as u64 + set.accumulated as u64)
             + when(set.pyramid, Pyramid::bytes_for(size))
     }
 
@@ -249,8 +264,14 @@ impl Targets {
         })
     }
 
-    /// The AO/DO buffers the composite reads: blurred when the plan blurs.
+    /// The AO/DO buffers the composite reads: accumulated when the plan accumulates, otherwise
+    /// blurred when it blurs.
     pub fn occlusion(&self) -> &OcclusionTargets {
+        self.accumulated.as_ref().or(self.blurred.as_ref()).unwrap_or(&self.raw)
+    }
+
+    /// What the temporal pass reads: the blurred output when the plan blurs, else the raw one.
+    pub fn filtered(&self) -> &OcclusionTargets {
         self.blurred.as_ref().unwrap_or(&self.raw)
     }
 
@@ -263,7 +284,8 @@ impl Targets {
             .chain(self.bounce.iter())
             .chain(self.sender_sky.iter())
             .chain(self.raw.all())
-            .chain(self.blurred.iter().flat_map(|b| b.all()));
+            .chain(self.blurred.iter().flat_map(|b| b.all()))
+            .chain(self.accumulated.iter().flat_map(|b| b.all()));
         let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();
         if let Some(p) = &self.pyramid {
             list.push(("depth_pyramid", p.bytes));

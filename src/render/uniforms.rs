@@ -34,6 +34,7 @@ pub struct FrameUniforms {
     pub _pad1: [f32; 2],
     pub sky_sh: [[f32; 4]; 9],
     pub previous_world_to_clip: [[f32; 4]; 4],
+    pub previous_clip_to_world: [[f32; 4]; 4],
 }
 
 /// One point light (bind group 0, binding 1, an array); `Light` in `uniforms.wgsl`.
@@ -81,6 +82,11 @@ pub struct OcclusionParams {
     pub steps: u32,
     pub reach: f32,
     pub thickness: f32,
+    pub schedule: [f32; 4],
+    pub accumulate: u32,
+    pub motion_accumulate: u32,
+    pub history_frames: u32,
+    pub _pad1: f32,
 }
 
 /// Largest kernel the occlusion pass takes.

@@ -32,6 +32,7 @@ pub enum CountId {
     Samples,
     Slices,
     Steps,
+    Accumulate,
 }
 
 /// A whole-number sampling setting: its flag, its label, its range and its default.
@@ -52,6 +53,10 @@ pub const SAMPLES: Count =
 pub const SLICES: Count = Count { id: CountId::Slices, flag: "slices", label: "slices", min: 1, max: 32, default: 2 };
 /// The march's samples along each side of a slice (half within the radius).
 pub const STEPS: Count = Count { id: CountId::Steps, flag: "steps", label: "steps", min: 1, max: 64, default: 12 };
+/// Frames the temporal pass averages at most while the camera is still (1: no accumulation, no
+/// history); every variant takes it.
+pub const ACCUMULATE: Count =
+    Count { id: CountId::Accumulate, flag: "accumulate", label: "frames", min: 1, max: 64, default: 16 };
 
 impl Count {
     pub fn range(&self) -> std::ops::RangeInclusive<usize> {
@@ -223,6 +228,8 @@ impl VariantDecl {
             CountId::Samples => samples,
             CountId::Slices => slices,
             CountId::Steps => steps,
+            // Not a variant's count: no variant lists it.
+            CountId::Accumulate => 1,
         };
         self.counts.iter().map(|c| (*c, value(c))).collect()
     }

@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::sweep::Config;
 use super::{metrics, plot, NoiseFloor, ReportOptions, Row};
 use crate::gpu::Gpu;
-use crate::headless::capture::capture;
+use crate::headless::capture::capture_path;
 use crate::headless::readback::{read_r16f, read_rgba16f};
 use crate::reference::{self, Reference};
 use crate::render::{Mode, Renderer, View};
@@ -81,10 +81,12 @@ impl Bench<'_> {
     ) -> Result<Row> {
         let (gpu, camera, ambient) = (self.gpu, self.camera, self.ambient);
         let (valid, truth) = (&truth.valid, &truth.reference);
-        let Config { mode, variant, samples, steps, blur, pyramid, bounce } = config;
+        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit } = config;
         renderer.settings = config.settings(radius);
         let ms = crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
-        let image = capture(gpu, renderer, camera)?;
+        // The frames averaged, turning `orbit` degrees each, ending in the truth's view.
+        let camera_at = |k: u32| OrbitCamera { yaw_deg: camera.yaw_deg - orbit * k as f32, ..*camera };
+        let image = capture_path(gpu, renderer, camera_at)?;
         let s = renderer.settings;
         // The half-float buffers hold radiance × pre-exposure: divided out here.
         let unexpose = 1.0 / renderer.pre_exposure();
@@ -125,7 +127,7 @@ impl Bench<'_> {
         // of means, so noise cancels and only the estimator's bias remains.
         let bounce_ratio = if directional.is_some() && bounce.is_some() {
             renderer.settings.view = View::DoIndirect;
-            capture(gpu, renderer, camera)?;
+            capture_path(gpu, renderer, camera_at)?;
             renderer.settings.view = s.view;
             let bounce = renderer.targets().occlusion().directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture));
             let bounce = bounce.transpose()?.unwrap_or_default();
@@ -158,6 +160,8 @@ impl Bench<'_> {
             blur,
             bounce: if mode.declaration().directional_occlusion { bounce } else { None },
             radius: if mode == Mode::Off { 0.0 } else { radius },
+            accumulate,
+            orbit,
             ms,
             ao_rmse,
             do_rmse,

@@ -81,6 +81,10 @@ pub struct ReportOptions {
     /// Reference rays per pixel in each of the two traces (at least 2).
     pub samples_per_pixel: u32,
     pub frames: usize,
+    /// Frames averaged, each count a row (1: a single frame).
+    pub accumulate: Vec<usize>,
+    /// Degrees the camera turns about the model each accumulated frame (0: still rows only).
+    pub orbit: f32,
     pub lights: usize,
     pub seed: u64,
     pub out: PathBuf,
@@ -102,7 +106,10 @@ pub struct Row {
     pub bounce: Option<SenderSky>,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
-    /// Median GPU milliseconds of the whole frame.
+    /// Frames averaged, and the camera's turn a frame over them, in degrees.
+    pub accumulate: usize,
+    pub orbit: f32,
+    /// Median GPU milliseconds of the whole frame (one frame, with accumulation running).
     pub ms: f64,
     /// AO against the within-R AO, its definition (a diagnostic).
     pub ao_rmse: Option<f64>,
@@ -215,12 +222,14 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             let maps = r_index == 0 && config.is_the_default_both();
             let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
             progress(&format!(
-                "{} {} {}, radius {radius:.3}, blur {}, bounce {}: {:.2} ms, HDR RMSE {:.4}",
+                "{} {} {}, radius {radius:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
                 row.mode,
                 row.variant,
                 Row::count_label(row.variant, row.samples, row.steps, row.pyramid),
                 row.blur,
                 Row::bounce_label(row.mode, config.bounce),
+                row.accumulate,
+                row.orbit,
                 row.ms,
                 row.hdr_rmse
             ));

@@ -19,13 +19,19 @@ pub struct Config {
     pub pyramid: bool,
     /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
     pub bounce: Option<SenderSky>,
+    /// Frames averaged (1: a single frame), and the degrees the camera turns about the model
+    /// each of them (0: still); the error is taken at the last frame, in the view of the truth.
+    pub accumulate: usize,
+    pub orbit: f32,
 }
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
 /// the first radius measures it: once with the sky-lit composite (under the default variant's
 /// name; points gives the same image) and once for classic. Every sampled mode is measured at
 /// each count with blur on and off; the DO modes also with the march's depth pyramid, and at the
-/// default count with the bounce's other senders and with no bounce.
+/// default count with the bounce's other senders and with no bounce. The rows with blur on and
+/// off and the default bounce are measured at every `--accumulate` count, and the accumulated
+/// ones also orbiting where `--orbit` is given; the pyramid and the other bounces at one frame.
 pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
     let base = Settings::default();
     let mut configs = Vec::new();
@@ -36,8 +42,8 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         // Off has no sampling: measured once for each composite, under the default variant's name
         // for the sky-lit one.
         if first_radius && (variant == default.variant || decl.composite != default.composite) {
-            let off =
-                Config { mode: Mode::Off, variant, samples: 0, steps: 0, blur: false, pyramid: false, bounce: None };
+            let (samples, steps, blur, pyramid, bounce, accumulate, orbit) = (0, 0, false, false, None, 1, 0.0);
+            let off = Config { mode: Mode::Off, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit };
             configs.push(off);
         }
         let counts: Vec<(usize, usize)> = match decl.sampler {
@@ -48,8 +54,19 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             let directional = mode.declaration().directional_occlusion;
             let bounce = directional.then_some(base.sender_sky);
             for &(samples, steps) in &counts {
-                let at = |blur, pyramid, bounce| Config { mode, variant, samples, steps, blur, pyramid, bounce };
-                configs.extend([at(true, false, bounce), at(false, false, bounce)]);
+                let (accumulate, orbit) = (1, 0.0);
+                let at = |blur, pyramid, bounce| {
+                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit }
+                };
+                for blur in [true, false] {
+                    for &accumulate in &options.accumulate {
+                        let config = Config { accumulate, ..at(blur, false, bounce) };
+                        configs.push(config);
+                        if accumulate > 1 && options.orbit != 0.0 {
+                            configs.push(Config { orbit: options.orbit, ..config });
+                        }
+                    }
+                }
                 if decl.marched_lengths && directional {
                     configs.push(at(true, true, bounce));
                 }
@@ -92,6 +109,7 @@ impl Config {
             radius: Some(radius),
             sender_sky: self.bounce.unwrap_or(base.sender_sky),
             indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
+            accumulate: self.accumulate,
             ..base
         }
     }
@@ -105,6 +123,8 @@ impl Config {
             && self.blur
             && self.bounce == Some(base.sender_sky)
             && self.mode == Mode::Both
+            && self.accumulate == base.accumulate
+            && self.orbit == 0.0
     }
 }
 
@@ -123,6 +143,8 @@ mod tests {
             radii: vec![super::super::RadiusChoice::Times(1.0); radii],
             samples_per_pixel: 2,
             frames: 1,
+            accumulate: vec![1],
+            orbit: 0.0,
             lights: 0,
             seed: 1,
             out: "report".into(),
@@ -138,9 +160,19 @@ mod tests {
             let per_radius = 2 * (6 * samples) + (6 + 2) * march + 2 * 3 * march;
             assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
         }
-        let configs = configurations(&options(1, 1, 1), true);
+        let mut o = options(1, 1, 1);
+        o.accumulate = vec![1, Settings::default().accumulate];
+        let configs = configurations(&o, true);
         assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
         assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
+        // Accumulation doubles the blur on/off rows (3 variants × 3 modes × 2) at one count
+        // each; orbiting adds the accumulated ones again.
+        let single = configurations(&options(1, 1, 1), true).len();
+        assert_eq!(configs.len(), single + 3 * 3 * 2);
+        o.orbit = 1.0;
+        let orbiting = configurations(&o, true);
+        assert_eq!(orbiting.len(), single + 2 * 3 * 3 * 2);
+        assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.accumulate > 1));
         assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce.is_none() && !c.pyramid));
     }
 
@@ -154,8 +186,11 @@ mod tests {
             blur: true,
             pyramid: false,
             bounce: None,
+            accumulate: 4,
+            orbit: 0.0,
         };
         let s = none.settings(0.5);
+        assert_eq!(s.accumulate, 4);
         assert_eq!((s.indirect_strength, s.slices, s.steps, s.radius), (0.0, 4, 16, Some(0.5)));
         let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };
         let s = points.settings(0.5);

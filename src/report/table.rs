@@ -34,6 +34,15 @@ impl Row {
         }
     }
 
+    /// "1", "16", or "16 (1°)" for 16 frames orbiting 1° each.
+    pub fn frames_label(&self) -> String {
+        if self.orbit != 0.0 {
+            format!("{} ({}°)", self.accumulate, self.orbit)
+        } else {
+            self.accumulate.to_string()
+        }
+    }
+
     pub fn label(&self) -> String {
         Self::count_label(self.variant, self.samples, self.steps, self.pyramid)
     }
@@ -42,12 +51,12 @@ impl Row {
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,steps,pyramid,blur,bounce,radius,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{:.5},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{},{},{:.5},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
@@ -56,6 +65,8 @@ impl Report {
                 r.blur,
                 Row::bounce_label(r.mode, r.bounce),
                 r.radius,
+                r.accumulate,
+                r.orbit,
                 r.ms,
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),
@@ -84,6 +95,9 @@ impl Report {
              - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n\
              - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
              surfaces differ), {} under a light's cube\n\
+             - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
+             over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
+             cost of one frame with the average running\n\
              - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); \
              \"within R\" columns compare with the image whose occluders and senders beyond the radius are removed\n\n",
             self.device,
@@ -108,14 +122,14 @@ impl Report {
             r.covered,
         );
         out.push_str(
-            "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | ms | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
+            "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | frames (orbit) | ms a frame | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
         );
-        out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
             let off = row.mode == Mode::Off;
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
                 if row.pareto { "★" } else { "" },
                 row.mode.name(),
                 row.variant,
@@ -129,6 +143,7 @@ impl Report {
                 },
                 Row::bounce_label(row.mode, row.bounce),
                 if off { "—".to_string() } else { format!("{:.3}", row.radius) },
+                row.frames_label(),
                 row.ms,
                 row.hdr_rmse,
                 row.hdr_rmse_near,

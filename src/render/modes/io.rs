@@ -19,6 +19,12 @@ pub enum TargetId {
     DoRaw,
     AoBlurred,
     DoBlurred,
+    AoAccumulated,
+    DoAccumulated,
+    /// The temporal pass's histories (`history.rs`): read as the last frame left them, written
+    /// for the next.
+    OcclusionHistory,
+    SurfaceHistory,
     /// What the frame is drawn into (the window or the capture).
     Output,
 }
@@ -37,8 +43,18 @@ impl TargetId {
             TargetId::DoRaw => "do_raw",
             TargetId::AoBlurred => "ao_blurred",
             TargetId::DoBlurred => "do_blurred",
+            TargetId::AoAccumulated => "ao_accumulated",
+            TargetId::DoAccumulated => "do_accumulated",
+            TargetId::OcclusionHistory => "history_occlusion",
+            TargetId::SurfaceHistory => "history_surface",
             TargetId::Output => "output",
         }
+    }
+
+    /// Whether the target is a history: it outlives the frame, and a step may read it before any
+    /// step of this frame writes it.
+    pub fn persistent(self) -> bool {
+        matches!(self, TargetId::OcclusionHistory | TargetId::SurfaceHistory)
     }
 
     /// Whether the target is one of the G-buffer's three, which every plan has.
@@ -62,7 +78,9 @@ impl Step {
         let when = |wanted: bool, id: TargetId| wanted.then_some(id);
         let pyramid = when(plan.has(Step::DepthPyramid), Pyramid);
         let directional = plan.decl.directional_occlusion;
-        let (raw, blurred) = if directional { (DoRaw, DoBlurred) } else { (AoRaw, AoBlurred) };
+        let (raw, blurred, accumulated) =
+            if directional { (DoRaw, DoBlurred, DoAccumulated) } else { (AoRaw, AoBlurred, AoAccumulated) };
+        let filtered = if plan.blur { blurred } else { raw };
         // In a display plan what is shown is drawn straight into the output.
         let shown = if plan.display { Output } else { Hdr };
         let (reads, writes): (Vec<Option<TargetId>>, Vec<Option<TargetId>>) = match self {
@@ -83,9 +101,15 @@ impl Step {
                 vec![Some(raw)],
             ),
             Step::Blur => (vec![Some(Albedo), Some(Normal), Some(Depth), Some(raw)], vec![Some(blurred)]),
+            // This frame's output and the last frames' average where the same surface was.
+            Step::Temporal => (
+                [Normal, Depth, filtered, OcclusionHistory, SurfaceHistory].map(Some).to_vec(),
+                [accumulated, OcclusionHistory, SurfaceHistory].map(Some).to_vec(),
+            ),
             // Every mode's terms; in a display plan, the lighting pass's light as well.
             Step::Composite => {
-                let sampled = plan.decl.runs_sampling().then_some(if plan.blur { blurred } else { raw });
+                let averaged = if plan.accumulates() { accumulated } else { filtered };
+                let sampled = plan.decl.runs_sampling().then_some(averaged);
                 let direct = when(plan.display && plan.lighting_writes_direct(), Hdr);
                 ([Some(Albedo), Some(Normal), Some(Depth), sampled, direct].to_vec(), vec![Some(shown)])
             }

@@ -4,18 +4,19 @@
 //! targets it allocates (`targets.rs` allocates exactly that set). Nothing a mode or a scene does
 //! not need is in the plan, and so nothing for it is allocated or run. `--print-plan` prints both.
 //!
-//! | mode | steps (with lights, blur on, display plan) | targets besides the G-buffer |
+//! | mode | steps (with lights, blur and accumulation on, display plan) | targets besides the G-buffer and histories |
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
-//! | SSAO | gbuffer, ssao, blur, composite, light_cubes | `ao_raw`, `ao_blurred` |
-//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_raw`, `do_blurred` |
-//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//! | SSAO | gbuffer, ssao, blur, temporal, composite, light_cubes | `ao_raw`, `ao_blurred`, `ao_accumulated` |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_raw`, `do_blurred`, `do_accumulated` |
+//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
 //!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
 //! senders' sky and ambient light; no HDR target in a display plan); with `--sender-sky off` and
 //! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a debug view) adds `hdr_color`, the skybox
-//! and the tone map; `--no-blur` drops the blur and its targets; the march with `--depth-pyramid`
+//! and the tone map; `--no-blur` drops the blur and its targets; `--accumulate 1` drops the
+//! temporal pass, its target and its two histories; the march with `--depth-pyramid`
 //! adds the pyramid in the DO modes.
 
 mod io;
@@ -49,12 +50,17 @@ pub struct PlanOptions {
     pub indirect: bool,
     /// What lights the bounce's senders besides the point lights (`Settings::sender_sky`).
     pub sender_sky: SenderSky,
+    /// The sampling output is averaged over frames (`Settings::accumulates`): a temporal pass
+    /// and its history.
+    pub accumulate: bool,
 }
 
 impl Default for PlanOptions {
-    /// A display plan with blur, no pyramid, and the bounce lit by the sky and the lights.
+    /// A display plan with blur and accumulation, no pyramid, and the bounce lit by the sky and
+    /// the lights.
     fn default() -> Self {
-        Self { blur: true, pyramid: false, display: true, indirect: true, sender_sky: SenderSky::default() }
+        let (blur, pyramid, display, indirect, accumulate) = (true, false, true, true, true);
+        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), accumulate }
     }
 }
 
@@ -75,6 +81,9 @@ pub enum Step {
     Occlusion,
     /// Depth- and normal-aware (or classic box) blur of the sampling pass's output.
     Blur,
+    /// The (blurred) sampling output averaged with the last frames', reprojected where the same
+    /// surface was (`shaders/temporal.wgsl`).
+    Temporal,
     /// Ambient, occlusion and point lighting into the HDR target; in a display plan also the
     /// sky, exposure and tone curve, straight into the output.
     Composite,
@@ -103,6 +112,7 @@ impl Step {
             Step::Lighting => "lighting",
             Step::Occlusion => "occlusion",
             Step::Blur => "blur",
+            Step::Temporal => "temporal",
             Step::Composite => "composite",
             Step::Skybox => "skybox",
             Step::LightCubes => "light_cubes",
@@ -126,7 +136,7 @@ pub struct Plan {
     /// bounce.
     pub sender_sky: SenderSky,
     pub steps: Vec<Step>,
-    /// The targets kept across frames (see `history.rs`); no step accumulates yet, so none.
+    /// The targets kept across frames (see `history.rs`): the temporal pass's, where it runs.
     pub history: Vec<HistorySpec>,
 }
 
@@ -156,6 +166,9 @@ impl Plan {
             if o.blur {
                 steps.push(Step::Blur);
             }
+            if o.accumulate {
+                steps.push(Step::Temporal);
+            }
         }
         steps.push(Step::Composite);
         if !o.display {
@@ -168,7 +181,13 @@ impl Plan {
             steps.push(Step::Tonemap);
         }
         let blur = o.blur && decl.runs_sampling();
-        Self { mode, decl, features, blur, display: o.display, sender_sky, steps, history: Vec::new() }
+        let history = if steps.contains(&Step::Temporal) { temporal_history(&decl) } else { Vec::new() };
+        Self { mode, decl, features, blur, display: o.display, sender_sky, steps, history }
+    }
+
+    /// Whether the plan averages the sampling output over frames.
+    pub fn accumulates(&self) -> bool {
+        self.has(Step::Temporal)
     }
 
     /// The names of the steps, in order.
@@ -198,6 +217,7 @@ impl Plan {
             ao: writes(TargetId::AoRaw),
             directional: writes(TargetId::DoRaw),
             blurred: writes(TargetId::AoBlurred) || writes(TargetId::DoBlurred),
+            accumulated: writes(TargetId::AoAccumulated) || writes(TargetId::DoAccumulated),
             pyramid: writes(TargetId::Pyramid),
             sender_sky: writes(TargetId::SenderSky),
         }
@@ -213,6 +233,25 @@ impl Plan {
     }
 }
 
+/// The temporal pass's two histories: the averaged sampling output (in its own format) and the
+/// surface each pixel of it belongs to (`SURFACE_HISTORY_FORMAT`). What a channel means depends
+/// on what the mode computes, so the mode is the key: another mode starts anew.
+fn temporal_history(decl: &ModeDecl) -> Vec<HistorySpec> {
+    let format = if decl.directional_occlusion { super::targets::DO_FORMAT } else { super::targets::AO_FORMAT };
+    let key = decl.mode as u64;
+    vec![
+        HistorySpec { name: OCCLUSION_HISTORY, format, key },
+        HistorySpec { name: SURFACE_HISTORY, format: SURFACE_HISTORY_FORMAT, key },
+    ]
+}
+
+/// The temporal pass's history of the averaged AO or DO + AO.
+pub const OCCLUSION_HISTORY: &str = "occlusion";
+/// The temporal pass's history of each pixel's surface: its depth (f32 bits), and its world
+/// normal (two 12-bit octahedral codes) with the frames it holds (8 bits).
+pub const SURFACE_HISTORY: &str = "surface";
+pub const SURFACE_HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -222,10 +261,11 @@ mod tests {
         let mut plans = Vec::new();
         for mode in Mode::ALL {
             for lights in [0, 8] {
-                for bits in 0..16u32 {
+                for bits in 0..32u32 {
                     for sender_sky in SenderSky::ALL {
-                        let [blur, pyramid, display, indirect] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
-                        let o = PlanOptions { blur, pyramid, display, indirect, sender_sky };
+                        let [blur, pyramid, display, indirect, accumulate] =
+                            [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
+                        let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, accumulate };
                         plans.push(Plan::new(mode, SceneFeatures { lights }, o));
                     }
                 }
@@ -239,7 +279,8 @@ mod tests {
         for plan in all_plans() {
             let io = plan.io();
             for (i, (step, step_io)) in io.iter().enumerate() {
-                for read in &step_io.reads {
+                // A history is read before it is written: what it holds is the last frame's.
+                for read in step_io.reads.iter().filter(|t| !t.persistent()) {
                     let earlier = io[..i].iter().any(|(_, e)| e.writes.contains(read));
                     assert!(earlier, "{:?}: {step:?} reads {} before any step writes it", plan.steps, read.name());
                 }
@@ -255,6 +296,9 @@ mod tests {
                 (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion)
             );
             assert_eq!(t.blurred, plan.blur);
+            assert_eq!(t.accumulated, plan.accumulates());
+            assert_eq!(plan.accumulates(), sampled && plan.has(Step::Temporal));
+            assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
             assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DepthPyramid), plan.has(Step::SenderSky)));
         }
     }
@@ -278,7 +322,7 @@ mod tests {
                 .io()
                 .iter()
                 .flat_map(|(_, io)| io.writes.clone())
-                .filter(|t| !t.in_gbuffer() && *t != TargetId::Output)
+                .filter(|t| !t.in_gbuffer() && !t.persistent() && *t != TargetId::Output)
                 .map(|t| t.name().to_string())
                 .collect();
             written.sort();
@@ -312,15 +356,15 @@ mod tests {
         // (mode, steps, (hdr, bounce, ao, directional))
         let rows = [
             (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
-            (Mode::Ssao, "gbuffer, ssao, blur, composite, light_cubes", (false, false, true, false)),
+            (Mode::Ssao, "gbuffer, ssao, blur, temporal, composite, light_cubes", (false, false, true, false)),
             (
                 Mode::Ssdo,
-                "gbuffer, sender_sky, lighting, ssdo, blur, composite, light_cubes",
+                "gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes",
                 (true, true, false, true),
             ),
             (
                 Mode::Both,
-                "gbuffer, sender_sky, lighting, ssao_ssdo, blur, composite, light_cubes",
+                "gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes",
                 (true, true, false, true),
             ),
         ];

@@ -21,6 +21,7 @@ pub mod sender_sky;
 pub mod set;
 pub mod skybox;
 pub mod state;
+pub mod temporal;
 pub mod tonemap;
 
 use super::history::History;
@@ -68,6 +69,8 @@ pub struct Preparation<'a> {
     pub unused: &'a wgpu::TextureView,
     /// The same for the depth pyramid's integer format.
     pub unused_pyramid: &'a wgpu::TextureView,
+    /// The plan's histories, made before the passes are prepared.
+    pub history: &'a History,
 }
 
 /// One pass of the frame (see the module's documentation).

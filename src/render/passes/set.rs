@@ -11,6 +11,7 @@ use super::lighting::LightingPass;
 use super::occlusion::OcclusionPass;
 use super::sender_sky::SenderSkyPass;
 use super::skybox::SkyboxPass;
+use super::temporal::TemporalPass;
 use super::tonemap::TonemapPass;
 use super::{Pass, PassContext};
 use crate::gpu::Gpu;
@@ -24,6 +25,7 @@ pub struct PassSet {
     pub lighting: LightingPass,
     pub occlusion: OcclusionPass,
     pub blur: BlurPass,
+    pub temporal: TemporalPass,
     pub composite: CompositePass,
     pub skybox: SkyboxPass,
     pub light_cubes: LightCubesPass,
@@ -47,6 +49,7 @@ impl PassSet {
             lighting: LightingPass::new(&cx)?,
             occlusion: OcclusionPass::new(&cx)?,
             blur: BlurPass::new(&cx)?,
+            temporal: TemporalPass::new(&cx)?,
             composite: CompositePass::new(&cx)?,
             skybox: SkyboxPass::new(&cx)?,
             light_cubes: LightCubesPass::new(&cx)?,
@@ -56,13 +59,14 @@ impl PassSet {
 
     /// Calls `f` on every pass, whether the plan runs it or not.
     pub fn each(&mut self, mut f: impl FnMut(&mut dyn Pass)) {
-        let passes: [&mut dyn Pass; 10] = [
+        let passes: [&mut dyn Pass; 11] = [
             &mut self.gbuffer,
             &mut self.pyramid,
             &mut self.sender_sky,
             &mut self.lighting,
             &mut self.occlusion,
             &mut self.blur,
+            &mut self.temporal,
             &mut self.composite,
             &mut self.skybox,
             &mut self.light_cubes,
@@ -88,6 +92,8 @@ impl PassSet {
             Step::Occlusion => &self.occlusion,
             // Denoise AO/DO.
             Step::Blur => &self.blur,
+            // Average AO/DO over frames, where the same surface was.
+            Step::Temporal => &self.temporal,
             // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky
             // behind and the tone curve, into the output).
             Step::Composite => &self.composite,

@@ -114,9 +114,23 @@ impl<K: PartialEq + Copy> PassState<K> {
         groups: (&'a wgpu::BindGroup, Option<&'a wgpu::BindGroup>),
         viewport: Option<[f32; 4]>,
     ) {
+        let (_, _, own) = self.ready();
+        self.draw_with(rec, attachments, (groups.0, own, groups.1), viewport);
+    }
+
+    /// [`PassState::draw`] with group 1 given: a pass that keeps one group per history parity.
+    pub fn draw_with<'a>(
+        &'a self,
+        rec: (&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'a>>),
+        attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
+        groups: (&'a wgpu::BindGroup, &'a wgpu::BindGroup, Option<&'a wgpu::BindGroup>),
+        viewport: Option<[f32; 4]>,
+    ) {
         let (encoder, timestamps) = rec;
-        let (_, pipeline, own) = self.ready();
-        let (frame, sky) = groups;
+        let Some((_, pipeline)) = self.pipeline.get() else {
+            unreachable!("the {} pass recorded before `prepare`, or in a plan without it", self.name)
+        };
+        let (frame, own, sky) = groups;
         let all = [(0, frame), (1, own)];
         let with_sky;
         let bind_groups: &[(u32, &wgpu::BindGroup)] = match sky {

@@ -25,6 +25,13 @@ pub struct SamplingParams {
     pub indirect_strength: f32,
     /// The user's sky strength, for the bounce's senders (not zeroed by the debug views).
     pub sender_sky_strength: f32,
+    /// This frame's entry of the sample schedule (`kernel::schedule`).
+    pub schedule: [f32; 4],
+    /// The temporal pass: the most frames averaged still and moving, and the frames its
+    /// history holds.
+    pub accumulate: u32,
+    pub motion_accumulate: u32,
+    pub history_frames: u32,
 }
 
 /// The kernel and parameters uniform, shared by the sampling and blur passes.
@@ -60,6 +67,9 @@ impl OcclusionData {
         (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as u32, params.sky_mip);
         (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
         u.sender_sky_strength = params.sender_sky_strength;
+        u.schedule = params.schedule;
+        (u.accumulate, u.motion_accumulate, u.history_frames) =
+            (params.accumulate, params.motion_accumulate, params.history_frames);
         (u.slices, u.steps, u.reach, u.thickness) =
             (params.slices as u32, params.steps as u32, params.reach, params.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));

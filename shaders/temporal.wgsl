@@ -1,0 +1,156 @@
+// The temporal pass: this frame's (blurred) AO / DO averaged with what the last frames left for
+// the same surface. The scene and its lights are static, so where a surface was on screen a
+// frame ago follows from the camera alone: each pixel's world position through the previous
+// frame's world-to-clip transform. The four history texels around that point are each kept only
+// if they hold the same surface — their own position (from the depth they stored and the
+// previous camera) within a tenth of the sampling radius of this pixel's tangent plane, and
+// their world normal within 25° of this one — and are weighted bilinearly. What no kept texel
+// covers (disoccluded, off screen, or the first frame after a reset) starts anew from this frame.
+//
+// Each pixel counts the frames it holds, n. It blends 1/n of this frame in, n rising by one a
+// frame: while the pixel stays put, up to `accumulate`, where it then holds the exact mean of
+// those frames and stops blending (still frames add nothing new once the schedule's frames are
+// in); while it moves, up to `motion_accumulate`, with the history clamped to the range of this
+// frame's 3x3 neighbourhood: screen-space occlusion depends on what the view shows, so a moving
+// view keeps less of the past.
+
+#include "common/uniforms.wgsl"
+#include "common/gbuffer_read.wgsl"
+#include "common/occlusion_params.wgsl"
+#include "common/fullscreen.wgsl"
+
+@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+// This frame's output of the blur (or of the sampling pass without blur).
+@group(1) @binding(4) var current: texture_2d<f32>;
+// The last frame's average, and the surface each of its pixels holds: x the reverse-Z depth
+// (f32 bits), y the world normal packed as the G-buffer packs normals (bits 0-23) and the frames
+// averaged (bits 24-31; 0 where nothing is held).
+@group(1) @binding(5) var history: texture_2d<f32>;
+@group(1) @binding(6) var history_surface: texture_2d<u32>;
+
+// How far (in sampling radii) a history texel's position may lie off this pixel's tangent plane,
+// and how closely the normals must agree, for it to count as the same surface.
+const PLANE_RADII: f32 = 0.1;
+const MIN_NORMAL_COS: f32 = 0.9;
+// Reprojected movement below this (in pixels) is a still pixel.
+const STILL_PIXELS: f32 = 0.01;
+
+struct TemporalOut {
+    // what the composite reads this frame
+    @location(0) shown: vec4<f32>,
+    // the same, kept for the next frame
+    @location(1) history: vec4<f32>,
+    @location(2) surface: vec4<u32>,
+}
+
+fn finite4(v: vec4<f32>) -> bool {
+    return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
+}
+
+// The range of this frame's values over the 3x3 pixels around `pixel` on a surface.
+fn neighbourhood(pixel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
+    let last = vec2<i32>(frame.viewport.xy) - 1;
+    var lo = centre;
+    var hi = centre;
+    for (var y = -1; y <= 1; y += 1) {
+        for (var x = -1; x <= 1; x += 1) {
+            let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), last);
+            let v = textureLoad(current, t, 0);
+            if load_depth(t) > 0.0 && finite4(v) {
+                lo = min(lo, v);
+                hi = max(hi, v);
+            }
+        }
+    }
+    return array<vec4<f32>, 2>(lo, hi);
+}
+
+@fragment
+fn fs_main(in: FullscreenOut) -> TemporalOut {
+    let pixel = vec2<i32>(in.position.xy);
+    let now = textureLoad(current, pixel, 0);
+    var out: TemporalOut;
+    out.shown = now;
+    out.history = now;
+    out.surface = vec4<u32>(0u);
+    let depth = load_depth(pixel);
+    // The sky keeps nothing; a non-finite value is passed on as it is, and never kept.
+    if depth <= 0.0 || !finite4(now) {
+        return out;
+    }
+    let p = view_position(in.position.xy, depth);
+    let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
+    let n = normalize((frame.view_to_world * vec4<f32>(load_normal(pixel), 0.0)).xyz);
+    let size = frame.viewport.xy;
+
+    var past = vec4<f32>(0.0);
+    var held = 0.0;
+    var moved = 0.0;
+    let clip = frame.previous_world_to_clip * vec4<f32>(world, 1.0);
+    if occ.history_frames > 0u && clip.w > 0.0 {
+        let ndc = clip.xy / clip.w;
+        let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
+        moved = length(was - in.position.xy);
+        let f = was - 0.5;
+        let base = floor(f);
+        let frac = f - base;
+        let tolerance = max(PLANE_RADII * occ.radius, 1e-6 * -p.z);
+        var weight = 0.0;
+        for (var i = 0u; i < 4u; i += 1u) {
+            let corner = vec2<u32>(i & 1u, i >> 1u);
+            let tap = vec2<i32>(base) + vec2<i32>(corner);
+            if any(tap < vec2<i32>(0)) || any(tap >= vec2<i32>(size)) {
+                continue;
+            }
+            let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(1u));
+            let w = bilinear.x * bilinear.y;
+            let s = textureLoad(history_surface, tap, 0);
+            let frames = f32(s.y >> 24u);
+            if w <= 0.0 || frames <= 0.0 {
+                continue;
+            }
+            // The texel's own surface point, from its pixel and depth through the previous camera.
+            let uv = (vec2<f32>(tap) + 0.5) / size;
+            let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
+            let q = h.xyz / h.w;
+            let value = textureLoad(history, tap, 0);
+            let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n) >= MIN_NORMAL_COS;
+            if !same || !finite4(value) {
+                continue;
+            }
+            past += w * value;
+            held += w * frames;
+            weight += w;
+        }
+        if weight > 1e-3 {
+            past /= weight;
+            held /= weight;
+        } else {
+            held = 0.0;
+        }
+    }
+
+    let still = moved < STILL_PIXELS;
+    let most = max(f32(select(occ.motion_accumulate, occ.accumulate, still)), 1.0);
+    var frames = min(held + 1.0, most);
+    var result = now;
+    if held > 0.0 {
+        if still && held >= most {
+            // A still pixel that holds its `accumulate` frames keeps their mean as it is: the
+            // converged image is the exact mean of those frames, as a headless capture makes it.
+            result = past;
+            frames = most;
+        } else {
+            if !still {
+                let range = neighbourhood(pixel, now);
+                past = clamp(past, range[0], range[1]);
+            }
+            result = mix(past, now, 1.0 / frames);
+        }
+    }
+    out.shown = result;
+    out.history = result;
+    let normal_bits = pack_surface(n, 0.0) & 0xffffffu;
+    out.surface = vec4<u32>(bitcast<u32>(depth), normal_bits | (u32(round(frames)) << 24u), 0u, 0u);
+    return out;
+}
