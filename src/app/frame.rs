@@ -31,6 +31,10 @@ impl Viewer {
                 self.scene.relight(lights, seed);
                 self.renderer.set_lights(&self.gpu, self.scene.lights.clone());
             }
+            Action::ToggleAccumulation => {
+                let s = &mut self.renderer.settings;
+                s.accumulate = if s.accumulates() { 1 } else { self.panel.accumulate.max(2) };
+            }
             Action::ResetCamera => {
                 self.camera = self.home;
                 // A jump, not a move: nothing of the last view is kept.
@@ -159,6 +163,7 @@ impl Viewer {
         let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
 
         // The panel first: it may change settings for this frame.
+        self.panel.still_frames = self.renderer.still_frames();
         let input = self.egui_input();
         let default_radius = self.scene.default_radius();
         let ctx = self.egui.egui_ctx().clone();

@@ -20,7 +20,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use crate::gpu::{instance_descriptor, Gpu};
-use crate::render::{Renderer, Settings};
+use crate::render::{Renderer, Settings, ACCUMULATE};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::spec::SceneArgs;
 use crate::{Error, Result};
@@ -218,6 +218,8 @@ impl Viewer {
             model_name: scene.model.name.clone(),
             sky_name: sky.name.clone(),
             loading: None,
+            still_frames: 0,
+            accumulate: if options.settings.accumulates() { options.settings.accumulate } else { ACCUMULATE.default },
         };
         Ok(Self {
             window,
@@ -268,6 +270,10 @@ impl Viewer {
                 self.window.request_redraw();
             }
             wake = Some(now + LOAD_POLL);
+        }
+        // A still view still averaging its frames draws the next one.
+        if self.renderer.converging() {
+            self.window.request_redraw();
         }
         // Each deadline that has come asks for a frame; the others say when to wake.
         let egui_due = self.egui_repaint.is_some_and(|t| t <= now);
@@ -340,6 +346,7 @@ impl Viewer {
             KeyCode::F12 => self.act(Action::Screenshot),
             KeyCode::KeyC => self.act(Action::Compare),
             KeyCode::KeyR => self.act(Action::ResetCamera),
+            KeyCode::KeyT => self.act(Action::ToggleAccumulation),
             KeyCode::Escape => event_loop.exit(),
             _ => {}
         }

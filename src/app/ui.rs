@@ -16,6 +16,8 @@ pub enum Action {
     LoadModel(PathBuf),
     Relight { lights: usize, seed: u64 },
     ResetCamera,
+    /// Accumulation on (with the panel's last count) or off.
+    ToggleAccumulation,
     Screenshot,
     Compare,
 }
@@ -45,6 +47,10 @@ pub struct PanelState {
     pub sky_name: String,
     /// What is loading and for how long, while a load runs.
     pub loading: Option<String>,
+    /// Frames of the still view averaged so far, and the count accumulation returns to when
+    /// turned back on.
+    pub still_frames: u32,
+    pub accumulate: usize,
 }
 
 impl PanelState {
@@ -143,6 +149,21 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             }
             slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
             ui.checkbox(&mut settings.blur, "blur");
+            // Accumulation: on with the last count it had, off as 1 frame.
+            let mut on = settings.accumulates();
+            ui.horizontal(|ui| {
+                if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed() {
+                    settings.accumulate = if on { state.accumulate.max(2) } else { 1 };
+                }
+                if on {
+                    ui.label(format!("{} / {} frames", state.still_frames, settings.accumulate));
+                }
+            });
+            if on {
+                let count = crate::render::ACCUMULATE;
+                ui.add(egui::Slider::new(&mut settings.accumulate, 2..=count.max).logarithmic(true).text("frames"));
+                state.accumulate = settings.accumulate;
+            }
             slider(ui, &mut settings.ao_strength, 0.0..=1.0, "AO strength");
             slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
             slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");

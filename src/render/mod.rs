@@ -36,6 +36,26 @@ use targets::Targets;
 use timer::GpuTimer;
 pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
+/// Where a still view's average stands (see [`Renderer::still_frames`]).
+#[derive(Default)]
+struct StillView {
+    frames: u32,
+    camera: Option<OrbitCamera>,
+    /// The history's generation the frames went into.
+    generation: u64,
+}
+
+impl StillView {
+    /// Counts a frame of `camera` going into `history`.
+    fn count(&mut self, camera: &OrbitCamera, history: Option<&history::PingPong>) {
+        let same = history.is_some_and(|h| h.frames > 0 && h.generation == self.generation)
+            && self.camera == Some(*camera);
+        self.frames = if same { self.frames.saturating_add(1) } else { 1 };
+        self.camera = Some(*camera);
+        self.generation = history.map_or(0, |h| h.generation);
+    }
+}
+
 pub struct Renderer {
     pub settings: Settings,
     plan: Plan,
@@ -59,6 +79,9 @@ pub struct Renderer {
     history: History,
     /// The settings the history was accumulated under: another meaning starts it anew.
     history_settings: Settings,
+    /// Frames recorded since the camera last moved, counting the one it moved in (0 before a
+    /// first frame and after a reset), with that frame's camera and the history it went into.
+    still: StillView,
     scene: SceneGpu,
     sky: SkyGpu,
     passes: PassSet,
@@ -112,6 +135,7 @@ impl Renderer {
             targets,
             history,
             history_settings: settings,
+            still: StillView::default(),
             scene: scene_gpu,
             sky: sky_gpu,
             passes,
@@ -217,9 +241,22 @@ impl Renderer {
         }
     }
 
-    /// The frames of the current view the temporal pass's history holds (0 without one).
+    /// The frames the temporal pass's history holds (0 without one): since it was made or reset.
     pub fn frames_accumulated(&self) -> u32 {
         self.history.get(modes::OCCLUSION_HISTORY).map_or(0, |h| h.frames)
+    }
+
+    /// Frames of the current still view averaged so far (at most [`Renderer::accumulation`]):
+    /// since the camera last moved (that frame counting), the history was reset or a setting
+    /// changed what it means.
+    pub fn still_frames(&self) -> u32 {
+        self.still.frames.min(self.accumulation())
+    }
+
+    /// Whether a still view has frames left to average before its image is converged: the
+    /// viewer keeps drawing while it does.
+    pub fn converging(&self) -> bool {
+        self.plan.accumulates() && self.still.frames < self.accumulation()
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last
@@ -227,6 +264,7 @@ impl Renderer {
     pub fn reset_history(&mut self) {
         self.history.reset();
         self.frame.forget_previous();
+        self.still = StillView::default();
     }
 
     /// The frame uniforms of the last frame recorded.
@@ -371,6 +409,7 @@ impl Renderer {
             self.history.reset();
             self.history_settings = self.settings;
         }
+        self.still.count(camera, self.history.get(modes::OCCLUSION_HISTORY));
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;
         let state = FrameState { plan: &self.plan, frame_index, history: &self.history };
