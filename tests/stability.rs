@@ -1,7 +1,8 @@
 //! The stability suite: extreme cases in every mode and both variants. Each must render without a
 //! panic with every value finite, AO in [0, 1] and DO ≥ 0. The table of results is printed
 //! (`cargo test --test stability -- --nocapture`); every case is reachable from the command line
-//! (the `cli` column).
+//! (the `cli` column). Every case renders the frames it averages (16 by default) before it is
+//! read; accumulation also runs at 1x1 and odd sizes, turning the camera and resizing mid-average.
 
 mod common;
 
@@ -278,4 +279,71 @@ fn sizes_beyond_the_adapter_are_a_clear_error() {
     assert_eq!(renderer.size(), (8, 8), "a refused resize keeps the old size");
     renderer.resize(&gpu, 0, 0).unwrap();
     assert_eq!(renderer.size(), (8, 8), "0x0 (minimised) is ignored");
+}
+
+/// Every value of the frame's AO/DO (what the composite read) and HDR: finite, AO in [0, 1] and
+/// DO ≥ 0, or what is wrong.
+fn check_frame(gpu: &Gpu, r: &Renderer) -> Result<(), String> {
+    use ssdo::headless::readback::{read_r16f, read_rgba16f};
+    let set = r.targets().occlusion();
+    let ao: Vec<f32> = match (&set.ao, &set.directional) {
+        (Some(t), _) => read_r16f(gpu, &t.texture).unwrap(),
+        (None, Some(t)) if r.plan().decl.ambient_occlusion => {
+            read_rgba16f(gpu, &t.texture).unwrap().iter().map(|p| p[3]).collect()
+        }
+        _ => Vec::new(),
+    };
+    if let Some(bad) = ao.iter().find(|v| !(v.is_finite() && (0.0..=1.0).contains(*v))) {
+        return Err(format!("AO {bad}"));
+    }
+    if let Some(t) = &set.directional {
+        let d = read_rgba16f(gpu, &t.texture).unwrap();
+        if let Some(bad) = d.iter().find(|p| p[..3].iter().any(|v| !(v.is_finite() && *v >= 0.0))) {
+            return Err(format!("DO {bad:?}"));
+        }
+    }
+    let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
+    match hdr.iter().find(|p| p.iter().any(|v| !v.is_finite())) {
+        Some(bad) => Err(format!("HDR {bad:?}")),
+        None => Ok(()),
+    }
+}
+
+#[test]
+fn accumulation_stays_finite_at_any_size_while_moving_and_across_a_resize() {
+    let Some(gpu) = common::gpu() else { return };
+    let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
+    let sky = Skybox::from_fn("day", 16, builtin::day_sky);
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    let mut failures = Vec::new();
+    for size in [(1, 1), (2, 3), (33, 17), (48, 36)] {
+        let settings = Settings { accumulate: 16, ..Settings::default() };
+        let mut r = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings).unwrap();
+        r.keep_hdr(&gpu, true);
+        for variant in Variant::ALL {
+            for mode in Mode::sampled() {
+                r.settings = Settings { mode, variant, ..settings };
+                r.resize(&gpu, size.0, size.1).unwrap();
+                // Twelve frames turning 5° and tilting; half way through the window grows.
+                for k in 0..12 {
+                    if k == 6 {
+                        r.resize(&gpu, size.0 + 7, size.1 + 5).unwrap();
+                    }
+                    let turned = OrbitCamera {
+                        yaw_deg: camera.yaw_deg + 5.0 * k as f32,
+                        pitch_deg: camera.pitch_deg + 2.0 * (k % 3) as f32,
+                        ..camera
+                    };
+                    ssdo::headless::capture::render_frames(&gpu, &mut r, [turned]).unwrap();
+                    if let Err(e) = check_frame(&gpu, &r) {
+                        failures.push(format!("{size:?} {mode} {variant} frame {k}: {e}"));
+                    }
+                }
+                assert_eq!(r.size(), (size.0 + 7, size.1 + 5));
+                assert_eq!(r.frames_accumulated(), 6, "the resize started the average anew");
+            }
+        }
+        gpu.check().unwrap();
+    }
+    assert!(failures.is_empty(), "unstable accumulation:\n{}", failures.join("\n"));
 }
