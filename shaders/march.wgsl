@@ -301,8 +301,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     return out;
 }
 
-fn evaluate_pixel(position: vec2<f32>) -> Occlusion {
-    return evaluate(position, occ.slices, vec2<i32>(position));
+// The pass's fragment at `frag`: its full-resolution pixel, with its own tile entry.
+fn evaluate_pixel(frag: vec2<f32>) -> Occlusion {
+    return evaluate(sampled_position(frag), occ.slices, vec2<i32>(frag));
 }
 
 // SSAO: AO alone, into a one-channel target.

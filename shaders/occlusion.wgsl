@@ -75,7 +75,9 @@ fn tangent_frame(n: vec3<f32>, pixel: vec2<i32>) -> mat3x3<f32> {
     return mat3x3<f32>(t, cross(n, t), n);
 }
 
-fn evaluate(position: vec2<f32>) -> Occlusion {
+// The samples at pixel centre `position`, rotated by the tile entry of `tile` (the pass's own
+// pixel: the same pixel at full resolution).
+fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
     var out: Occlusion;
     out.ao = 1.0;
     let pixel = vec2<i32>(position);
@@ -88,7 +90,7 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
     let radius = occ.radius;
     let bias = occ.bias;
     let count = min(occ.sample_count, MAX_SAMPLES);
-    let tbn = tangent_frame(n, pixel);
+    let tbn = tangent_frame(n, tile);
     let size = vec2<i32>(frame.viewport.xy);
 
     var occluded = 0.0;
@@ -172,12 +174,12 @@ fn evaluate(position: vec2<f32>) -> Occlusion {
 // SSAO: AO alone, into a one-channel target.
 @fragment
 fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(evaluate(in.position.xy).ao, 0.0, 0.0, 1.0);
+    return vec4<f32>(evaluate(sampled_position(in.position.xy), vec2<i32>(in.position.xy)).ao, 0.0, 0.0, 1.0);
 }
 
 // SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
-    let o = evaluate(in.position.xy);
+    let o = evaluate(sampled_position(in.position.xy), vec2<i32>(in.position.xy));
     return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
 }

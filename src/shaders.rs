@@ -22,6 +22,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("lighting.wgsl", include_str!("../shaders/lighting.wgsl")),
     ("occlusion.wgsl", include_str!("../shaders/occlusion.wgsl")),
     ("march.wgsl", include_str!("../shaders/march.wgsl")),
+    ("upsample.wgsl", include_str!("../shaders/upsample.wgsl")),
     ("blur.wgsl", include_str!("../shaders/blur.wgsl")),
     ("temporal.wgsl", include_str!("../shaders/temporal.wgsl")),
     ("composite.wgsl", include_str!("../shaders/composite.wgsl")),

@@ -2,8 +2,8 @@
 //! where the answer is known. The white furnace holds after one frame and after sixteen; sixteen
 //! still frames of one slice agree with one frame of sixteen slices (the schedule's frames are
 //! independent sample sets); pixels a camera move uncovers keep nothing of the old view; a
-//! moving camera never leaves [0, 1] or produces a non-finite value; and the history lives
-//! exactly as long as its plan, size and settings.
+//! moving camera never leaves [0, 1] or produces a non-finite value; the history lives exactly as
+//! long as its plan, size and settings; and half-resolution sampling leaves no halo.
 
 mod common;
 
@@ -259,4 +259,87 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     r.settings.accumulate = 1;
     render_frames(&gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.history().all().count(), 0);
+}
+
+/// A floor, a far wall and a pillar before it, seen from 20° aside (its side faces meet the
+/// wall's normal at a right angle), its top against the sky: silhouettes against a far surface
+/// and against the sky.
+fn pillar_scene() -> (Scene, Skybox, OrbitCamera) {
+    use ssdo::scene::builtin::MeshBuilder;
+    use ssdo::scene::Material;
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let wall = b.material(Material::plain("wall", [0.2, 0.4, 0.9]));
+    let pillar = b.material(Material::plain("pillar", [0.9, 0.3, 0.1]));
+    b.quad(floor, [v(-3.0, 0.0, 3.0), v(3.0, 0.0, 3.0), v(3.0, 0.0, -3.0), v(-3.0, 0.0, -3.0)]);
+    b.quad(wall, [v(-3.0, 0.0, -3.0), v(3.0, 0.0, -3.0), v(3.0, 1.2, -3.0), v(-3.0, 1.2, -3.0)]);
+    b.cuboid(pillar, v(-0.3, 0.0, -0.3), v(0.3, 1.8, 0.3), false);
+    let model = b.build("pillar").unwrap();
+    let camera = looking(v(0.0, 0.9, 0.0), 20.0, 15.0, 5.0);
+    (Scene::new(model, 0, 1), scene::load_skybox(None).unwrap(), camera)
+}
+
+#[test]
+fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = pillar_scene();
+    for mode in [Mode::Ssao, Mode::Both] {
+        let s = Settings { half_resolution: true, blur: false, ..settings(mode, 1) };
+        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+        shoot(&gpu, &mut r, &camera);
+        assert!(r.plan().has(Step::Upsample));
+        let t = r.targets();
+        let depth = ssdo::headless::readback::read_depth(&gpu, &t.depth.texture).unwrap();
+        let read = |set: &ssdo::render::targets::OcclusionTargets| -> Vec<[f32; 4]> {
+            match (&set.ao, &set.directional) {
+                (Some(ao), _) => read_r16f(&gpu, &ao.texture).unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect(),
+                (None, Some(d)) => read_rgba16f(&gpu, &d.texture).unwrap(),
+                _ => unreachable!(),
+            }
+        };
+        let (half, full) = (read(t.half.as_ref().unwrap()), read(&t.raw));
+        let (hw, hh) = (W.div_ceil(2) as i64, H.div_ceil(2) as i64);
+        assert_eq!(half.len() as i64, hw * hh, "the sampling pass ran at half size");
+        // Each full-resolution pixel next to a silhouette may only hold a blend of the half-size
+        // samples (3x3 around it, each the full-resolution pixel (2x, 2y)) on its own surface:
+        // within a quarter of its depth. A blend that reaches across the silhouette (a halo)
+        // leaves their range.
+        let (mut checked, mut halos) = (0, Vec::new());
+        for y in 0..H as i64 {
+            for x in 0..W as i64 {
+                let d = depth[(y * W as i64 + x) as usize];
+                if d <= 0.0 {
+                    continue;
+                }
+                let (mut own, mut other) = (Vec::new(), false);
+                for hy in (y / 2 - 1).max(0)..=(y / 2 + 1).min(hh - 1) {
+                    for hx in (x / 2 - 1).max(0)..=(x / 2 + 1).min(hw - 1) {
+                        let (fx, fy) = ((2 * hx).min(W as i64 - 1), (2 * hy).min(H as i64 - 1));
+                        let e = depth[(fy * W as i64 + fx) as usize];
+                        if e > 0.0 && (e / d - 1.0).abs() < 0.25 {
+                            own.push(half[(hy * hw + hx) as usize]);
+                        } else {
+                            other = true;
+                        }
+                    }
+                }
+                if !other || own.is_empty() {
+                    continue;
+                }
+                checked += 1;
+                let value = full[(y * W as i64 + x) as usize];
+                for c in 0..4 {
+                    let lo = own.iter().map(|v| v[c]).fold(f32::MAX, f32::min);
+                    let hi = own.iter().map(|v| v[c]).fold(f32::MIN, f32::max);
+                    let slack = 2e-3 * hi.abs().max(1.0);
+                    if value[c] < lo - slack || value[c] > hi + slack {
+                        halos.push(format!("({x}, {y}) channel {c}: {} outside {lo}..{hi}", value[c]));
+                    }
+                }
+            }
+        }
+        assert!(checked > 200, "{mode}: the view has silhouettes ({checked} pixels beside one)");
+        assert!(halos.is_empty(), "{mode}: {} of {checked} pixels take values from across a silhouette: {:?}", halos.len(), &halos[..halos.len().min(5)]);
+    }
 }

@@ -41,3 +41,15 @@ struct OcclusionParams {
     history_frames: u32,
     _pad1: f32,
 }
+
+// The sampling passes run at half width and height (an upsample follows): their pixel (x, y)
+// samples the full-resolution pixel (2x, 2y), with the rotation tile of its own pixel.
+override HALF_RES: bool = false;
+
+// The full-resolution pixel centre a sampling pass's fragment at `frag` samples.
+fn sampled_position(frag: vec2<f32>) -> vec2<f32> {
+    if HALF_RES {
+        return vec2<f32>(2 * vec2<i32>(frag)) + 0.5;
+    }
+    return frag;
+}

@@ -149,6 +149,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             }
             slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
             ui.checkbox(&mut settings.blur, "blur");
+            ui.checkbox(&mut settings.half_resolution, "half resolution")
+                .on_hover_text("sample at half width and height, then upsample by depth and normal");
             // Accumulation: on with the last count it had, off as 1 frame.
             let mut on = settings.accumulates();
             ui.horizontal(|ui| {

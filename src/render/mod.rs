@@ -187,6 +187,7 @@ impl Renderer {
             indirect: settings.indirect_strength > 0.0,
             sender_sky: settings.sender_sky,
             accumulate: settings.accumulates(),
+            half: settings.half_resolution,
         };
         Plan::new(settings.mode, features, options)
     }

@@ -152,6 +152,9 @@ pub struct Settings {
     pub sender_sky: SenderSky,
     /// Denoise the sampling output.
     pub blur: bool,
+    /// The sampling pass runs at half width and height, followed by a depth- and normal-aware
+    /// upsample.
+    pub half_resolution: bool,
     /// Frames the temporal pass averages at most with the camera still (1 to 64; 1 turns the
     /// pass and its history off). Each frame's samples follow the schedule, so N still frames
     /// are N independent sample sets.
@@ -185,6 +188,7 @@ impl Default for Settings {
             indirect_strength: 1.0,
             sender_sky: SenderSky::March,
             blur: true,
+            half_resolution: false,
             accumulate: ACCUMULATE.default,
             exposure: 1.0,
             ambient: Variant::default().decl().default_ambient,

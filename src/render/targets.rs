@@ -139,6 +139,8 @@ pub struct TargetSet {
     pub blurred: bool,
     /// Its average over frames (`ao_accumulated` / `do_accumulated`), the temporal pass's output.
     pub accumulated: bool,
+    /// The sampling pass's output at half resolution (`ao_half` / `do_half`), before the upsample.
+    pub half: bool,
     /// The closest-depth pyramid of the march's far steps.
     pub pyramid: bool,
     /// The sky each sender sees, at half resolution (`sender_sky`).
@@ -167,6 +169,7 @@ enum Stage {
     Raw,
     Blurred,
     Accumulated,
+    Half,
 }
 
 /// The sampling pass's outputs (raw, blurred or accumulated): whichever the plan computes.
@@ -184,7 +187,9 @@ impl OcclusionTargets {
             Stage::Raw => ("ao_raw", "do_raw"),
             Stage::Blurred => ("ao_blurred", "do_blurred"),
             Stage::Accumulated => ("ao_accumulated", "do_accumulated"),
+            Stage::Half => ("ao_half", "do_half"),
         };
+        let size = if let Stage::Half = stage { half_size(size) } else { size };
         let make = |wanted: bool, name: &'static str, format| wanted.then(|| Target::new(device, name, size, format));
         Self { ao: make(set.ao, ao, AO_FORMAT), directional: make(set.directional, directional, DO_FORMAT) }
     }
@@ -221,6 +226,8 @@ pub struct Targets {
     pub blurred: Option<OcclusionTargets>,
     /// What the temporal pass writes (when the plan accumulates).
     pub accumulated: Option<OcclusionTargets>,
+    /// What a half-resolution sampling pass writes (the upsample then writes `raw`).
+    pub half: Option<OcclusionTargets>,
     /// The closest-depth pyramid the march reads (when the plan builds one).
     pub pyramid: Option<Pyramid>,
 }
@@ -239,6 +246,7 @@ impl Targets {
             raw: OcclusionTargets::new(device, set, size, Stage::Raw),
             blurred: set.blurred.then(|| OcclusionTargets::new(device, set, size, Stage::Blurred)),
             accumulated: set.accumulated.then(|| OcclusionTargets::new(device, set, size, Stage::Accumulated)),
+            half: set.half.then(|| OcclusionTargets::new(device, set, size, Stage::Half)),
             pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
         }
     }
@@ -254,6 +262,10 @@ impl Targets {
             + when(set.bounce, texel_bytes(size, BOUNCE_FORMAT))
             + when(set.sender_sky, texel_bytes(half_size(size), DO_FORMAT))
             + occlusion * (1 + set.blurred as u64 + set.accumulated as u64)
+            + when(set.half, {
+                let half = half_size(size);
+                when(set.ao, texel_bytes(half, AO_FORMAT)) + when(set.directional, texel_bytes(half, DO_FORMAT))
+            })
             + when(set.pyramid, Pyramid::bytes_for(size))
     }
 
@@ -285,7 +297,8 @@ impl Targets {
             .chain(self.sender_sky.iter())
             .chain(self.raw.all())
             .chain(self.blurred.iter().flat_map(|b| b.all()))
-            .chain(self.accumulated.iter().flat_map(|b| b.all()));
+            .chain(self.accumulated.iter().flat_map(|b| b.all()))
+            .chain(self.half.iter().flat_map(|b| b.all()));
         let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();
         if let Some(p) = &self.pyramid {
             list.push(("depth_pyramid", p.bytes));

@@ -81,7 +81,7 @@ impl Bench<'_> {
     ) -> Result<Row> {
         let (gpu, camera, ambient) = (self.gpu, self.camera, self.ambient);
         let (valid, truth) = (&truth.valid, &truth.reference);
-        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit } = config;
+        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half } = config;
         renderer.settings = config.settings(radius);
         let ms = crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
         // The frames averaged, turning `orbit` degrees each, ending in the truth's view.
@@ -162,6 +162,7 @@ impl Bench<'_> {
             radius: if mode == Mode::Off { 0.0 } else { radius },
             accumulate,
             orbit,
+            half,
             ms,
             ao_rmse,
             do_rmse,

@@ -109,6 +109,8 @@ pub struct Row {
     /// Frames averaged, and the camera's turn a frame over them, in degrees.
     pub accumulate: usize,
     pub orbit: f32,
+    /// The sampling pass at half resolution, upsampled.
+    pub half: bool,
     /// Median GPU milliseconds of the whole frame (one frame, with accumulation running).
     pub ms: f64,
     /// AO against the within-R AO, its definition (a diagnostic).
@@ -222,10 +224,11 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             let maps = r_index == 0 && config.is_the_default_both();
             let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
             progress(&format!(
-                "{} {} {}, radius {radius:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
+                "{} {} {}{}, radius {radius:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
                 row.mode,
                 row.variant,
                 Row::count_label(row.variant, row.samples, row.steps, row.pyramid),
+                if row.half { " half" } else { "" },
                 row.blur,
                 Row::bounce_label(row.mode, config.bounce),
                 row.accumulate,

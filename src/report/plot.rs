@@ -7,8 +7,10 @@ use super::{Mode, Report, Row, Variant};
 use crate::{output, reference, Error, Result};
 
 impl Report {
-    /// Log-log plot of HDR RMSE against the truth, against milliseconds: every mode on one chart,
-    /// one line per mode × variant through its sample counts (blur on, the first radius), every
+    /// Log-log plot of HDR RMSE against the truth, against milliseconds a frame: every mode on
+    /// one chart, one line per mode × variant through its sample counts (a single frame at full
+    /// resolution, blur on, the first radius); for the default variant, dashed lines with hollow
+    /// markers through its most accumulated still rows (at full and at half resolution); every
     /// other row as a faint point, and the Pareto front as a dashed black line.
     pub fn plot(&self, path: &Path) -> Result<()> {
         use plotters::prelude::*;
@@ -27,7 +29,7 @@ impl Report {
             let ms: Vec<f64> = rows.iter().map(|r| r.ms).collect();
             let errors: Vec<f64> = rows.iter().map(|r| r.hdr_rmse).collect();
             let mut chart = ChartBuilder::on(&root)
-                .caption("HDR RMSE against the one ray-traced truth, against frame time", ("sans-serif", 22))
+                .caption("HDR RMSE against the one ray-traced truth, against the time of one frame", ("sans-serif", 22))
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)
@@ -57,8 +59,14 @@ impl Report {
                 }))
                 .map_err(|e| fail(&e))?;
             let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
+            let most = rows.iter().map(|r| r.accumulate).max().unwrap_or(1);
+            // (variant, frames averaged, half resolution) of each line of a mode.
+            let mut lines: Vec<(Variant, usize, bool)> = Variant::ALL.iter().map(|&v| (v, 1, false)).collect();
+            if most > 1 {
+                lines.extend([(Variant::default(), most, false), (Variant::default(), most, true)]);
+            }
             for (m, mode) in Mode::ALL.into_iter().enumerate() {
-                for variant in Variant::ALL {
+                for &(variant, accumulate, half) in &lines {
                     // Through the sample counts in order (timings are noisy; samples are not).
                     let mut line: Vec<&Row> = rows
                         .iter()
@@ -66,6 +74,8 @@ impl Report {
                             r.mode == mode
                                 && r.variant == variant
                                 && !r.pyramid
+                                && r.orbit == 0.0
+                                && (r.accumulate, r.half) == (accumulate, half)
                                 && (mode == Mode::Off || (r.blur && r.radius == first_radius))
                         })
                         .collect();
@@ -77,7 +87,19 @@ impl Report {
                         line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
                     let colour = colours[m];
                     let style = colour.mix(variant.decl().plot_opacity).stroke_width(variant.decl().plot_width);
-                    let label = format!("{} {}", mode.title(), variant);
+                    let mut label = format!("{} {}", mode.title(), variant);
+                    if accumulate > 1 {
+                        label = format!("{label} ×{accumulate} frames{}", if half { ", half res" } else { "" });
+                        chart
+                            .draw_series(DashedLineSeries::new(points.clone(), if half { 3 } else { 8 }, 4, style))
+                            .map_err(|e| fail(&e))?
+                            .label(label)
+                            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 8, y), (x + 16, y)], style));
+                        chart
+                            .draw_series(points.iter().map(|p| Circle::new(*p, 5, colour.stroke_width(2))))
+                            .map_err(|e| fail(&e))?;
+                        continue;
+                    }
                     chart
                         .draw_series(LineSeries::new(points.clone(), style))
                         .map_err(|e| fail(&e))?

@@ -23,6 +23,8 @@ pub struct Config {
     /// each of them (0: still); the error is taken at the last frame, in the view of the truth.
     pub accumulate: usize,
     pub orbit: f32,
+    /// The sampling pass at half resolution, upsampled.
+    pub half: bool,
 }
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
@@ -31,7 +33,8 @@ pub struct Config {
 /// each count with blur on and off; the DO modes also with the march's depth pyramid, and at the
 /// default count with the bounce's other senders and with no bounce. The rows with blur on and
 /// off and the default bounce are measured at every `--accumulate` count, and the accumulated
-/// ones also orbiting where `--orbit` is given; the pyramid and the other bounces at one frame.
+/// ones also orbiting where `--orbit` is given; the rows with blur on again at half resolution
+/// (still); the pyramid and the other bounces at one frame.
 pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
     let base = Settings::default();
     let mut configs = Vec::new();
@@ -43,7 +46,8 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         // for the sky-lit one.
         if first_radius && (variant == default.variant || decl.composite != default.composite) {
             let (samples, steps, blur, pyramid, bounce, accumulate, orbit) = (0, 0, false, false, None, 1, 0.0);
-            let off = Config { mode: Mode::Off, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit };
+            let mode = Mode::Off;
+            let off = Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half: false };
             configs.push(off);
         }
         let counts: Vec<(usize, usize)> = match decl.sampler {
@@ -56,7 +60,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             for &(samples, steps) in &counts {
                 let (accumulate, orbit) = (1, 0.0);
                 let at = |blur, pyramid, bounce| {
-                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit }
+                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half: false }
                 };
                 for blur in [true, false] {
                     for &accumulate in &options.accumulate {
@@ -64,6 +68,9 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
+                        }
+                        if blur {
+                            configs.push(Config { half: true, ..config });
                         }
                     }
                 }
@@ -110,6 +117,7 @@ impl Config {
             sender_sky: self.bounce.unwrap_or(base.sender_sky),
             indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
             accumulate: self.accumulate,
+            half_resolution: self.half,
             ..base
         }
     }
@@ -125,6 +133,7 @@ impl Config {
             && self.mode == Mode::Both
             && self.accumulate == base.accumulate
             && self.orbit == 0.0
+            && !self.half
     }
 }
 
@@ -157,7 +166,8 @@ mod tests {
         // pyramid (march only), and at the default march 3 other bounces in each DO mode.
         for (samples, march, radii) in [(1, 1, 1), (5, 4, 1), (2, 3, 2)] {
             let o = options(samples, march, radii);
-            let per_radius = 2 * (6 * samples) + (6 + 2) * march + 2 * 3 * march;
+            // ...and the 3 sampled modes with blur on again at half resolution.
+            let per_radius = 2 * (9 * samples) + (9 + 2) * march + 2 * 3 * march;
             assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
         }
         let mut o = options(1, 1, 1);
@@ -165,13 +175,13 @@ mod tests {
         let configs = configurations(&o, true);
         assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
         assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
-        // Accumulation doubles the blur on/off rows (3 variants × 3 modes × 2) at one count
-        // each; orbiting adds the accumulated ones again.
+        // Accumulation doubles the blur on/off rows and the half-resolution ones (3 variants × 3
+        // modes × 3) at one count each; orbiting adds the accumulated ones with full resolution.
         let single = configurations(&options(1, 1, 1), true).len();
-        assert_eq!(configs.len(), single + 3 * 3 * 2);
+        assert_eq!(configs.len(), single + 3 * 3 * 3);
         o.orbit = 1.0;
         let orbiting = configurations(&o, true);
-        assert_eq!(orbiting.len(), single + 2 * 3 * 3 * 2);
+        assert_eq!(orbiting.len(), single + 3 * 3 * 3 + 3 * 3 * 2);
         assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.accumulate > 1));
         assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce.is_none() && !c.pyramid));
     }
@@ -188,9 +198,10 @@ mod tests {
             bounce: None,
             accumulate: 4,
             orbit: 0.0,
+            half: true,
         };
         let s = none.settings(0.5);
-        assert_eq!(s.accumulate, 4);
+        assert_eq!((s.accumulate, s.half_resolution), (4, true));
         assert_eq!((s.indirect_strength, s.slices, s.steps, s.radius), (0.0, 4, 16, Some(0.5)));
         let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };
         let s = points.settings(0.5);

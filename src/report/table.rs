@@ -44,19 +44,24 @@ impl Row {
     }
 
     pub fn label(&self) -> String {
-        Self::count_label(self.variant, self.samples, self.steps, self.pyramid)
+        let count = Self::count_label(self.variant, self.samples, self.steps, self.pyramid);
+        if self.half {
+            format!("{count} half")
+        } else {
+            count
+        }
     }
 }
 
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{:.5},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{},{},{:.5},{},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
@@ -67,6 +72,7 @@ impl Report {
                 r.radius,
                 r.accumulate,
                 r.orbit,
+                r.half,
                 r.ms,
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),

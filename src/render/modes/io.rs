@@ -21,6 +21,9 @@ pub enum TargetId {
     DoBlurred,
     AoAccumulated,
     DoAccumulated,
+    /// The sampling pass's output at half resolution (before the upsample).
+    AoHalf,
+    DoHalf,
     /// The temporal pass's histories (`history.rs`): read as the last frame left them, written
     /// for the next.
     OcclusionHistory,
@@ -44,6 +47,8 @@ impl TargetId {
             TargetId::AoBlurred => "ao_blurred",
             TargetId::DoBlurred => "do_blurred",
             TargetId::AoAccumulated => "ao_accumulated",
+            TargetId::AoHalf => "ao_half",
+            TargetId::DoHalf => "do_half",
             TargetId::DoAccumulated => "do_accumulated",
             TargetId::OcclusionHistory => "history_occlusion",
             TargetId::SurfaceHistory => "history_surface",
@@ -81,6 +86,7 @@ impl Step {
         let (raw, blurred, accumulated) =
             if directional { (DoRaw, DoBlurred, DoAccumulated) } else { (AoRaw, AoBlurred, AoAccumulated) };
         let filtered = if plan.blur { blurred } else { raw };
+        let half = if directional { DoHalf } else { AoHalf };
         // In a display plan what is shown is drawn straight into the output.
         let shown = if plan.display { Output } else { Hdr };
         let (reads, writes): (Vec<Option<TargetId>>, Vec<Option<TargetId>>) = match self {
@@ -98,8 +104,10 @@ impl Step {
             // AO or DO (+ AO) from one set of samples.
             Step::Occlusion => (
                 [Some(Albedo), Some(Normal), Some(Depth), when(plan.has(Step::Lighting), Bounce), pyramid].to_vec(),
-                vec![Some(raw)],
+                vec![Some(if plan.half() { half } else { raw })],
             ),
+            // The half-resolution samples on this pixel's surface, to full resolution.
+            Step::Upsample => (vec![Some(Albedo), Some(Normal), Some(Depth), Some(half)], vec![Some(raw)]),
             Step::Blur => (vec![Some(Albedo), Some(Normal), Some(Depth), Some(raw)], vec![Some(blurred)]),
             // This frame's output and the last frames' average where the same surface was.
             Step::Temporal => (

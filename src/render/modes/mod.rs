@@ -50,6 +50,8 @@ pub struct PlanOptions {
     pub indirect: bool,
     /// What lights the bounce's senders besides the point lights (`Settings::sender_sky`).
     pub sender_sky: SenderSky,
+    /// The sampling pass runs at half resolution, an upsample after it.
+    pub half: bool,
     /// The sampling output is averaged over frames (`Settings::accumulates`): a temporal pass
     /// and its history.
     pub accumulate: bool,
@@ -59,8 +61,8 @@ impl Default for PlanOptions {
     /// A display plan with blur and accumulation, no pyramid, and the bounce lit by the sky and
     /// the lights.
     fn default() -> Self {
-        let (blur, pyramid, display, indirect, accumulate) = (true, false, true, true, true);
-        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), accumulate }
+        let (blur, pyramid, display, indirect, half, accumulate) = (true, false, true, true, false, true);
+        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), half, accumulate }
     }
 }
 
@@ -79,6 +81,8 @@ pub enum Step {
     Lighting,
     /// The sampling pass: AO, DO, or both from one set of samples.
     Occlusion,
+    /// A half-resolution sampling output brought to full resolution, by depth and normal.
+    Upsample,
     /// Depth- and normal-aware (or classic box) blur of the sampling pass's output.
     Blur,
     /// The (blurred) sampling output averaged with the last frames', reprojected where the same
@@ -111,6 +115,7 @@ impl Step {
             Step::SenderSky => "sender_sky",
             Step::Lighting => "lighting",
             Step::Occlusion => "occlusion",
+            Step::Upsample => "upsample",
             Step::Blur => "blur",
             Step::Temporal => "temporal",
             Step::Composite => "composite",
@@ -163,6 +168,9 @@ impl Plan {
         }
         if decl.runs_sampling() {
             steps.push(Step::Occlusion);
+            if o.half {
+                steps.push(Step::Upsample);
+            }
             if o.blur {
                 steps.push(Step::Blur);
             }
@@ -183,6 +191,11 @@ impl Plan {
         let blur = o.blur && decl.runs_sampling();
         let history = if steps.contains(&Step::Temporal) { temporal_history(&decl) } else { Vec::new() };
         Self { mode, decl, features, blur, display: o.display, sender_sky, steps, history }
+    }
+
+    /// Whether the sampling pass runs at half resolution.
+    pub fn half(&self) -> bool {
+        self.has(Step::Upsample)
     }
 
     /// Whether the plan averages the sampling output over frames.
@@ -218,6 +231,7 @@ impl Plan {
             directional: writes(TargetId::DoRaw),
             blurred: writes(TargetId::AoBlurred) || writes(TargetId::DoBlurred),
             accumulated: writes(TargetId::AoAccumulated) || writes(TargetId::DoAccumulated),
+            half: writes(TargetId::AoHalf) || writes(TargetId::DoHalf),
             pyramid: writes(TargetId::Pyramid),
             sender_sky: writes(TargetId::SenderSky),
         }
@@ -261,11 +275,11 @@ mod tests {
         let mut plans = Vec::new();
         for mode in Mode::ALL {
             for lights in [0, 8] {
-                for bits in 0..32u32 {
+                for bits in 0..64u32 {
                     for sender_sky in SenderSky::ALL {
-                        let [blur, pyramid, display, indirect, accumulate] =
-                            [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
-                        let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, accumulate };
+                        let [blur, pyramid, display, indirect, accumulate, half] =
+                            [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
+                        let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half, accumulate };
                         plans.push(Plan::new(mode, SceneFeatures { lights }, o));
                     }
                 }
@@ -297,6 +311,8 @@ mod tests {
             );
             assert_eq!(t.blurred, plan.blur);
             assert_eq!(t.accumulated, plan.accumulates());
+            assert_eq!(t.half, plan.half());
+            assert_eq!(plan.half(), sampled && plan.has(Step::Upsample));
             assert_eq!(plan.accumulates(), sampled && plan.has(Step::Temporal));
             assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
             assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DepthPyramid), plan.has(Step::SenderSky)));

@@ -23,6 +23,7 @@ pub mod skybox;
 pub mod state;
 pub mod temporal;
 pub mod tonemap;
+pub mod upsample;
 
 use super::history::History;
 use super::modes::Plan;

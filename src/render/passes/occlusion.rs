@@ -47,13 +47,20 @@ struct Key {
     march: bool,
     /// The march's far steps read the depth pyramid.
     pyramid: bool,
+    /// Half width and height (an upsample follows).
+    half: bool,
 }
 
 impl Key {
     fn constants(self) -> Vec<(&'static str, f64)> {
         let f = |b: bool| b as u8 as f64;
         let o = self.outputs;
-        let mut list = vec![("COMPUTE_AO", f(o.ao)), ("COMPUTE_DO", f(o.directional)), ("INDIRECT", f(o.indirect))];
+        let mut list = vec![
+            ("COMPUTE_AO", f(o.ao)),
+            ("COMPUTE_DO", f(o.directional)),
+            ("INDIRECT", f(o.indirect)),
+            ("HALF_RES", f(self.half)),
+        ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
         } else {
@@ -89,6 +96,7 @@ impl Pass for OcclusionPass {
             classic: variant.decl().estimator == Estimator::Classic,
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.has(Step::DepthPyramid),
+            half: plan.half(),
         };
         let march_module = &self.march_module;
         self.state.ensure(key, |key, points_module, layouts| {
@@ -112,7 +120,8 @@ impl Pass for OcclusionPass {
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let output = targets.raw.output().expect("a plan with a sampling step has its target");
+        let set = targets.half.as_ref().unwrap_or(&targets.raw);
+        let output = set.output().expect("a plan with a sampling step has its target");
         let attachments = [color_attachment(&output.view, true)];
         self.state.draw((encoder, timestamps), &attachments, (frame, Some(&sky.bind_group)), None);
     }

@@ -13,6 +13,7 @@ use super::sender_sky::SenderSkyPass;
 use super::skybox::SkyboxPass;
 use super::temporal::TemporalPass;
 use super::tonemap::TonemapPass;
+use super::upsample::UpsamplePass;
 use super::{Pass, PassContext};
 use crate::gpu::Gpu;
 use crate::render::modes::Step;
@@ -24,6 +25,7 @@ pub struct PassSet {
     pub sender_sky: SenderSkyPass,
     pub lighting: LightingPass,
     pub occlusion: OcclusionPass,
+    pub upsample: UpsamplePass,
     pub blur: BlurPass,
     pub temporal: TemporalPass,
     pub composite: CompositePass,
@@ -48,6 +50,7 @@ impl PassSet {
             sender_sky: SenderSkyPass::new(&cx)?,
             lighting: LightingPass::new(&cx)?,
             occlusion: OcclusionPass::new(&cx)?,
+            upsample: UpsamplePass::new(&cx)?,
             blur: BlurPass::new(&cx)?,
             temporal: TemporalPass::new(&cx)?,
             composite: CompositePass::new(&cx)?,
@@ -59,12 +62,13 @@ impl PassSet {
 
     /// Calls `f` on every pass, whether the plan runs it or not.
     pub fn each(&mut self, mut f: impl FnMut(&mut dyn Pass)) {
-        let passes: [&mut dyn Pass; 11] = [
+        let passes: [&mut dyn Pass; 12] = [
             &mut self.gbuffer,
             &mut self.pyramid,
             &mut self.sender_sky,
             &mut self.lighting,
             &mut self.occlusion,
+            &mut self.upsample,
             &mut self.blur,
             &mut self.temporal,
             &mut self.composite,
@@ -90,6 +94,8 @@ impl PassSet {
             Step::Lighting => &self.lighting,
             // AO and/or DO from one set of samples.
             Step::Occlusion => &self.occlusion,
+            // Half-resolution AO/DO to full resolution, on each pixel's own surface.
+            Step::Upsample => &self.upsample,
             // Denoise AO/DO.
             Step::Blur => &self.blur,
             // Average AO/DO over frames, where the same surface was.

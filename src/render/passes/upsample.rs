@@ -1,0 +1,50 @@
+//! The upsample after a half-resolution sampling pass (`shaders/upsample.wgsl`): the half-size
+//! AO or DO + AO brought to full resolution, each pixel taking only the samples on its own
+//! surface, so silhouettes keep no halo. It writes the full-resolution raw target, which the blur
+//! and the temporal pass read as they would the sampling pass's own.
+
+use super::super::modes::Step;
+use super::occlusion::Outputs;
+use super::state::{flag, PassState, PipelineSpec};
+use super::{color_attachment, gbuffer_entries, texture_entry, uniform_entry};
+use super::{Pass, PassContext, Preparation, Recording};
+use crate::Result;
+use wgpu::TextureViewDimension::D2;
+
+pub struct UpsamplePass {
+    state: PassState<Outputs>,
+}
+
+impl UpsamplePass {
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        let [a, n, d] = gbuffer_entries();
+        let layout = cx.layout("upsample_layout", &[a, n, d, uniform_entry(3), texture_entry(4, false, D2)]);
+        Ok(Self { state: PassState::new(cx, "upsample", "upsample.wgsl", false, layout)? })
+    }
+}
+
+impl Pass for UpsamplePass {
+    fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        let Preparation { targets, plan, data, .. } = *p;
+        let Some(input) = targets.half.as_ref().and_then(|h| h.output()).filter(|_| plan.has(Step::Upsample)) else {
+            self.state.clear();
+            return;
+        };
+        self.state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
+            entry: "fs_main",
+            targets: vec![Some(outputs.format().into())],
+            constants: vec![("AO_ONLY", flag(!outputs.directional))],
+        });
+        let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
+        let mut entries = super::view_entries(&views);
+        entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
+        entries.push(wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&input.view) });
+        self.state.bind(device, &entries);
+    }
+
+    fn record(&self, rec: Recording<'_>) {
+        let Recording { encoder, timestamps, targets, frame, .. } = rec;
+        let output = targets.raw.output().expect("a plan that upsamples has its full-resolution target");
+        self.state.draw((encoder, timestamps), &[color_attachment(&output.view, true)], (frame, None), None);
+    }
+}
