@@ -35,6 +35,11 @@ const MIN_NORMAL_COS: f32 = 0.9;
 // Reprojected movement below this (in pixels) is a still pixel.
 const STILL_PIXELS: f32 = 0.01;
 
+// The camera moved since the last frame (a pipeline of its own): reproject. Without it every
+// pixel is still and reads its own texel alone, which on a CPU rasteriser (where a branch not
+// taken still costs its work) keeps the pass to a fifth of its moving cost.
+override CAMERA_MOVED: bool = true;
+
 struct TemporalOut {
     // what the composite reads this frame
     @location(0) shown: vec4<f32>,
@@ -86,14 +91,23 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     var past = vec4<f32>(0.0);
     var held = 0.0;
     var moved = 0.0;
+    if !CAMERA_MOVED && occ.history_frames > 0u {
+        // The camera has not moved: the pixel's own texel holds the same surface exactly when it
+        // holds the same depth (the scene is static).
+        let s = textureLoad(history_surface, pixel, 0);
+        let value = textureLoad(history, pixel, 0);
+        if bitcast<f32>(s.x) == depth && finite4(value) {
+            past = value;
+            held = f32(s.y >> 24u);
+        }
+    }
     let clip = frame.previous_world_to_clip * vec4<f32>(world, 1.0);
-    if occ.history_frames > 0u && clip.w > 0.0 {
+    if CAMERA_MOVED && occ.history_frames > 0u && clip.w > 0.0 {
         let ndc = clip.xy / clip.w;
         let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
         moved = length(was - in.position.xy);
-        let f = was - 0.5;
-        let base = floor(f);
-        let frac = f - base;
+        let base = floor(was - 0.5);
+        let frac = was - 0.5 - base;
         let tolerance = max(PLANE_RADII * occ.radius, 1e-6 * -p.z);
         var weight = 0.0;
         for (var i = 0u; i < 4u; i += 1u) {
@@ -141,7 +155,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
             result = past;
             frames = most;
         } else {
-            if !still {
+            if CAMERA_MOVED && !still {
                 let range = neighbourhood(pixel, now);
                 past = clamp(past, range[0], range[1]);
             }

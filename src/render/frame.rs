@@ -38,6 +38,9 @@ pub struct FrameData {
     previous_world_to_clip: Option<glam::Mat4>,
     /// What the last `update` wrote (for tests and diagnostics).
     last: FrameUniforms,
+    /// Whether the last frame's camera differs from the frame's before it (false on a first
+    /// frame and after a reset).
+    pub camera_moved: bool,
 }
 
 impl FrameData {
@@ -78,6 +81,7 @@ impl FrameData {
         let cube_order = Self::order_buffer(device, 1);
         let (light_capacity, frame_index, previous_world_to_clip) = (1, 0, None);
         let last = bytemuck::Zeroable::zeroed();
+        let camera_moved = false;
         Self {
             layout,
             bind_group,
@@ -88,6 +92,7 @@ impl FrameData {
             frame_index,
             previous_world_to_clip,
             last,
+            camera_moved,
         }
     }
 
@@ -154,6 +159,7 @@ impl FrameData {
         let view_to_clip = camera.view_to_clip(w as f32 / h as f32);
         let world_to_clip = view_to_clip * world_to_view;
         let previous = self.previous_world_to_clip.replace(world_to_clip).unwrap_or(world_to_clip);
+        self.camera_moved = previous != world_to_clip;
         let uniforms = FrameUniforms {
             world_to_view: mat(world_to_view),
             view_to_clip: mat(view_to_clip),

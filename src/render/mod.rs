@@ -413,7 +413,8 @@ impl Renderer {
         self.still.count(camera, self.history.get(modes::OCCLUSION_HISTORY));
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;
-        let state = FrameState { plan: &self.plan, frame_index, history: &self.history };
+        let camera_moved = self.frame.camera_moved;
+        let state = FrameState { plan: &self.plan, frame_index, history: &self.history, camera_moved };
         self.passes.each(|pass| pass.begin_frame(&state));
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));

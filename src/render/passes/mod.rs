@@ -114,6 +114,8 @@ pub struct FrameState<'a> {
     pub frame_index: u32,
     /// The histories and how many frames each holds (0 after a reset).
     pub history: &'a History,
+    /// The camera differs from the last frame's.
+    pub camera_moved: bool,
 }
 
 /// Colour attachments for views that may be absent, all cleared.

@@ -7,15 +7,19 @@
 use super::super::history::History;
 use super::super::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
 use super::occlusion::Outputs;
-use super::state::{PassState, PipelineSpec};
+use super::state::{flag, PassState, PipelineSpec};
 use super::{color_attachment, gbuffer_entries, texture_entry, uint_entry, uniform_entry};
-use super::{Pass, PassContext, Preparation, Recording};
+use super::{FrameState, Pass, PassContext, Preparation, Recording};
 use crate::Result;
 use wgpu::TextureViewDimension::D2;
 
 pub struct TemporalPass {
-    /// Keyed by what the sampling pass produces (AO alone, or DO + AO).
+    /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
+    /// whose camera moved (reprojecting), and the one for a still camera (each pixel its own).
     state: PassState<Outputs>,
+    still: PassState<Outputs>,
+    /// This frame's camera moved (set in `begin_frame`).
+    camera_moved: bool,
     /// Group 1 for a frame that writes side 0 of the histories, and for one that writes side 1.
     groups: Option<[wgpu::BindGroup; 2]>,
 }
@@ -25,7 +29,9 @@ impl TemporalPass {
         let [a, n, d] = gbuffer_entries();
         let input = |b| texture_entry(b, false, D2);
         let layout = cx.layout("temporal_layout", &[a, n, d, uniform_entry(3), input(4), input(5), uint_entry(6)]);
-        Ok(Self { state: PassState::new(cx, "temporal", "temporal.wgsl", false, layout)?, groups: None })
+        let still = PassState::new(cx, "temporal_still", "temporal.wgsl", false, layout.clone())?;
+        let state = PassState::new(cx, "temporal", "temporal.wgsl", false, layout)?;
+        Ok(Self { state, still, camera_moved: false, groups: None })
     }
 }
 
@@ -42,18 +48,21 @@ impl Pass for TemporalPass {
         let Preparation { targets, plan, data, history, .. } = *p;
         if !plan.accumulates() {
             self.state.clear();
+            self.still.clear();
             self.groups = None;
             return;
         }
-        self.state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
-            entry: "fs_main",
-            targets: vec![
-                Some(outputs.format().into()),
-                Some(outputs.format().into()),
-                Some(SURFACE_HISTORY_FORMAT.into()),
-            ],
-            constants: vec![],
-        });
+        for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
+            state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
+                entry: "fs_main",
+                targets: vec![
+                    Some(outputs.format().into()),
+                    Some(outputs.format().into()),
+                    Some(SURFACE_HISTORY_FORMAT.into()),
+                ],
+                constants: vec![("CAMERA_MOVED", flag(moved))],
+            });
+        }
         let input = targets.filtered().output().expect("a plan that accumulates samples");
         let (occlusion, surface) = pairs(history);
         let group = |parity: usize| {
@@ -75,6 +84,10 @@ impl Pass for TemporalPass {
         self.groups = Some([group(0), group(1)]);
     }
 
+    fn begin_frame(&mut self, frame: &FrameState<'_>) {
+        self.camera_moved = frame.camera_moved;
+    }
+
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, history, .. } = rec;
         let (occlusion, surface) = pairs(history);
@@ -87,6 +100,7 @@ impl Pass for TemporalPass {
             color_attachment(&occlusion.write().view, true),
             color_attachment(&surface.write().view, true),
         ];
-        self.state.draw_with((encoder, timestamps), &attachments, (frame, &groups[parity], None), None);
+        let state = if self.camera_moved { &self.state } else { &self.still };
+        state.draw_with((encoder, timestamps), &attachments, (frame, &groups[parity], None), None);
     }
 }
