@@ -1,6 +1,7 @@
-// The upsample after a half-resolution sampling pass: each full-resolution pixel takes the
-// half-resolution samples of the 3x3 around it (each sample is the full-resolution pixel
-// (2x, 2y)), weighted by a tent over their distance and by whether they lie on this pixel's
+// The upsample after a half-resolution sampling pass: each full-resolution pixel takes the 2x2
+// half-resolution samples at and after it (each sample is the full-resolution pixel (2x, 2y),
+// so these are the nearest ones on either side of an odd pixel, and an even pixel's own with the
+// next), weighted by a tent over their distance and by whether they lie on this pixel's
 // surface — within a quarter of the sampling radius of its tangent plane, with normals that
 // agree (as the blur weighs its neighbours). So a silhouette takes nothing from the surface
 // behind it, and a far wall nothing from the object before it: no halo. Where no sample is on
@@ -37,8 +38,8 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     var total = 0.0;
     var nearest = unoccluded;
     var nearest_plane = 3.4e38;
-    for (var y = -1; y <= 1; y += 1) {
-        for (var x = -1; x <= 1; x += 1) {
+    for (var y = 0; y <= 1; y += 1) {
+        for (var x = 0; x <= 1; x += 1) {
             let h = clamp(base + vec2<i32>(x, y), vec2<i32>(0), half_last);
             let at = min(2 * h, full - 1);
             let d = load_depth(at);

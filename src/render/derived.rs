@@ -65,10 +65,12 @@ impl Renderer {
             let radius = self.radius();
             let samples = SAMPLES.clamp(s.samples);
             // The march reads the sky once per group of sectors: slices × 4 directions.
-            let directions = s.variant.decl().sky_directions(samples, s.slices);
             // The frames the temporal pass's history holds: this frame's place in the schedule.
             let held = self.history.get(OCCLUSION_HISTORY).map_or(0, |h| h.frames);
             let accumulate = if self.plan.accumulates() { s.accumulate as u32 } else { 1 };
+            // The sky's mip is the solid angle of one direction of the converged average: the
+            // frames' directions differ (the schedule), so together they resolve finer detail.
+            let directions = s.variant.decl().sky_directions(samples, s.slices) * accumulate as usize;
             let params = SamplingParams {
                 variant: s.variant,
                 samples,
