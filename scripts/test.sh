@@ -60,4 +60,5 @@ WGPU_BACKEND=vulkan cargo test --locked "$@"
 # assertions, so a shader or a binding that breaks one backend cannot land.
 echo "scripts/test.sh: the rendering tests again on wgpu's GL backend"
 WGPU_BACKEND=gl cargo test --locked --test render --test occlusion --test winding --test reference \
-    --test stability --test cli --test resources --test display --test viewer --test sky_bounce --test hardening "$@"
+    --test stability --test cli --test resources --test display --test viewer --test sky_bounce --test hardening \
+    --test temporal "$@"

@@ -121,7 +121,7 @@ pub(crate) struct ReportArgs {
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     pub(crate) samples: Vec<usize>,
     /// Slices x steps of the march variant to sweep (the help states the ranges)
-    #[arg(long, default_value = "1x8,2x8,2x12,4x16", value_delimiter = ',', value_parser = parse_march)]
+    #[arg(long, default_value = "1x8,2x12,2x16,4x16", value_delimiter = ',', value_parser = parse_march)]
     pub(crate) march: Vec<(usize, usize)>,
     /// Sampling radii to sweep, comma-separated: multiples of the scene's default (2x) or lengths
     /// in model units (0.3); at most 16

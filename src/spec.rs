@@ -133,9 +133,10 @@ pub struct RenderArgs {
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
     pub no_blur: bool,
-    /// Sample AO/DO at half width and height, then upsample by depth and normal
+    /// Sample AO/DO at full resolution (the default samples at half width and height and
+    /// upsamples by depth and normal)
     #[arg(long)]
-    pub half_res: bool,
+    pub full_res: bool,
     /// Frames averaged with the camera still (range: `render::ACCUMULATE`; 1: none): headless
     /// commands render this many frames of the still camera and keep the last
     #[arg(long, default_value_t = ACCUMULATE.default)]
@@ -284,7 +285,7 @@ impl RenderArgs {
             indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
             sender_sky: self.sender_sky,
             blur: !self.no_blur,
-            half_resolution: self.half_res,
+            half_resolution: !self.full_res,
             accumulate: ACCUMULATE.check(self.accumulate)?,
             exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,

@@ -15,8 +15,10 @@ use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 const W: u32 = 160;
 const H: u32 = 120;
 
+/// Full resolution: these tests check the estimators at each pixel (tests/temporal.rs checks the
+/// half-resolution upsample, and the white furnace with it).
 fn settings(mode: Mode) -> Settings {
-    Settings { mode, ambient: 0.0, ..Settings::default() }
+    Settings { mode, ambient: 0.0, half_resolution: false, ..Settings::default() }
 }
 
 /// Pixel coordinates of world point `p`.

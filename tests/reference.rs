@@ -174,8 +174,8 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     ));
     assert_eq!(
         csv.lines().count(),
-        1 + 2 + 3 * 3 * 2 * 2 + 2 * 2,
-        "Off sky-lit and classic, the rest swept, the march on the pyramid in SSDO and Both"
+        1 + 2 + 3 * 3 * 2 * 3 + 2 * 2,
+        "Off sky-lit and classic, the rest swept (blur on, off, and on at half resolution), the march on the pyramid in SSDO and Both"
     );
     let md = std::fs::read_to_string(out.path().join("report.md")).unwrap();
     assert!(md.contains("| both | points | 64 |") && md.contains("| both | march | 4×16 |"), "{md}");

@@ -112,7 +112,8 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
     let (scene, sky, camera) = cornell();
     for mode in [Mode::Ssao, Mode::Ssdo] {
         let render = |slices: usize, accumulate: usize| {
-            let s = Settings { slices, blur: false, ..settings(mode, accumulate) };
+            // At full resolution, so that each pixel's own samples are compared.
+            let s = Settings { slices, blur: false, half_resolution: false, ..settings(mode, accumulate) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             capture_converged(&gpu, &mut r, &camera).unwrap();
             let depth = ssdo::headless::readback::read_depth(&gpu, &r.targets().depth.texture).unwrap();

@@ -77,7 +77,7 @@ pub fn capture_path(
 /// rendered first (the viewer's screenshot, after however many frames it has shown).
 pub fn capture_settled(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
     renderer.apply(gpu);
-    let missing = renderer.accumulation().saturating_sub(renderer.still_frames() + 1);
+    let missing = renderer.frames_to_settle(camera);
     render_frames(gpu, renderer, (0..missing).map(|_| *camera))?;
     capture(gpu, renderer, camera)
 }

@@ -4,6 +4,7 @@
 //! that list. Switching mode or light count rebuilds the plan and only what the new plan needs
 //! differently; resizing rebuilds the targets and the passes' bind groups.
 
+mod accumulation;
 mod derived;
 pub mod frame;
 pub mod history;
@@ -24,6 +25,7 @@ use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
 use frame::FrameData;
+use accumulation::StillView;
 use history::History;
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
 use passes::set::PassSet;
@@ -35,26 +37,6 @@ pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE, REACH_RADII, TH
 use targets::Targets;
 use timer::GpuTimer;
 pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
-
-/// Where a still view's average stands (see [`Renderer::still_frames`]).
-#[derive(Default)]
-struct StillView {
-    frames: u32,
-    camera: Option<OrbitCamera>,
-    /// The history's generation the frames went into.
-    generation: u64,
-}
-
-impl StillView {
-    /// Counts a frame of `camera` going into `history`.
-    fn count(&mut self, camera: &OrbitCamera, history: Option<&history::PingPong>) {
-        let same = history.is_some_and(|h| h.frames > 0 && h.generation == self.generation)
-            && self.camera == Some(*camera);
-        self.frames = if same { self.frames.saturating_add(1) } else { 1 };
-        self.camera = Some(*camera);
-        self.generation = history.map_or(0, |h| h.generation);
-    }
-}
 
 pub struct Renderer {
     pub settings: Settings,
@@ -166,6 +148,11 @@ impl Renderer {
     /// Brings the plan, targets and pipelines in line with the settings and lights: only what a
     /// change affects is rebuilt. Called by [`Renderer::encode`]; call it to read the new plan.
     pub fn apply(&mut self, gpu: &Gpu) {
+        // A setting that changes what is averaged starts the average anew.
+        if !self.settings.same_history(&self.history_settings) {
+            self.history.reset();
+            self.history_settings = self.settings;
+        }
         let plan = Self::plan_for(&self.settings, SceneFeatures { lights: self.lights.len() }, self.keep_hdr);
         if plan != self.plan {
             self.plan = plan;
@@ -227,46 +214,7 @@ impl Renderer {
         self.prepared = (variant, view);
     }
 
-    /// The histories the plan keeps across frames.
-    pub fn history(&self) -> &History {
-        &self.history
-    }
 
-    /// The frames a still camera renders before its image is the converged one: the number
-    /// averaged where the plan accumulates, 1 otherwise.
-    pub fn accumulation(&self) -> u32 {
-        if self.plan.accumulates() {
-            self.settings.accumulate as u32
-        } else {
-            1
-        }
-    }
-
-    /// The frames the temporal pass's history holds (0 without one): since it was made or reset.
-    pub fn frames_accumulated(&self) -> u32 {
-        self.history.get(modes::OCCLUSION_HISTORY).map_or(0, |h| h.frames)
-    }
-
-    /// Frames of the current still view averaged so far (at most [`Renderer::accumulation`]):
-    /// since the camera last moved (that frame counting), the history was reset or a setting
-    /// changed what it means.
-    pub fn still_frames(&self) -> u32 {
-        self.still.frames.min(self.accumulation())
-    }
-
-    /// Whether a still view has frames left to average before its image is converged: the
-    /// viewer keeps drawing while it does.
-    pub fn converging(&self) -> bool {
-        self.plan.accumulates() && self.still.frames < self.accumulation()
-    }
-
-    /// The view jumped or what it shows changed: the next frame reuses nothing from the last
-    /// (no history, and its previous camera is its own).
-    pub fn reset_history(&mut self) {
-        self.history.reset();
-        self.frame.forget_previous();
-        self.still = StillView::default();
-    }
 
     /// The frame uniforms of the last frame recorded.
     pub fn frame_uniforms(&self) -> &uniforms::FrameUniforms {
@@ -405,11 +353,6 @@ impl Renderer {
         origin: (u32, u32),
     ) {
         self.apply(gpu);
-        // A setting that changes what is averaged starts the average anew.
-        if !self.settings.same_history(&self.history_settings) {
-            self.history.reset();
-            self.history_settings = self.settings;
-        }
         self.still.count(camera, self.history.get(modes::OCCLUSION_HISTORY));
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;

@@ -52,7 +52,7 @@ pub const SAMPLES: Count =
 /// The march's directions around the view vector per pixel.
 pub const SLICES: Count = Count { id: CountId::Slices, flag: "slices", label: "slices", min: 1, max: 32, default: 2 };
 /// The march's samples along each side of a slice (half within the radius).
-pub const STEPS: Count = Count { id: CountId::Steps, flag: "steps", label: "steps", min: 1, max: 64, default: 12 };
+pub const STEPS: Count = Count { id: CountId::Steps, flag: "steps", label: "steps", min: 1, max: 64, default: 16 };
 /// Frames the temporal pass averages at most while the camera is still (1: no accumulation, no
 /// history); every variant takes it.
 pub const ACCUMULATE: Count =

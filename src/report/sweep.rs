@@ -133,7 +133,7 @@ impl Config {
             && self.mode == Mode::Both
             && self.accumulate == base.accumulate
             && self.orbit == 0.0
-            && !self.half
+            && self.half == base.half_resolution
     }
 }
 
@@ -148,7 +148,7 @@ mod tests {
             skybox: None,
             size: (16, 12),
             samples: vec![8; samples],
-            march: vec![(2, 12); march],
+            march: vec![(2, 16); march],
             radii: vec![super::super::RadiusChoice::Times(1.0); radii],
             samples_per_pixel: 2,
             frames: 1,

@@ -84,3 +84,22 @@ pub fn view_entries<'a>(views: &[&'a wgpu::TextureView]) -> Vec<wgpu::BindGroupE
         .map(|(i, view)| wgpu::BindGroupEntry { binding: i as u32, resource: wgpu::BindingResource::TextureView(view) })
         .collect()
 }
+
+/// The layout of a pass that filters one sampling output by the G-buffer (the blur and the
+/// upsample): the G-buffer at 0-2, the sampling parameters at 3, the input at 4.
+pub fn filter_layout(cx: &super::PassContext<'_>, label: &str) -> wgpu::BindGroupLayout {
+    let [a, n, d] = gbuffer_entries();
+    cx.layout(label, &[a, n, d, uniform_entry(3), texture_entry(4, false, wgpu::TextureViewDimension::D2)])
+}
+
+/// Bind group 1 of such a pass, filtering `input`.
+pub fn filter_entries<'a>(
+    targets: &'a crate::render::targets::Targets,
+    data: &'a crate::render::resources::sampling::OcclusionData,
+    input: &'a wgpu::TextureView,
+) -> Vec<wgpu::BindGroupEntry<'a>> {
+    let mut entries = view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]);
+    entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
+    entries.push(wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(input) });
+    entries
+}

@@ -4,10 +4,9 @@
 use super::super::variant::Blur;
 use super::occlusion::Outputs;
 use super::state::{flag, PassState, PipelineSpec};
-use super::{color_attachment, gbuffer_entries, texture_entry, uniform_entry};
+use super::{color_attachment, filter_entries, filter_layout};
 use super::{Pass, PassContext, Preparation, Recording};
 use crate::Result;
-use wgpu::TextureViewDimension::D2;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
@@ -21,8 +20,7 @@ pub struct BlurPass {
 
 impl BlurPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let [a, n, d] = gbuffer_entries();
-        let layout = cx.layout("blur_layout", &[a, n, d, uniform_entry(3), texture_entry(4, false, D2)]);
+        let layout = filter_layout(cx, "blur_layout");
         Ok(Self { state: PassState::new(cx, "blur", "blur.wgsl", false, layout)? })
     }
 }
@@ -41,11 +39,7 @@ impl Pass for BlurPass {
             targets: vec![Some(key.outputs.format().into())],
             constants: vec![("BILATERAL", flag(key.bilateral)), ("AO_ONLY", flag(!key.outputs.directional))],
         });
-        let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
-        let mut entries: Vec<wgpu::BindGroupEntry> = super::view_entries(&views);
-        entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
-        entries.push(wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&input.view) });
-        self.state.bind(device, &entries);
+        self.state.bind(device, &filter_entries(targets, data, &input.view));
     }
 
     fn record(&self, rec: Recording<'_>) {

@@ -6,10 +6,9 @@
 use super::super::modes::Step;
 use super::occlusion::Outputs;
 use super::state::{flag, PassState, PipelineSpec};
-use super::{color_attachment, gbuffer_entries, texture_entry, uniform_entry};
+use super::{color_attachment, filter_entries, filter_layout};
 use super::{Pass, PassContext, Preparation, Recording};
 use crate::Result;
-use wgpu::TextureViewDimension::D2;
 
 pub struct UpsamplePass {
     state: PassState<Outputs>,
@@ -17,8 +16,7 @@ pub struct UpsamplePass {
 
 impl UpsamplePass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let [a, n, d] = gbuffer_entries();
-        let layout = cx.layout("upsample_layout", &[a, n, d, uniform_entry(3), texture_entry(4, false, D2)]);
+        let layout = filter_layout(cx, "upsample_layout");
         Ok(Self { state: PassState::new(cx, "upsample", "upsample.wgsl", false, layout)? })
     }
 }
@@ -35,11 +33,7 @@ impl Pass for UpsamplePass {
             targets: vec![Some(outputs.format().into())],
             constants: vec![("AO_ONLY", flag(!outputs.directional))],
         });
-        let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
-        let mut entries = super::view_entries(&views);
-        entries.push(wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() });
-        entries.push(wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&input.view) });
-        self.state.bind(device, &entries);
+        self.state.bind(device, &filter_entries(targets, data, &input.view));
     }
 
     fn record(&self, rec: Recording<'_>) {

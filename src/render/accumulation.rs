@@ -1,0 +1,84 @@
+//! The average over frames as the renderer keeps it: its histories, how far a still view's
+//! average has come, and the reset when the view jumps.
+
+use super::history::{History, PingPong};
+use super::{modes, Renderer};
+use crate::scene::OrbitCamera;
+
+/// Where a still view's average stands (see [`Renderer::still_frames`]).
+#[derive(Default)]
+pub(super) struct StillView {
+    pub(super) frames: u32,
+    pub(super) camera: Option<OrbitCamera>,
+    /// The history's generation the frames went into.
+    pub(super) generation: u64,
+}
+
+impl StillView {
+    /// Counts a frame of `camera` going into `history`.
+    pub(super) fn count(&mut self, camera: &OrbitCamera, history: Option<&PingPong>) {
+        let same = history.is_some_and(|h| h.frames > 0 && h.generation == self.generation)
+            && self.camera == Some(*camera);
+        self.frames = if same { self.frames.saturating_add(1) } else { 1 };
+        self.camera = Some(*camera);
+        self.generation = history.map_or(0, |h| h.generation);
+    }
+}
+
+/// The average over frames: what the temporal pass keeps, and where a still view stands.
+impl Renderer {
+    /// The histories the plan keeps across frames.
+    pub fn history(&self) -> &History {
+        &self.history
+    }
+
+    /// The frames a still camera renders before its image is the converged one: the number
+    /// averaged where the plan accumulates, 1 otherwise.
+    pub fn accumulation(&self) -> u32 {
+        if self.plan.accumulates() {
+            self.settings.accumulate as u32
+        } else {
+            1
+        }
+    }
+
+    /// The frames the temporal pass's history holds (0 without one): since it was made or reset.
+    pub fn frames_accumulated(&self) -> u32 {
+        self.history.get(modes::OCCLUSION_HISTORY).map_or(0, |h| h.frames)
+    }
+
+    /// Frames of the current still view averaged so far (at most [`Renderer::accumulation`]):
+    /// since the camera last moved (that frame counting), the history was reset or a setting
+    /// changed what it means.
+    pub fn still_frames(&self) -> u32 {
+        let history = self.history.get(modes::OCCLUSION_HISTORY);
+        let current = history.is_some_and(|h| h.frames > 0 && h.generation == self.still.generation);
+        if current {
+            self.still.frames.min(self.accumulation())
+        } else {
+            0
+        }
+    }
+
+    /// The frames still to render with `camera` before the next one completes the still
+    /// average (call after `apply`): all but one where the camera is another than the last
+    /// frame's or the average starts anew.
+    pub fn frames_to_settle(&self, camera: &OrbitCamera) -> u32 {
+        let held = if self.still.camera == Some(*camera) { self.still_frames() } else { 0 };
+        self.accumulation().saturating_sub(held + 1)
+    }
+
+    /// Whether a still view has frames left to average before its image is converged: the
+    /// viewer keeps drawing while it does.
+    pub fn converging(&self) -> bool {
+        self.plan.accumulates() && self.still_frames() < self.accumulation()
+    }
+
+    /// The view jumped or what it shows changed: the next frame reuses nothing from the last
+    /// (no history, and its previous camera is its own).
+    pub fn reset_history(&mut self) {
+        self.history.reset();
+        self.frame.forget_previous();
+        self.still = StillView::default();
+    }
+}
