@@ -33,8 +33,8 @@ pub struct Config {
 /// each count with blur on and off; the DO modes also with the march's depth pyramid, and at the
 /// default count with the bounce's other senders and with no bounce. The rows with blur on and
 /// off and the default bounce are measured at every `--accumulate` count, and the accumulated
-/// ones also orbiting where `--orbit` is given; the rows with blur on again at half resolution
-/// (still); the pyramid and the other bounces at one frame.
+/// ones also orbiting where `--orbit` is given; the rows with blur on at full and at half
+/// resolution; the pyramid and the other bounces at one frame, at the default resolution.
 pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
     let base = Settings::default();
     let mut configs = Vec::new();
@@ -58,19 +58,17 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             let directional = mode.declaration().directional_occlusion;
             let bounce = directional.then_some(base.sender_sky);
             for &(samples, steps) in &counts {
-                let (accumulate, orbit) = (1, 0.0);
+                // The pyramid's and the other bounces' rows: one frame at the default resolution.
+                let (accumulate, orbit, half) = (1, 0.0, base.half_resolution);
                 let at = |blur, pyramid, bounce| {
-                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half: false }
+                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half }
                 };
-                for blur in [true, false] {
+                for (blur, half) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {
-                        let config = Config { accumulate, ..at(blur, false, bounce) };
+                        let config = Config { accumulate, half, ..at(blur, false, bounce) };
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
-                        }
-                        if blur {
-                            configs.push(Config { half: true, ..config });
                         }
                     }
                 }
@@ -175,13 +173,13 @@ mod tests {
         let configs = configurations(&o, true);
         assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
         assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
-        // Accumulation doubles the blur on/off rows and the half-resolution ones (3 variants × 3
-        // modes × 3) at one count each; orbiting adds the accumulated ones with full resolution.
+        // Accumulation doubles the rows of blur on (full and half resolution) and off (3 variants
+        // × 3 modes × 3) at one count each; orbiting adds the accumulated ones again.
         let single = configurations(&options(1, 1, 1), true).len();
         assert_eq!(configs.len(), single + 3 * 3 * 3);
         o.orbit = 1.0;
         let orbiting = configurations(&o, true);
-        assert_eq!(orbiting.len(), single + 3 * 3 * 3 + 3 * 3 * 2);
+        assert_eq!(orbiting.len(), single + 2 * 3 * 3 * 3);
         assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.accumulate > 1));
         assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce.is_none() && !c.pyramid));
     }
