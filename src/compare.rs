@@ -15,9 +15,9 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {
         let blur = if s.blur { "blurred" } else { "no blur" };
-        let half = if s.half_resolution { " at half resolution" } else { "" };
+        let half = if s.half_resolution { " at half res" } else { "" };
         let frames = if s.accumulates() { format!(", {} frames", s.accumulate) } else { String::new() };
-        lines.push(format!("{} variant, {}{half}, radius {radius:.3}, {blur}{frames}", s.variant, s.count_label()));
+        lines.push(format!("{}, {}{half}, radius {radius:.3}, {blur}{frames}", s.variant, s.count_label()));
     }
     lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
     lines

@@ -65,8 +65,10 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let configs = ssdo::report::planned_configurations(&options) as u64;
     let (w, h) = (args.size.0 as u64, args.size.1 as u64);
     log::info!(
-        "planned: {configs} configurations × {} frames at {w}x{h}, and a truth of 2 × {} rays over {} pixels per radius",
+        "planned: {configs} configurations × {} timed frames (and up to {} more where a row accumulates) at {w}x{h}, \
+         and a truth of 2 × {} rays over {} pixels per radius",
         args.frames + 2,
+        2 * args.accumulate.iter().max().copied().unwrap_or(1),
         args.spp,
         w * h
     );
