@@ -335,13 +335,19 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     // No lights and senders lit by the point lights alone: nothing to bounce, no lighting pass.
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
     r.apply(&gpu);
-    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]);
+    assert_eq!(
+        r.plan().step_names(),
+        vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
+    );
     assert!(!names(&r).iter().any(|n| n.starts_with("bounce") || n == "sender_sky"));
     // A bounce of strength 0 runs none of it either, whatever lights the senders.
     r.settings.sender_sky = ssdo::render::SenderSky::March;
     r.settings.indirect_strength = 0.0;
     r.apply(&gpu);
-    assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]);
+    assert_eq!(
+        r.plan().step_names(),
+        vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
+    );
     r.settings.indirect_strength = 1.0;
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
     // No blur: no blur pass and no blurred targets.

@@ -160,7 +160,8 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
                 continue;
             }
             surface += 1;
-            let ndc = Vec3::new((x as f32 + 0.5) / W as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / H as f32 * 2.0, depth);
+            let ndc =
+                Vec3::new((x as f32 + 0.5) / W as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / H as f32 * 2.0, depth);
             let world = to_world * ndc.extend(1.0);
             let then = to_before * (world.xyz() / world.w).extend(1.0);
             let (px, py) = (((then.x / then.w) * 0.5 + 0.5) * W as f32, (0.5 - 0.5 * then.y / then.w) * H as f32);
@@ -341,6 +342,11 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
             }
         }
         assert!(checked > 200, "{mode}: the view has silhouettes ({checked} pixels beside one)");
-        assert!(halos.is_empty(), "{mode}: {} of {checked} pixels take values from across a silhouette: {:?}", halos.len(), &halos[..halos.len().min(5)]);
+        assert!(
+            halos.is_empty(),
+            "{mode}: {} of {checked} pixels take values from across a silhouette: {:?}",
+            halos.len(),
+            &halos[..halos.len().min(5)]
+        );
     }
 }

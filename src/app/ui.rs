@@ -14,7 +14,10 @@ pub enum Action {
     Mode(Mode),
     LoadSky(PathBuf),
     LoadModel(PathBuf),
-    Relight { lights: usize, seed: u64 },
+    Relight {
+        lights: usize,
+        seed: u64,
+    },
     ResetCamera,
     /// Accumulation on (with the panel's last count) or off.
     ToggleAccumulation,
@@ -154,7 +157,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             // Accumulation: on with the last count it had, off as 1 frame.
             let mut on = settings.accumulates();
             ui.horizontal(|ui| {
-                if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed() {
+                if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed()
+                {
                     settings.accumulate = if on { state.accumulate.max(2) } else { 1 };
                 }
                 if on {

@@ -17,8 +17,8 @@ pub(super) struct StillView {
 impl StillView {
     /// Counts a frame of `camera` going into `history`.
     pub(super) fn count(&mut self, camera: &OrbitCamera, history: Option<&PingPong>) {
-        let same = history.is_some_and(|h| h.frames > 0 && h.generation == self.generation)
-            && self.camera == Some(*camera);
+        let same =
+            history.is_some_and(|h| h.frames > 0 && h.generation == self.generation) && self.camera == Some(*camera);
         self.frames = if same { self.frames.saturating_add(1) } else { 1 };
         self.camera = Some(*camera);
         self.generation = history.map_or(0, |h| h.generation);

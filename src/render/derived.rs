@@ -6,8 +6,8 @@ use glam::Vec3;
 
 use super::frame::{pre_exposure_for, FrameInputs};
 use super::kernel;
-use super::resources::sampling::SamplingParams;
 use super::modes::OCCLUSION_HISTORY;
+use super::resources::sampling::SamplingParams;
 use super::settings::{View, MOTION_ACCUMULATE, REACH_RADII, THICKNESS_RADII};
 use super::variant::{SAMPLES, SLICES, STEPS};
 use super::Renderer;

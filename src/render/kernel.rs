@@ -162,7 +162,10 @@ mod tests {
                 assert!(widest < 2.0 / frames as f32, "dim {dim}, {frames} frames: gap {widest}");
             }
         }
-        assert!((0..64).all(|k| { let s = schedule(k); (s[2] * s[2] + s[3] * s[3] - 1.0).abs() < 1e-5 }));
+        assert!((0..64).all(|k| {
+            let s = schedule(k);
+            (s[2] * s[2] + s[3] * s[3] - 1.0).abs() < 1e-5
+        }));
     }
 
     #[test]

@@ -24,8 +24,8 @@ use crate::budget::{self, Share};
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
-use frame::FrameData;
 use accumulation::StillView;
+use frame::FrameData;
 use history::History;
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
 use passes::set::PassSet;
@@ -213,8 +213,6 @@ impl Renderer {
         self.passes.each(|pass| pass.prepare(device, &preparation));
         self.prepared = (variant, view);
     }
-
-
 
     /// The frame uniforms of the last frame recorded.
     pub fn frame_uniforms(&self) -> &uniforms::FrameUniforms {

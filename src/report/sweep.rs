@@ -60,8 +60,17 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             for &(samples, steps) in &counts {
                 // The pyramid's and the other bounces' rows: one frame at the default resolution.
                 let (accumulate, orbit, half) = (1, 0.0, base.half_resolution);
-                let at = |blur, pyramid, bounce| {
-                    Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half }
+                let at = |blur, pyramid, bounce| Config {
+                    mode,
+                    variant,
+                    samples,
+                    steps,
+                    blur,
+                    pyramid,
+                    bounce,
+                    accumulate,
+                    orbit,
+                    half,
                 };
                 for (blur, half) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {

@@ -93,7 +93,8 @@ impl Pass for TemporalPass {
         let (occlusion, surface) = pairs(history);
         let parity = occlusion.parity();
         debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
-        let shown = targets.accumulated.as_ref().and_then(|a| a.output()).expect("a plan that accumulates has its target");
+        let shown =
+            targets.accumulated.as_ref().and_then(|a| a.output()).expect("a plan that accumulates has its target");
         let groups = self.groups.as_ref().expect("the temporal pass recorded before `prepare`");
         let attachments = [
             color_attachment(&shown.view, true),
