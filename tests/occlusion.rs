@@ -7,7 +7,7 @@ mod common;
 use common::{gpu, looking, red_wall_scene, renderer, shoot};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
-use ssdo::headless::readback::{read_r16f, read_rgba16f};
+use ssdo::headless::readback::{read_occlusion, read_rgba16f, OcclusionValues};
 use ssdo::render::{Mode, Renderer, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
@@ -58,12 +58,7 @@ fn render(gpu: &Gpu, r: &mut Renderer, camera: &OrbitCamera, blurred: bool) -> B
     shoot(gpu, r, camera);
     let t = r.targets();
     let set = if blurred { t.occlusion() } else { &t.raw };
-    let directional = set.directional.as_ref().map(|a| read_rgba16f(gpu, &a.texture).unwrap());
-    let ao = match (&set.ao, &directional) {
-        (Some(ao), _) => Some(read_r16f(gpu, &ao.texture).unwrap()),
-        (None, Some(d)) if r.plan().decl.ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
-        _ => None,
-    };
+    let OcclusionValues { ao, directional } = read_occlusion(gpu, set, r.plan().decl.ambient_occlusion).unwrap();
     Buffers { ao, directional, hdr: read_rgba16f(gpu, &t.hdr().unwrap().texture).unwrap() }
 }
 
@@ -265,39 +260,16 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     let sky = Skybox::constant(Vec3::ONE);
     let lit = Scene::new(builtin::cornell().unwrap(), 4, 1);
     let mut r = renderer(&gpu, &lit, &sky, (32, 24), settings(Mode::Off));
+    // The DO modes' steps, around their sampling step.
+    let directional = |sampling: &'static str| {
+        let after = ["blur", "temporal", "composite", "skybox", "light_cubes", "tonemap"];
+        [vec!["gbuffer", "sender_sky", "lighting", sampling], after.to_vec()].concat()
+    };
     let expect = [
         (Mode::Off, vec!["gbuffer", "composite", "skybox", "light_cubes", "tonemap"]),
         (Mode::Ssao, vec!["gbuffer", "ssao", "blur", "temporal", "composite", "skybox", "light_cubes", "tonemap"]),
-        (
-            Mode::Ssdo,
-            vec![
-                "gbuffer",
-                "sender_sky",
-                "lighting",
-                "ssdo",
-                "blur",
-                "temporal",
-                "composite",
-                "skybox",
-                "light_cubes",
-                "tonemap",
-            ],
-        ),
-        (
-            Mode::Both,
-            vec![
-                "gbuffer",
-                "sender_sky",
-                "lighting",
-                "ssao_ssdo",
-                "blur",
-                "temporal",
-                "composite",
-                "skybox",
-                "light_cubes",
-                "tonemap",
-            ],
-        ),
+        (Mode::Ssdo, directional("ssdo")),
+        (Mode::Both, directional("ssao_ssdo")),
     ];
     let names = |r: &Renderer| r.allocations().into_iter().map(|(n, _)| n).collect::<Vec<_>>();
     for (mode, steps) in &expect {

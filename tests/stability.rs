@@ -284,20 +284,13 @@ fn sizes_beyond_the_adapter_are_a_clear_error() {
 /// Every value of the frame's AO/DO (what the composite read) and HDR: finite, AO in [0, 1] and
 /// DO ≥ 0, or what is wrong.
 fn check_frame(gpu: &Gpu, r: &Renderer) -> Result<(), String> {
-    use ssdo::headless::readback::{read_r16f, read_rgba16f};
-    let set = r.targets().occlusion();
-    let ao: Vec<f32> = match (&set.ao, &set.directional) {
-        (Some(t), _) => read_r16f(gpu, &t.texture).unwrap(),
-        (None, Some(t)) if r.plan().decl.ambient_occlusion => {
-            read_rgba16f(gpu, &t.texture).unwrap().iter().map(|p| p[3]).collect()
-        }
-        _ => Vec::new(),
-    };
+    use ssdo::headless::readback::{read_occlusion, read_rgba16f};
+    let values = read_occlusion(gpu, r.targets().occlusion(), r.plan().decl.ambient_occlusion).unwrap();
+    let ao = values.ao.unwrap_or_default();
     if let Some(bad) = ao.iter().find(|v| !(v.is_finite() && (0.0..=1.0).contains(*v))) {
         return Err(format!("AO {bad}"));
     }
-    if let Some(t) = &set.directional {
-        let d = read_rgba16f(gpu, &t.texture).unwrap();
+    if let Some(d) = values.directional {
         if let Some(bad) = d.iter().find(|p| p[..3].iter().any(|v| !(v.is_finite() && *v >= 0.0))) {
             return Err(format!("DO {bad:?}"));
         }

@@ -11,7 +11,7 @@ use common::{gpu, looking, renderer, shoot};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::gpu::Gpu;
 use ssdo::headless::capture::{capture_converged, render_frames};
-use ssdo::headless::readback::{read_r16f, read_rgba16f, read_texture};
+use ssdo::headless::readback::{read_occlusion, read_rgba16f, read_texture};
 use ssdo::render::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY};
 use ssdo::render::{Mode, Renderer, Settings, Step, Variant};
 use ssdo::scene::{self, builtin, OrbitCamera, Scene, Skybox};
@@ -25,18 +25,14 @@ fn settings(mode: Mode, accumulate: usize) -> Settings {
 
 /// AO of the frame's composite input (the temporal pass's output where the plan accumulates).
 fn ao(gpu: &Gpu, r: &Renderer) -> Vec<f32> {
-    let set = r.targets().occlusion();
-    match (&set.ao, &set.directional) {
-        (Some(t), _) => read_r16f(gpu, &t.texture).unwrap(),
-        (None, Some(t)) => read_rgba16f(gpu, &t.texture).unwrap().iter().map(|p| p[3]).collect(),
-        _ => panic!("no occlusion target"),
-    }
+    let values = read_occlusion(gpu, r.targets().occlusion(), r.plan().decl.ambient_occlusion).unwrap();
+    values.ao.expect("a mode that computes AO")
 }
 
 /// DO (rgb) of the composite's input.
 fn directional(gpu: &Gpu, r: &Renderer) -> Vec<Vec3> {
-    let t = r.targets().occlusion().directional.as_ref().expect("a DO mode");
-    read_rgba16f(gpu, &t.texture).unwrap().iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect()
+    let values = read_occlusion(gpu, r.targets().occlusion(), false).unwrap();
+    values.directional.expect("a DO mode").iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect()
 }
 
 /// Reverse-Z depth, frames held and whether a surface is there, per pixel of a surface history.
@@ -293,12 +289,10 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         assert!(r.plan().has(Step::Upsample));
         let t = r.targets();
         let depth = ssdo::headless::readback::read_depth(&gpu, &t.depth.texture).unwrap();
+        // AO alone as the first of four channels, beside DO + AO's four.
         let read = |set: &ssdo::render::targets::OcclusionTargets| -> Vec<[f32; 4]> {
-            match (&set.ao, &set.directional) {
-                (Some(ao), _) => read_r16f(&gpu, &ao.texture).unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect(),
-                (None, Some(d)) => read_rgba16f(&gpu, &d.texture).unwrap(),
-                _ => unreachable!(),
-            }
+            let values = read_occlusion(&gpu, set, false).unwrap();
+            values.directional.unwrap_or_else(|| values.ao.unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect())
         };
         let (half, full) = (read(t.half.as_ref().unwrap()), read(&t.raw));
         let (hw, hh) = (W.div_ceil(2) as i64, H.div_ceil(2) as i64);

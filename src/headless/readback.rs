@@ -147,3 +147,26 @@ fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
     gpu.queue.submit([encoder.finish()]);
     Ok(target)
 }
+
+/// A set of sampling outputs read back (`Targets::occlusion`, `raw`, `half`...).
+pub struct OcclusionValues {
+    /// AO: its own target (SSAO), or DO's alpha where the mode computes AO beside DO.
+    pub ao: Option<Vec<f32>>,
+    /// DO (rgb, pre-exposed) and its alpha (AO in SSAO+SSDO, the open share in SSDO).
+    pub directional: Option<Vec<[f32; 4]>>,
+}
+
+/// Reads `set`; `with_ao` says whether DO's alpha is AO (the mode computes AO).
+pub fn read_occlusion(
+    gpu: &Gpu,
+    set: &crate::render::targets::OcclusionTargets,
+    with_ao: bool,
+) -> Result<OcclusionValues> {
+    let directional = set.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?;
+    let ao = match (&set.ao, &directional) {
+        (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
+        (None, Some(d)) if with_ao => Some(d.iter().map(|p| p[3]).collect()),
+        _ => None,
+    };
+    Ok(OcclusionValues { ao, directional })
+}

@@ -4,7 +4,7 @@
 //! measured by rendering with the other's strength at 0 (the debug views).
 
 use super::capture::capture_converged;
-use super::readback::{read_r16f, read_rgba16f};
+use super::readback::{read_occlusion, read_rgba16f};
 use crate::gpu::Gpu;
 use crate::render::{Renderer, View};
 use crate::scene::OrbitCamera;
@@ -62,13 +62,7 @@ fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<V
     capture_converged(gpu, renderer, camera)?;
     let pre = renderer.pre_exposure();
     let decl = *renderer.plan().mode.declaration();
-    let targets = renderer.targets().occlusion();
-    if decl.ambient_occlusion {
-        let ao = match (&targets.ao, &targets.directional) {
-            (Some(t), _) => read_r16f(gpu, &t.texture)?,
-            (None, Some(t)) => read_rgba16f(gpu, &t.texture)?.iter().map(|p| p[3]).collect(),
-            _ => Vec::new(),
-        };
+    if let Some(ao) = read_occlusion(gpu, renderer.targets().occlusion(), decl.ambient_occlusion)?.ao {
         stats.push(BufferStats::of("ao", ao.into_iter()));
     }
     let hdr = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?;

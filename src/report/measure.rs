@@ -7,7 +7,7 @@ use super::sweep::Config;
 use super::{metrics, plot, NoiseFloor, ReportOptions, Row};
 use crate::gpu::Gpu;
 use crate::headless::capture::capture_path;
-use crate::headless::readback::{read_r16f, read_rgba16f};
+use crate::headless::readback::{read_occlusion, read_rgba16f};
 use crate::reference::{self, Reference};
 use crate::render::{Mode, Renderer, View};
 use crate::scene::OrbitCamera;
@@ -90,15 +90,11 @@ impl Bench<'_> {
         let s = renderer.settings;
         // The half-float buffers hold radiance × pre-exposure: divided out here.
         let unexpose = 1.0 / renderer.pre_exposure();
-        let targets = renderer.targets().occlusion();
-        let directional = targets.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?.map(|d| {
+        let values = read_occlusion(gpu, renderer.targets().occlusion(), mode.declaration().ambient_occlusion)?;
+        let ao = values.ao;
+        let directional = values.directional.map(|d| {
             d.into_iter().map(|p| [p[0] * unexpose, p[1] * unexpose, p[2] * unexpose, p[3]]).collect::<Vec<_>>()
         });
-        let ao = match (&targets.ao, &directional) {
-            (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
-            (None, Some(d)) if mode.declaration().ambient_occlusion => Some(d.iter().map(|p| p[3]).collect()),
-            _ => None,
-        };
         let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?
             .into_iter()
             .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)

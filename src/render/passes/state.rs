@@ -57,6 +57,22 @@ impl<K: PartialEq + Copy> PassState<K> {
         })
     }
 
+    /// Another state of the same shader and layouts, named `name`, with a pipeline of its own: a
+    /// pass that switches between two pipelines frame by frame (the temporal pass's still and
+    /// moving ones) without compiling its shader twice.
+    pub fn sibling(&self, name: &'static str) -> Self {
+        Self {
+            name,
+            pass_label: format!("{name}_pass"),
+            module: self.module.clone(),
+            layout: self.layout.clone(),
+            frame_layout: self.frame_layout.clone(),
+            sky_layout: self.sky_layout.clone(),
+            pipeline: KeyedPipeline::new(),
+            bind_group: None,
+        }
+    }
+
     /// The pipeline for `key`: `build` makes it (from the key, the shader and groups 0, 1 and,
     /// with the sky, 2) when the current one is for another key.
     pub fn ensure(

@@ -29,8 +29,8 @@ impl TemporalPass {
         let [a, n, d] = gbuffer_entries();
         let input = |b| texture_entry(b, false, D2);
         let layout = cx.layout("temporal_layout", &[a, n, d, uniform_entry(3), input(4), input(5), uint_entry(6)]);
-        let still = PassState::new(cx, "temporal_still", "temporal.wgsl", false, layout.clone())?;
         let state = PassState::new(cx, "temporal", "temporal.wgsl", false, layout)?;
+        let still = state.sibling("temporal_still");
         Ok(Self { state, still, camera_moved: false, groups: None })
     }
 }
