@@ -234,7 +234,7 @@ fn crafted_skies_fail_naming_the_folder_or_face() {
         (&twice, "given twice: px.png and right.png"),
         (&folder_face, "top.png: skybox face 'top' is not a regular file"),
         (&dangling, "front.png: skybox face 'front' cannot be read"),
-        (&a_file, "is a file; a skybox is a folder"),
+        (&a_file, "sky.png: panorama is 8x8; an equirectangular panorama is twice as wide as it is high"),
         (&five, "'back'"),
         (&non_square, "top.png"),
         (&mismatched, "left.png"),

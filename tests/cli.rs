@@ -41,7 +41,7 @@ fn bad_inputs_are_one_line_with_their_exit_code() {
     let cases: Vec<(Vec<&str>, i32, &str)> = vec![
         (vec!["capture", "--model", "no/such/model.obj", "--out", out], 3, "no/such/model.obj"),
         (vec!["capture", "--model", bad_obj.to_str().unwrap(), "--out", out], 3, "bad.obj: malformed OBJ"),
-        (vec!["capture", "--skybox", "no/such/sky", "--out", out], 3, "no/such/sky: skybox folder not found"),
+        (vec!["capture", "--skybox", "no/such/sky", "--out", out], 3, "no/such/sky: skybox not found"),
         (vec!["capture", "--exposure", "NaN", "--out", out], 2, "--exposure"),
         (vec!["capture", "--distance", "-1", "--out", out], 2, "--distance"),
     ];

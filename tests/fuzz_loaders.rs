@@ -1,5 +1,6 @@
 //! Property tests of the loaders (run in CI): OBJ and MTL text generated from a grammar of real and
-//! broken statements, and random bytes as skybox faces. Loading may fail, but only with an error:
+//! broken statements, glTF documents whose buffers, views and accessors disagree, and random
+//! bytes as skybox faces and panoramas. Loading may fail, but only with an error:
 //! any panic — even one the loader's safety net would catch — fails the test. Longer runs:
 //! `cargo fuzz run obj` / `cargo fuzz run skybox` in `fuzz/`.
 
@@ -7,6 +8,7 @@ use std::cell::Cell;
 use std::sync::Once;
 
 use proptest::prelude::*;
+use serde_json::json;
 use ssdo::scene::{model::load_obj, Skybox};
 
 thread_local! {
@@ -83,8 +85,112 @@ fn mtl_line() -> impl Strategy<Value = String> {
     ]
 }
 
+/// One accessor of a glTF primitive: view offset and length, accessor offset, count, component
+/// type and type (`None`: the right ones for its use), and the view's stride.
+type Accessor = (usize, usize, usize, usize, Option<(u32, &'static str)>, Option<usize>);
+
+fn accessor() -> impl Strategy<Value = Accessor> {
+    let kind = (
+        prop_oneof![Just(5120u32), Just(5121), Just(5122), Just(5123), Just(5125), Just(5126), Just(7)],
+        prop_oneof![Just("SCALAR"), Just("VEC2"), Just("VEC3"), Just("VEC4"), Just("MAT4")],
+    );
+    (
+        prop_oneof![2 => Just(0usize), 1 => 0..80usize],
+        prop_oneof![2 => 48..120usize, 1 => 0..48usize],
+        prop_oneof![3 => Just(0usize), 1 => 0..16usize],
+        prop_oneof![3 => 0..12usize, 1 => 0..40usize],
+        prop_oneof![3 => Just(None), 1 => kind.prop_map(Some)],
+        prop_oneof![3 => Just(None), 1 => (1..16usize).prop_map(|k| Some(4 * k)), 1 => (0..40usize).prop_map(Some)],
+    )
+}
+
+/// A glTF document with one primitive whose four accessors (positions, normals, UVs, indices)
+/// are as generated, over a buffer of `data` that claims `claimed` bytes, under a parent node
+/// scaled by `scale` in x.
+fn gltf_document(accessors: &[Accessor], data: &[u8], claimed: usize, mode: u32, scale: f32) -> serde_json::Value {
+    let views: Vec<serde_json::Value> = accessors
+        .iter()
+        .enumerate()
+        .map(|(i, &(offset, len, _, _, kind, stride))| {
+            // Well-typed indices read the buffer's last 32 bytes, which hold small numbers.
+            let (offset, len) = if i == 3 && kind.is_none() && data.len() == 160 { (128, 32) } else { (offset, len) };
+            let mut view = json!({ "buffer": 0, "byteOffset": offset, "byteLength": len });
+            if let Some(stride) = stride {
+                view["byteStride"] = json!(stride);
+            }
+            view
+        })
+        .collect();
+    let accessors: Vec<serde_json::Value> = accessors
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, _, offset, count, kind, _))| {
+            // Positions, normals, UVs and indices, as glTF wants them.
+            let (component, kind) =
+                kind.unwrap_or([(5126, "VEC3"), (5126, "VEC3"), (5126, "VEC2"), (5123, "SCALAR")][i]);
+            json!({ "bufferView": i, "byteOffset": offset, "componentType": component, "count": count, "type": kind,
+                    "min": [-1.0, -1.0, -1.0], "max": [1.0, 1.0, 1.0] })
+        })
+        .collect();
+    let uri = format!("data:application/octet-stream;base64,{}", base64_of(data));
+    json!({
+        "asset": { "version": "2.0" },
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [{ "children": [1], "scale": [scale, 1.0, 1.0] }, { "mesh": 0, "rotation": [0.0, 0.0, 0.0, 1.0] }],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2 }, "indices": 3, "mode": mode }] }],
+        "buffers": [{ "uri": uri, "byteLength": claimed }],
+        "bufferViews": views,
+        "accessors": accessors
+    })
+}
+
+fn base64_of(bytes: &[u8]) -> String {
+    use base64::Engine;
+    base64::engine::general_purpose::STANDARD.encode(bytes)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn gltf_with_inconsistent_buffers_never_panics(
+        accessors in prop::collection::vec(accessor(), 4),
+        data in prop_oneof![
+            3 => (prop::collection::vec(prop_oneof![3 => Just(0x3fu8), 1 => any::<u8>()], 128), prop::collection::vec(0..10u16, 16))
+                .prop_map(|(floats, indices)| [floats, indices.iter().flat_map(|i| i.to_le_bytes()).collect()].concat()),
+            1 => prop::collection::vec(any::<u8>(), 0..160),
+        ],
+        short in prop_oneof![3 => Just(0usize), 1 => 0..200usize],
+        mode in prop_oneof![6 => Just(4u32), 1 => Just(0), 1 => Just(5), 1 => Just(9)],
+        scale in prop_oneof![3 => Just(1.0f32), 1 => Just(-1.0), 1 => Just(0.0), 1 => Just(1e30)],
+        glb in any::<bool>(),
+    ) {
+        count_panics();
+        let dir = tempfile::tempdir().unwrap();
+        // Mostly a buffer as long as it claims to be; now and then one shorter.
+        let document = gltf_document(&accessors, &data, data.len() + short, mode, scale);
+        let path = dir.path().join(if glb { "fuzz.glb" } else { "fuzz.gltf" });
+        std::fs::write(&path, document.to_string()).unwrap();
+        let before = panics();
+        if let Ok(model) = ssdo::scene::model::load(&path) {
+            prop_assert!(model.vertices.iter().all(|v| v.position.iter().chain(&v.normal).chain(&v.uv).all(|c| c.is_finite())));
+            prop_assert!(model.indices.iter().all(|&i| (i as usize) < model.vertices.len()));
+        }
+        prop_assert_eq!(panics(), before, "the glTF loader panicked");
+    }
+
+    #[test]
+    fn panoramas_of_random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..256), ext in 0..4usize) {
+        count_panics();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(format!("pano.{}", ["png", "jpg", "hdr", "exr"][ext]));
+        let mut data = if bytes.len() % 2 == 0 { b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n".to_vec() } else { Vec::new() };
+        data.extend_from_slice(&bytes);
+        std::fs::write(&path, data).unwrap();
+        let before = panics();
+        let _ = Skybox::load(&path);
+        prop_assert_eq!(panics(), before, "the panorama loader panicked");
+    }
 
     #[test]
     fn obj_and_mtl_never_panic(obj in prop::collection::vec(obj_line(), 0..40), mtl in prop::collection::vec(mtl_line(), 0..12), noise in prop::collection::vec(any::<u8>(), 0..64)) {

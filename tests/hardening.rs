@@ -105,16 +105,18 @@ fn values_after_a_space_are_values_and_other_model_kinds_say_so() {
     ] {
         refused(&args, 2, needle);
     }
-    // A glTF (or any other known kind) given as a model is named as such, not read as an OBJ
-    // with "no triangles".
+    // A known kind of model that does not load (STL) is named as such, not read as an OBJ with
+    // "no triangles"; a glTF is read as glTF (this one holds nothing to draw).
     let dir = tempfile::tempdir().unwrap();
-    for name in ["scene.gltf", "scene.GLB", "part.stl"] {
+    for (name, needle) in
+        [("part.stl", "STL file; models load from OBJ"), ("scene.gltf", "no triangles"), ("scene.GLB", "no triangles")]
+    {
         let path = dir.path().join(name);
         std::fs::write(&path, b"{\"asset\":{\"version\":\"2.0\"}}").unwrap();
         let result = ssdo(&["capture", "--model", path.to_str().unwrap()]);
         assert_eq!(result.status.code(), Some(3), "{name}: {}", stderr(&result));
         let line = error_line(&result);
-        assert!(line.contains(name) && line.contains("Wavefront OBJ"), "{name}: {line}");
+        assert!(line.contains(name) && line.contains(needle), "{name}: {line}");
     }
 }
 

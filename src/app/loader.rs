@@ -61,7 +61,7 @@ impl Loader {
         self.current = Some((format!("model {}", path.display()), std::time::Instant::now()));
         self.requested.1 = id;
         std::thread::spawn(move || {
-            let result = scene::model::load_obj(&path);
+            let result = scene::model::load(&path);
             let _ = sender.send((id, Loaded::Model(path, result)));
         });
     }
@@ -101,10 +101,13 @@ impl Loader {
     }
 }
 
-/// The subfolders of `skyboxes/` (read anew each time the list is shown).
+/// The skies under `skyboxes/`: its subfolders and the panorama images beside them (read anew
+/// each time the list is shown).
 pub fn skybox_folders() -> Vec<PathBuf> {
     let mut list: Vec<PathBuf> = std::fs::read_dir(scene::SKYBOX_ROOT)
-        .map(|entries| entries.flatten().map(|e| e.path()).filter(|p| p.is_dir()).collect())
+        .map(|entries| {
+            entries.flatten().map(|e| e.path()).filter(|p| p.is_dir() || scene::panorama::is_image(p)).collect()
+        })
         .unwrap_or_default();
     list.sort();
     list

@@ -353,12 +353,15 @@ impl Viewer {
     }
 
     fn drop_file(&mut self, path: PathBuf) {
-        if path.is_dir() {
+        if path.is_dir() || crate::scene::panorama::is_image(&path) {
             self.act(Action::LoadSky(path));
-        } else if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+        } else if crate::scene::model::is_model(&path) {
             self.act(Action::LoadModel(path));
         } else {
-            self.panel.say(format!("{}: drop a skybox folder or an .obj file", path.display()), true);
+            self.panel.say(
+                format!("{}: drop a skybox folder, a panorama image or a model (.obj, .gltf, .glb)", path.display()),
+                true,
+            );
         }
     }
 

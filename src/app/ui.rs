@@ -204,11 +204,14 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             }
             ui.separator();
 
-            ui.label("Sky (or drop a folder on the window)");
+            ui.label("Sky: folder or panorama (or drop one on the window)");
             let combo = egui::ComboBox::from_id_salt("skies").selected_text(state.sky_name.clone()).show_ui(ui, |ui| {
                 for folder in &state.sky_folders {
                     let name = folder.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                    if ui.selectable_label(name == state.sky_name, name).clicked() {
+                    // A panorama's sky is named after the file without its extension.
+                    let stem = folder.file_stem().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                    let current = name == state.sky_name || (folder.is_file() && stem == state.sky_name);
+                    if ui.selectable_label(current, name).clicked() {
                         actions.push(Action::LoadSky(folder.clone()));
                     }
                 }
@@ -219,18 +222,18 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.horizontal(|ui| {
                 ui.add(
                     egui::TextEdit::singleline(&mut state.sky_path)
-                        .hint_text("sky folder")
+                        .hint_text("sky folder or panorama.hdr")
                         .desired_width(PANEL_WIDTH - 80.0),
                 );
                 if ui.button("load").clicked() && !state.sky_path.trim().is_empty() {
                     actions.push(Action::LoadSky(PathBuf::from(state.sky_path.trim())));
                 }
             });
-            ui.label("Model (.obj, or drop one on the window)");
+            ui.label("Model: .obj, .gltf, .glb (or drop one on the window)");
             ui.horizontal(|ui| {
                 ui.add(
                     egui::TextEdit::singleline(&mut state.model_path)
-                        .hint_text("path/to/model.obj")
+                        .hint_text("path/to/model.obj or .glb")
                         .desired_width(PANEL_WIDTH - 80.0),
                 );
                 if ui.button("load").clicked() && !state.model_path.trim().is_empty() {

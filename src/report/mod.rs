@@ -173,13 +173,12 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let features = crate::render::SceneFeatures { lights: options.lights };
     Renderer::check_memory(options.size, &Settings::default(), features, true, &Mode::ALL)?;
     let (model, scene_sky) = match &options.model {
-        Some(path) => (scene::model::load_obj(path)?, None),
+        Some(path) => (scene::model::load(path)?, None),
         None => scenes::by_name(&options.scene)?,
     };
     let sky_path = options.skybox.clone().or(scene_sky);
     let sky = match &sky_path {
-        Some(path) if path.is_dir() => Skybox::load(path)?,
-        Some(path) => return Err(Error::input(path, "skybox folder not found")),
+        Some(path) => Skybox::load(path)?,
         None => scene::load_skybox(None)?,
     };
     let scene = Scene::new(model, options.lights, options.seed);

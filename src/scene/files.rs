@@ -33,12 +33,11 @@ pub fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, Str
     Ok(bytes)
 }
 
-/// The kind of a model file in another format than OBJ, by its extension (read as OBJ it would
+/// The kind of a model file in another format than OBJ or glTF, by its extension (read as OBJ it would
 /// say only that it holds no triangles).
 pub fn other_model_kind(path: &Path) -> Option<&'static str> {
     let ext = path.extension()?.to_str()?.to_ascii_lowercase();
     Some(match ext.as_str() {
-        "gltf" | "glb" => "glTF",
         "fbx" => "FBX",
         "stl" => "STL",
         "ply" => "PLY",

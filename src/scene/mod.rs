@@ -4,9 +4,11 @@
 pub mod builtin;
 pub mod camera;
 pub mod files;
+pub mod gltf_model;
 pub mod lights;
 pub mod model;
 pub mod obj_text;
+pub mod panorama;
 pub mod room;
 pub mod skybox;
 pub mod texture;
@@ -93,7 +95,7 @@ impl Scene {
 /// binary run outside the repository) the same scene is built in memory instead.
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
     match path {
-        Some(p) => model::load_obj(p),
+        Some(p) => model::load(p),
         None if Path::new(DEFAULT_MODEL).is_file() => model::load_obj(Path::new(DEFAULT_MODEL)),
         None => {
             log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");

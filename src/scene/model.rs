@@ -1,4 +1,5 @@
-//! Wavefront OBJ + MTL loading through `tobj`, hardened for the files people actually have.
+//! Models, and Wavefront OBJ + MTL loading through `tobj`, hardened for the files people actually
+//! have (glTF 2.0 is in [`super::gltf`]; both build their triangles with [`push_triangle`]).
 //!
 //! tobj does the parsing; around it we decode Latin-1 and UTF-16 text, pad single-value colour
 //! lines in MTL files (tobj 4.0.5 panics on `Kd 0.5`, which the format allows), check every
@@ -183,6 +184,82 @@ impl Model {
     }
 }
 
+/// What became of a triangle handed to [`push_triangle`].
+pub(super) enum Triangle {
+    Kept,
+    /// Kept with its winding reversed to agree with its normals.
+    Flipped,
+    /// Left out: a position non-finite or beyond 1e12.
+    Dropped,
+}
+
+/// Appends one triangle's three vertices to `out`, the same way for every file format. The
+/// supplied normals, where there are any, say which side is out; the winding is often an
+/// accident (left-handed exporters, mirrored objects), so where they disagree, the winding yields.
+/// A vertex without a usable normal takes the face's.
+pub(super) fn push_triangle(
+    pos: [Vec3; 3],
+    normals: Option<[Vec3; 3]>,
+    uvs: [[f32; 2]; 3],
+    out: &mut Vec<Vertex>,
+) -> Triangle {
+    // Beyond 1e12 from the origin, f32 keeps no precision the depth buffer could use.
+    if !pos.iter().all(|p| p.is_finite() && p.abs().max_element() <= 1e12) {
+        return Triangle::Dropped;
+    }
+    let (e1, e2) = (pos[1] - pos[0], pos[2] - pos[0]);
+    let cross = e1.cross(e2);
+    let mut face_normal = cross.try_normalize().unwrap_or(Vec3::Y);
+    // A sliver (a sphere's pole) has no trustworthy winding: it is left as it is.
+    let well_shaped = cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared());
+    let mut order = [0, 1, 2];
+    let mut outcome = Triangle::Kept;
+    if let Some(normals) = normals {
+        let supplied: Vec3 = normals.iter().sum();
+        if well_shaped && supplied.is_finite() && face_normal.dot(supplied) < 0.0 {
+            order = [0, 2, 1];
+            face_normal = -face_normal;
+            outcome = Triangle::Flipped;
+        }
+    }
+    for k in order {
+        let normal = normals.and_then(|n| n[k].try_normalize()).unwrap_or(face_normal);
+        let uv = if uvs[k].iter().all(|x| x.is_finite()) { uvs[k] } else { [0.0, 0.0] };
+        out.push(Vertex { position: pos[k].into(), normal: normal.into(), uv });
+    }
+    outcome
+}
+
+/// Whether `path` names a model file this program loads: `.obj`, `.gltf` or `.glb`.
+pub fn is_model(path: &Path) -> bool {
+    path.extension().is_some_and(|e| ["obj", "gltf", "glb"].iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
+/// Loads a model by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with its
+/// materials and textures, within the run's memory budget.
+pub fn load(path: &Path) -> Result<Model> {
+    load_with_budget(path, budget::texture_room())
+}
+
+/// [`load`] with another room for textures (decoded RGBA8 bytes for all of them together).
+pub fn load_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
+    if super::gltf_model::is_gltf(path) {
+        super::gltf_model::load(path, texture_room)
+    } else {
+        load_obj_with_budget(path, texture_room)
+    }
+}
+
+/// Logs a loader's warnings and keeps them on the model.
+pub(super) fn finish(mut model: Model, path: &Path, mut warnings: Vec<String>) -> Result<Model> {
+    warnings.extend(model.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
+    for w in &warnings {
+        log::warn!("{}: {w}", path.display());
+    }
+    model.warnings = warnings;
+    Ok(model)
+}
+
 fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
     match v {
         Some(c) if c.iter().all(|x| x.is_finite()) => c.map(|x| x.clamp(0.0, 1.0)),
@@ -201,7 +278,7 @@ fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, wa
     }
 }
 
-const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
+pub(super) const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
 
 /// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
 pub const MAX_OBJ_BYTES: u64 = 1 << 30;
@@ -215,7 +292,10 @@ pub fn load_obj(path: &Path) -> Result<Model> {
 /// [`load_obj`] with another room for textures (decoded RGBA8 bytes for all of them together).
 pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     if let Some(kind) = other_model_kind(path) {
-        return Err(Error::input(path, format!("a {kind} file; models load from Wavefront OBJ files (.obj)")));
+        return Err(Error::input(
+            path,
+            format!("a {kind} file; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)"),
+        ));
     }
     // Sized before it is read: the triangles the faces make, against the geometry's share.
     check_file(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
@@ -325,38 +405,14 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
                 continue;
             }
             let pos = idx.map(|i| Vec3::from_slice(&mesh.positions[3 * i..3 * i + 3]));
-            // Beyond 1e12 from the origin, f32 keeps no precision the depth buffer could use.
-            if !pos.iter().all(|p| p.is_finite() && p.abs().max_element() <= 1e12) {
-                dropped += 1;
-                continue;
-            }
-            let (e1, e2) = (pos[1] - pos[0], pos[2] - pos[0]);
-            let cross = e1.cross(e2);
-            let mut face_normal = cross.try_normalize().unwrap_or(Vec3::Y);
-            // A sliver (a sphere's pole) has no trustworthy winding: it is left as it is.
-            let well_shaped = cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared());
-            // The supplied normals say which side is out; the winding is often an accident
-            // (left-handed exporters, mirrored objects). Where they disagree, the winding yields.
-            let mut order = [0, 1, 2];
-            if has_normals {
-                let supplied: Vec3 = idx.iter().map(|&i| Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3])).sum();
-                if well_shaped && supplied.is_finite() && face_normal.dot(supplied) < 0.0 {
-                    order = [0, 2, 1];
-                    face_normal = -face_normal;
-                    flipped += 1;
-                }
-            }
-            for k in order {
-                let i = idx[k];
-                let normal = if has_normals {
-                    Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3]).try_normalize().unwrap_or(face_normal)
-                } else {
-                    face_normal
-                };
-                // OBJ puts v = 0 at the bottom of the image; textures start at the top row.
-                let uv = if has_uvs { [mesh.texcoords[2 * i], 1.0 - mesh.texcoords[2 * i + 1]] } else { [0.0, 0.0] };
-                let uv = if uv.iter().all(|x| x.is_finite()) { uv } else { [0.0, 0.0] };
-                groups[material].push(Vertex { position: pos[k].into(), normal: normal.into(), uv });
+            let normals = has_normals.then(|| idx.map(|i| Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3])));
+            // OBJ puts v = 0 at the bottom of the image; textures start at the top row.
+            let uvs =
+                idx.map(|i| if has_uvs { [mesh.texcoords[2 * i], 1.0 - mesh.texcoords[2 * i + 1]] } else { [0.0; 2] });
+            match push_triangle(pos, normals, uvs, &mut groups[material]) {
+                Triangle::Kept => {}
+                Triangle::Flipped => flipped += 1,
+                Triangle::Dropped => dropped += 1,
             }
         }
     }
@@ -372,12 +428,7 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         return Err(Error::input(path, NO_TRIANGLES));
     }
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
-    let mut out = Model::from_groups(&name, materials, groups)
+    let out = Model::from_groups(&name, materials, groups)
         .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
-    warnings.extend(out.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
-    for w in &warnings {
-        log::warn!("{}: {w}", path.display());
-    }
-    out.warnings = warnings;
-    Ok(out)
+    finish(out, path, warnings)
 }

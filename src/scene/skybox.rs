@@ -1,4 +1,5 @@
-//! Skyboxes: six square faces of equal size in a folder, read into linear RGB.
+//! Skyboxes: six square faces of equal size in a folder, or one equirectangular panorama
+//! ([`super::panorama`]), read into linear RGB.
 //!
 //! Faces are named `right left top bottom front back` (or `px nx py ny pz nz`) for +X, -X, +Y,
 //! -Y, +Z, -Z, with the orientation of the GL/Vulkan cube-map convention (the one most skybox
@@ -87,6 +88,34 @@ fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
+/// Whether a decoded image holds linear HDR values (`.hdr`, `.exr`) rather than sRGB ones.
+fn is_hdr(image: &image::DynamicImage) -> bool {
+    matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_))
+}
+
+/// An image's texels as linear RGB, rows top to bottom, with non-finite and negative values
+/// replaced by 0; and how many were.
+pub(super) fn linear_texels(image: image::DynamicImage) -> (Vec<[f32; 3]>, usize) {
+    let hdr = is_hdr(&image);
+    let mut bad = 0usize;
+    let texels = image
+        .to_rgb32f()
+        .pixels()
+        .map(|p| {
+            p.0.map(|c| {
+                let c = if hdr { c } else { srgb_to_linear(c) };
+                if c.is_finite() && c >= 0.0 {
+                    c
+                } else {
+                    bad += 1;
+                    0.0
+                }
+            })
+        })
+        .collect();
+    (texels, bad)
+}
+
 /// The one file for a face, under either of its names and any image extension. Two candidates
 /// (`right.png` and `px.png`, or `right.png` and `right.jpg`) are an error, not a silent choice;
 /// so is a candidate that is not a readable regular file (a folder, a FIFO, a broken link).
@@ -126,14 +155,19 @@ fn find_face(dir: &Path, names: (&str, &str)) -> Result<std::path::PathBuf> {
 }
 
 impl Skybox {
-    /// Loads the six faces from `dir`; an incomplete or inconsistent folder is an error naming the
-    /// folder or the face.
-    pub fn load(dir: &Path) -> Result<Self> {
+    /// Loads a sky: the six faces of folder `path`, the panorama file `path`, or the one panorama in
+    /// folder `path`. An incomplete or inconsistent folder, or a panorama that is not 2:1, is an
+    /// error naming the folder or the file.
+    pub fn load(path: &Path) -> Result<Self> {
+        let dir = path;
         if dir.is_file() {
-            return Err(Error::input(dir, "is a file; a skybox is a folder of six face images"));
+            return super::panorama::load(dir);
         }
         if !dir.is_dir() {
-            return Err(Error::input(dir, "skybox folder not found"));
+            return Err(Error::input(dir, "skybox not found (a folder of six faces or a panorama image)"));
+        }
+        if let Some(panorama) = super::panorama::in_folder(dir) {
+            return super::panorama::load(&panorama);
         }
         let mut faces = Vec::with_capacity(6);
         let mut warnings = Vec::new();
@@ -169,24 +203,8 @@ impl Skybox {
                     ));
                 }
             }
-            let hdr = matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_));
-            kinds.push(hdr);
-            let rgb = image.to_rgb32f();
-            let mut bad = 0usize;
-            let texels = rgb
-                .pixels()
-                .map(|p| {
-                    p.0.map(|c| {
-                        let c = if hdr { c } else { srgb_to_linear(c) };
-                        if c.is_finite() && c >= 0.0 {
-                            c
-                        } else {
-                            bad += 1;
-                            0.0
-                        }
-                    })
-                })
-                .collect();
+            kinds.push(is_hdr(&image));
+            let (texels, bad) = linear_texels(image);
             if bad > 0 {
                 warnings.push(format!("{}: {bad} non-finite or negative value(s) replaced by 0", path.display()));
             }
@@ -204,8 +222,12 @@ impl Skybox {
         }
         let name =
             dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| dir.display().to_string());
-        Ok(Self { name, size: size.min(STORED_FACE_SIDE), faces, warnings, irradiance: [Vec3::ZERO; 9] }
-            .with_irradiance())
+        Ok(Self::from_faces(name, size.min(STORED_FACE_SIDE), faces, warnings))
+    }
+
+    /// A sky of six faces of `size`² linear texels, in cube-layer order.
+    pub fn from_faces(name: String, size: u32, faces: Vec<Vec<[f32; 3]>>, warnings: Vec<String>) -> Self {
+        Self { name, size, faces, warnings, irradiance: [Vec3::ZERO; 9] }.with_irradiance()
     }
 
     /// A sky computed from a function of the (unit) world direction.
@@ -221,7 +243,7 @@ impl Skybox {
                     .collect()
             })
             .collect();
-        Self { name: name.into(), size, faces, warnings: Vec::new(), irradiance: [Vec3::ZERO; 9] }.with_irradiance()
+        Self::from_faces(name.into(), size, faces, Vec::new())
     }
 
     /// A sky of the same radiance in every direction (the white-furnace test's sky).

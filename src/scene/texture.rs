@@ -61,26 +61,77 @@ impl TextureCache {
     /// left to [`load_texture`] to report.
     pub(super) fn plan<'a>(dir: &Path, arguments: impl IntoIterator<Item = &'a str>, room: u64) -> Self {
         let mut seen_paths = HashSet::new();
-        let mut pictures: Vec<(ContentKey, (u32, u32))> = Vec::new();
+        let mut pictures = Vec::new();
         for argument in arguments {
             let Some(path) = texture_file_name(argument).and_then(|name| find_texture(dir, &name)) else { continue };
             if !seen_paths.insert(std::fs::canonicalize(&path).unwrap_or(path.clone())) {
                 continue;
             }
             let Ok(bytes) = read_bounded(&path, 1 << 30) else { continue };
-            let key = content_key(&bytes);
-            if pictures.iter().any(|(k, _)| *k == key) {
-                continue;
-            }
-            let header = image::ImageReader::new(std::io::Cursor::new(&bytes[..])).with_guessed_format();
-            if let Ok(size) = header.map_err(image::ImageError::IoError).and_then(|r| r.into_dimensions()) {
-                pictures.push((key, size));
-            }
+            note_picture(&mut pictures, &bytes);
         }
+        Self::fitted(pictures, room)
+    }
+
+    /// [`TextureCache::plan`] for pictures already in memory (a glTF's images).
+    pub(super) fn plan_pictures<'a>(pictures: impl IntoIterator<Item = &'a [u8]>, room: u64) -> Self {
+        let mut noted = Vec::new();
+        for bytes in pictures {
+            note_picture(&mut noted, bytes);
+        }
+        Self::fitted(noted, room)
+    }
+
+    fn fitted(pictures: Vec<(ContentKey, (u32, u32))>, room: u64) -> Self {
         let sizes: Vec<(u32, u32)> = pictures.iter().map(|&(_, size)| size).collect();
         let fitted = crate::budget::fit_images(&sizes, room);
         let planned = pictures.iter().map(|&(key, _)| key).zip(fitted).collect();
         Self { planned, room, ..Self::default() }
+    }
+
+    /// The texture for the picture in `bytes` (called `path` in warnings): decoded once per
+    /// content at its planned size; `None`, with a warning, when it cannot be.
+    pub(super) fn decode(&mut self, path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Option<TextureImage> {
+        let key = content_key(bytes);
+        if let Some(image) = self.by_content.get(&key) {
+            return Some(image.clone());
+        }
+        let planned = self.planned.get(&key).copied();
+        let texture = match decode_texture(path, bytes, planned, self.room) {
+            Ok((texture, original)) => {
+                if (texture.width, texture.height) != original {
+                    warnings.push(format!(
+                        "{}: downscaled from {}x{} to {}x{}: the model's textures would exceed the {} of the memory budget for textures",
+                        path.display(),
+                        original.0,
+                        original.1,
+                        texture.width,
+                        texture.height,
+                        crate::budget::format_bytes(self.room)
+                    ));
+                }
+                texture
+            }
+            Err(e) => {
+                warnings.push(format!("{e}; using a checker"));
+                return None;
+            }
+        };
+        self.by_content.insert(key, texture.clone());
+        Some(texture)
+    }
+}
+
+/// Adds a picture's content key and header size to `pictures`, once per content; a picture
+/// whose header cannot be read is left to the decode to report.
+fn note_picture(pictures: &mut Vec<(ContentKey, (u32, u32))>, bytes: &[u8]) {
+    let key = content_key(bytes);
+    if pictures.iter().any(|(k, _)| *k == key) {
+        return;
+    }
+    let header = image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
+    if let Ok(size) = header.map_err(image::ImageError::IoError).and_then(|r| r.into_dimensions()) {
+        pictures.push((key, size));
     }
 }
 
@@ -180,35 +231,8 @@ pub(super) fn load_texture(
             return TextureImage::checker();
         }
     };
-    let key = content_key(&bytes);
-    if let Some(image) = cache.by_content.get(&key) {
-        let image = image.clone();
-        cache.by_path.insert(canonical, image.clone());
-        return image;
-    }
-    let planned = cache.planned.get(&key).copied();
-    let texture = match decode_texture(&path, &bytes, planned, cache.room) {
-        Ok((texture, original)) => {
-            if (texture.width, texture.height) != original {
-                warnings.push(format!(
-                    "{}: downscaled from {}x{} to {}x{}: the model's textures would exceed the {} of the memory budget for textures",
-                    path.display(),
-                    original.0,
-                    original.1,
-                    texture.width,
-                    texture.height,
-                    crate::budget::format_bytes(cache.room)
-                ));
-            }
-            texture
-        }
-        Err(e) => {
-            warnings.push(format!("{e}; using a checker"));
-            return TextureImage::checker();
-        }
-    };
+    let Some(texture) = cache.decode(&path, &bytes, warnings) else { return TextureImage::checker() };
     cache.by_path.insert(canonical, texture.clone());
-    cache.by_content.insert(key, texture.clone());
     texture
 }
 

@@ -1,0 +1,391 @@
+//! glTF 2.0 models (`.gltf` with external or embedded buffers, and `.glb`) through the `gltf`
+//! crate, with the same rules as OBJ: repairs are warnings, a missing texture is a checker, a
+//! broken file is one error naming it, and the budgets hold.
+//!
+//! The default scene's node hierarchy is walked with its transforms, and every primitive of
+//! triangle mode is drawn. Materials are metallic-roughness, mapped to the G-buffer's
+//! Blinn-Phong terms:
+//!
+//! * diffuse albedo = base colour × (1 − metallic) (a metal has no diffuse), times the base
+//!   colour texture (sRGB);
+//! * specular strength = 0.04 (a dielectric's reflectance at normal incidence) blended towards
+//!   the base colour's mean by metallic;
+//! * shininess = 2/α² − 2 with α = roughness² (the Blinn-Phong exponent of the same highlight
+//!   width as a Beckmann lobe of that roughness), clamped to 1-1024.
+//!
+//! Normal, metallic-roughness, occlusion and emissive textures are not read; a model that has
+//! them says so once.
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat3, Mat4, Vec3};
+
+use super::files::read_bounded;
+use super::model::{finish, push_triangle, Material, Model, Triangle, Vertex, NO_TRIANGLES};
+use super::texture::{TextureCache, TextureImage};
+use crate::budget::{self, Share};
+use crate::{Error, Result};
+
+/// The largest glTF, `.glb` or buffer file read.
+pub const MAX_GLTF_BYTES: u64 = 1 << 30;
+/// Nodes deeper than this below a root are not walked (the hierarchy of a real scene is a few
+/// levels; a file whose nodes form a cycle would recurse for ever).
+const MAX_DEPTH: usize = 64;
+
+/// Whether `path` names a glTF file by its extension.
+pub fn is_gltf(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+}
+
+/// Loads a glTF 2.0 file with its buffers and base colour textures.
+pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
+    let bytes = read_bounded(path, MAX_GLTF_BYTES).map_err(|problem| Error::input(path, problem))?;
+    let ::gltf::Gltf { document, blob } =
+        ::gltf::Gltf::from_slice(&bytes).map_err(|e| Error::input(path, format!("malformed glTF: {e}")))?;
+    drop(bytes);
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let buffers = read_buffers(&document, &dir, blob).map_err(|problem| Error::input(path, problem))?;
+
+    let mut warnings = Vec::new();
+    // The base colour pictures, read once each and planned together within the texture room.
+    let used: std::collections::BTreeSet<usize> = document
+        .materials()
+        .filter_map(|m| m.pbr_metallic_roughness().base_color_texture())
+        .map(|info| info.texture().source().index())
+        .collect();
+    let pictures: Vec<Option<Picture>> = document
+        .images()
+        .map(|image| used.contains(&image.index()).then(|| image_bytes(&image, &dir, &buffers)))
+        .collect();
+    let mut cache = TextureCache::plan_pictures(
+        pictures.iter().flatten().filter_map(|(_, bytes)| bytes.as_deref().ok()),
+        texture_room,
+    );
+    let materials = document.materials().map(|m| convert_material(&m, &pictures, &mut cache, &mut warnings));
+    let mut materials: Vec<Material> = materials.collect();
+    let default_material = materials.len();
+    materials.push(Material::plain("default", [0.8; 3]));
+
+    let instances = mesh_instances(&document, &mut warnings);
+    let triangles: u64 = instances
+        .iter()
+        .flat_map(|(mesh, _)| mesh.primitives())
+        .map(|p| p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64 / 3))
+        .sum();
+    let needed = triangles.saturating_mul(budget::BYTES_PER_TRIANGLE);
+    budget::check(Share::Geometry, needed, || format!("{triangles} triangles"))
+        .map_err(|problem| Error::input(path, problem))?;
+
+    // The accessors are checked against their buffers as they are read; a panic in the crate on
+    // a file nobody anticipated is still a bad file, not a crash.
+    let built = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        build_groups(&instances, &buffers, default_material, materials.len(), &mut warnings)
+    }))
+    .map_err(|_| Error::input(path, "malformed glTF (reading its meshes failed)"))?;
+    let groups = built.map_err(|problem| Error::input(path, problem))?;
+    if groups.iter().all(Vec::is_empty) {
+        return Err(Error::input(path, NO_TRIANGLES));
+    }
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
+    let model = Model::from_groups(&name, materials, groups)
+        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
+    finish(model, path, warnings)
+}
+
+/// The bytes an URI names: a base64 `data:` URI, or a file relative to the glTF's folder.
+fn read_uri(uri: &str, dir: &Path) -> std::result::Result<Vec<u8>, String> {
+    use base64::Engine;
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, data) = rest.split_once(";base64,").ok_or("a data URI that is not base64")?;
+        return base64::engine::general_purpose::STANDARD
+            .decode(data)
+            .map_err(|e| format!("a data URI that is not valid base64: {e}"));
+    }
+    if uri.contains("://") {
+        return Err(format!("'{uri}' is not a local file"));
+    }
+    let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
+    let path: PathBuf = dir.join(decoded.trim_start_matches("file:"));
+    read_bounded(&path, MAX_GLTF_BYTES).map_err(|problem| format!("{}: {problem}", path.display()))
+}
+
+/// Every buffer the document declares, from the `.glb`'s binary chunk, a data URI or a file.
+fn read_buffers(
+    document: &::gltf::Document,
+    dir: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> std::result::Result<Vec<Vec<u8>>, String> {
+    document
+        .buffers()
+        .map(|buffer| {
+            let data = match buffer.source() {
+                ::gltf::buffer::Source::Bin => blob
+                    .take()
+                    .ok_or_else(|| format!("buffer {} is the binary chunk, which is missing", buffer.index()))?,
+                ::gltf::buffer::Source::Uri(uri) => {
+                    read_uri(uri, dir).map_err(|problem| format!("buffer {}: {problem}", buffer.index()))?
+                }
+            };
+            if data.len() < buffer.length() {
+                return Err(format!(
+                    "buffer {} holds {} bytes; the file says {}",
+                    buffer.index(),
+                    data.len(),
+                    buffer.length()
+                ));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// An image's name for messages, and its encoded bytes or why they could not be read.
+type Picture = (PathBuf, std::result::Result<Vec<u8>, String>);
+
+/// The encoded bytes of an image (a file, a data URI or a buffer view), and what to call it.
+fn image_bytes(image: &::gltf::Image, dir: &Path, buffers: &[Vec<u8>]) -> Picture {
+    match image.source() {
+        ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            let name = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
+            let path = dir.join(name);
+            let bytes = read_bounded(&path, 1 << 30).map_err(|problem| format!("{}: {problem}", path.display()));
+            (path, bytes)
+        }
+        ::gltf::image::Source::Uri { uri, .. } => {
+            (PathBuf::from(format!("image {}", image.index())), read_uri(uri, dir))
+        }
+        ::gltf::image::Source::View { view, .. } => {
+            let range = view.offset()..view.offset() + view.length();
+            let bytes = buffers
+                .get(view.buffer().index())
+                .and_then(|b| b.get(range))
+                .map(<[u8]>::to_vec)
+                .ok_or_else(|| format!("image {}'s buffer view lies outside its buffer", image.index()));
+            (PathBuf::from(format!("image {}", image.index())), bytes)
+        }
+    }
+}
+
+/// Blinn-Phong shininess for a metallic-roughness roughness (see the module's notes).
+pub fn shininess(roughness: f32) -> f32 {
+    let alpha = roughness.clamp(0.0, 1.0).powi(2).max(1e-3);
+    (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 1024.0)
+}
+
+fn convert_material(
+    m: &::gltf::Material,
+    pictures: &[Option<Picture>],
+    cache: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Material {
+    let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_string);
+    let pbr = m.pbr_metallic_roughness();
+    let finite = |x: f32, default: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { default };
+    let [r, g, b, _] = pbr.base_color_factor().map(|c| finite(c, 1.0));
+    let base = Vec3::new(r, g, b);
+    let metallic = finite(pbr.metallic_factor(), 1.0);
+    let roughness = finite(pbr.roughness_factor(), 1.0);
+    let specular = 0.04 + (base.element_sum() / 3.0 - 0.04) * metallic;
+    let diffuse_map = pbr.base_color_texture().map(|info| match &pictures[info.texture().source().index()] {
+        Some((what, Ok(bytes))) => cache.decode(what, bytes, warnings).unwrap_or_else(TextureImage::checker),
+        Some((_, Err(problem))) => {
+            warnings.push(format!("material '{name}': base colour texture: {problem}; using a checker"));
+            TextureImage::checker()
+        }
+        None => unreachable!("every base colour picture was read"),
+    });
+    let unread: Vec<&str> = [
+        (m.normal_texture().is_some(), "normal map"),
+        (pbr.metallic_roughness_texture().is_some(), "metallic-roughness texture"),
+        (m.occlusion_texture().is_some(), "occlusion texture"),
+        (m.emissive_texture().is_some() || m.emissive_factor() != [0.0; 3], "emission"),
+    ]
+    .into_iter()
+    .filter_map(|(present, what)| present.then_some(what))
+    .collect();
+    if !unread.is_empty() {
+        warnings.push(format!("material '{name}': not rendered: {}", unread.join(", ")));
+    }
+    Material {
+        name,
+        diffuse: (base * (1.0 - metallic)).into(),
+        specular: [specular; 3],
+        shininess: shininess(roughness),
+        diffuse_map,
+        specular_map: None,
+    }
+}
+
+/// Every mesh the default scene (or else the first) draws, with its node's world transform.
+fn mesh_instances<'a>(document: &'a ::gltf::Document, warnings: &mut Vec<String>) -> Vec<(::gltf::Mesh<'a>, Mat4)> {
+    let roots: Vec<::gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
+        Some(scene) => scene.nodes().collect(),
+        // No scene: every node that is no other's child.
+        None => {
+            let children: std::collections::HashSet<usize> =
+                document.nodes().flat_map(|n| n.children().map(|c| c.index())).collect();
+            document.nodes().filter(|n| !children.contains(&n.index())).collect()
+        }
+    };
+    let mut out = Vec::new();
+    let mut too_deep = false;
+    let mut stack: Vec<(::gltf::Node, Mat4, usize)> = roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    while let Some((node, parent, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            too_deep = true;
+            continue;
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        if let Some(mesh) = node.mesh() {
+            out.push((mesh, world));
+        }
+        stack.extend(node.children().map(|c| (c, world, depth + 1)));
+    }
+    if too_deep {
+        warnings.push(format!("nodes nested deeper than {MAX_DEPTH} levels (or in a cycle) were left out"));
+    }
+    out
+}
+
+/// An accessor's element type: dimensions and component type.
+type Kind = (::gltf::accessor::Dimensions, ::gltf::accessor::DataType);
+
+const VEC3_KINDS: &[Kind] = &[(::gltf::accessor::Dimensions::Vec3, ::gltf::accessor::DataType::F32)];
+const UV_KINDS: &[Kind] = &[
+    (::gltf::accessor::Dimensions::Vec2, ::gltf::accessor::DataType::F32),
+    (::gltf::accessor::Dimensions::Vec2, ::gltf::accessor::DataType::U8),
+    (::gltf::accessor::Dimensions::Vec2, ::gltf::accessor::DataType::U16),
+];
+const INDEX_KINDS: &[Kind] = &[
+    (::gltf::accessor::Dimensions::Scalar, ::gltf::accessor::DataType::U8),
+    (::gltf::accessor::Dimensions::Scalar, ::gltf::accessor::DataType::U16),
+    (::gltf::accessor::Dimensions::Scalar, ::gltf::accessor::DataType::U32),
+];
+
+/// Whether an accessor is of one of the `kinds` glTF allows for its use, dense (sparse ones are
+/// not read), and lies with its stride inside its view and the view inside its buffer.
+fn accessor_fits(accessor: &::gltf::Accessor, kinds: &[Kind], buffers: &[Vec<u8>]) -> bool {
+    let Some(view) = accessor.view() else { return false };
+    if accessor.sparse().is_some() || !kinds.contains(&(accessor.dimensions(), accessor.data_type())) {
+        return false;
+    }
+    let buffer_length = buffers.get(view.buffer().index()).map_or(0, Vec::len);
+    if view.offset().checked_add(view.length()).is_none_or(|end| end > buffer_length) {
+        return false;
+    }
+    // An empty accessor is left unread too (the reader computes `count - 1`).
+    let (size, count) = (accessor.size(), accessor.count());
+    let stride = view.stride().unwrap_or(size);
+    if count == 0 {
+        return false;
+    }
+    let end =
+        stride.checked_mul(count - 1).and_then(|s| s.checked_add(accessor.offset())).and_then(|s| s.checked_add(size));
+    stride >= size && end.is_some_and(|end| end <= view.length())
+}
+
+/// The triangles of every instance's primitives, grouped by material.
+fn build_groups(
+    instances: &[(::gltf::Mesh, Mat4)],
+    buffers: &[Vec<u8>],
+    default_material: usize,
+    material_count: usize,
+    warnings: &mut Vec<String>,
+) -> std::result::Result<Vec<Vec<Vertex>>, String> {
+    let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); material_count];
+    let (mut dropped, mut flipped, mut skipped, mut unreadable) = (0usize, 0usize, 0usize, 0usize);
+    for (mesh, world) in instances {
+        if !world.is_finite() {
+            unreadable += mesh.primitives().len();
+            continue;
+        }
+        let normal_matrix = Mat3::from_mat4(*world).inverse().transpose();
+        // A mirroring transform turns the winding around (glTF's rule for negative determinants).
+        let mirrored = world.determinant() < 0.0;
+        for primitive in mesh.primitives() {
+            if primitive.mode() != ::gltf::mesh::Mode::Triangles {
+                skipped += 1;
+                continue;
+            }
+            // The crate's reader trusts an accessor's type and range (it asserts on a mismatch):
+            // each is checked first.
+            let uv_set =
+                primitive.material().pbr_metallic_roughness().base_color_texture().map_or(0, |t| t.tex_coord());
+            let fits = |accessor: Option<::gltf::Accessor>, kinds: &[Kind]| {
+                accessor.is_some_and(|a| accessor_fits(&a, kinds, buffers))
+            };
+            let indices_fit = primitive.indices().is_none_or(|a| accessor_fits(&a, INDEX_KINDS, buffers));
+            let positions = primitive.get(&::gltf::Semantic::Positions);
+            if positions.as_ref().is_some_and(|p| p.count() == 0) || primitive.indices().is_some_and(|i| i.count() == 0)
+            {
+                continue;
+            }
+            if !fits(positions, VEC3_KINDS) || !indices_fit {
+                unreadable += 1;
+                continue;
+            }
+            let has_normals = fits(primitive.get(&::gltf::Semantic::Normals), VEC3_KINDS);
+            let has_uvs = fits(primitive.get(&::gltf::Semantic::TexCoords(uv_set)), UV_KINDS);
+            let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+            let Some(positions) = reader.read_positions() else {
+                unreadable += 1;
+                continue;
+            };
+            let positions: Vec<Vec3> = positions.map(|p| world.transform_point3(Vec3::from(p))).collect();
+            let count = positions.len();
+            let normals: Option<Vec<Vec3>> = has_normals
+                .then(|| reader.read_normals())
+                .flatten()
+                .map(|n| n.map(|n| normal_matrix * Vec3::from(n)).collect::<Vec<_>>())
+                .filter(|n| n.len() == count);
+            let uvs: Option<Vec<[f32; 2]>> = has_uvs
+                .then(|| reader.read_tex_coords(uv_set))
+                .flatten()
+                .map(|t| t.into_f32().collect::<Vec<_>>())
+                .filter(|t| t.len() == count);
+            let indices: Vec<u32> = match reader.read_indices() {
+                Some(indices) => indices.into_u32().collect(),
+                None if primitive.indices().is_some() => {
+                    unreadable += 1;
+                    continue;
+                }
+                None => (0..count as u32).collect(),
+            };
+            let material = primitive.material().index().filter(|&i| i < default_material).unwrap_or(default_material);
+            for tri in indices.chunks_exact(3) {
+                let mut idx = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+                if idx.iter().any(|&i| i >= count) {
+                    dropped += 1;
+                    continue;
+                }
+                if mirrored {
+                    idx.swap(1, 2);
+                }
+                let normals = normals.as_ref().map(|n| idx.map(|i| n[i]));
+                let uv = idx.map(|i| uvs.as_ref().map_or([0.0; 2], |t| t[i]));
+                match push_triangle(idx.map(|i| positions[i]), normals, uv, &mut groups[material]) {
+                    Triangle::Kept => {}
+                    Triangle::Flipped => flipped += 1,
+                    Triangle::Dropped => dropped += 1,
+                }
+            }
+        }
+    }
+    if groups.iter().all(Vec::is_empty) && unreadable > 0 {
+        return Err(format!(
+            "none of its primitives could be read ({unreadable} with positions or indices of the wrong type, or outside their buffers)"
+        ));
+    }
+    for (n, what) in [
+        (dropped, "triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12 dropped"),
+        (flipped, "triangle(s) reversed in winding to agree with their normals"),
+        (skipped, "primitive(s) of points or lines (or strips and fans) left out"),
+        (unreadable, "primitive(s) whose positions or indices could not be read left out"),
+    ] {
+        if n > 0 {
+            warnings.push(format!("{n} {what}"));
+        }
+    }
+    Ok(groups)
+}
