@@ -14,6 +14,7 @@ pub mod output;
 pub mod reference;
 pub mod render;
 pub mod report;
+pub mod reproduce;
 pub mod scene;
 pub mod shaders;
 pub mod spec;

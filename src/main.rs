@@ -313,9 +313,17 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
+            // The first paragraph: clap lists missing or conflicting arguments on the lines
+            // under its first.
             let text = e.to_string();
-            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("bad command line");
-            let first = first.trim().trim_start_matches("error:").trim();
+            let paragraph: Vec<&str> = text
+                .lines()
+                .skip_while(|l| l.trim().is_empty())
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let first = if paragraph.is_empty() { "bad command line".to_string() } else { paragraph.join(" ") };
+            let first = first.trim_start_matches("error:").trim();
             error_line(&format!("{} (see ssdo --help)", one_line(first)));
             return ExitCode::from(2);
         }

@@ -20,10 +20,11 @@ pub struct SceneArgs {
     /// With --scene room and no --model: the built-in figure's triangle count [default: 50000]
     #[arg(long)]
     pub triangles: Option<usize>,
-    /// OBJ model to load [default: models/cornell/cornell.obj]
+    /// Model to load: OBJ (.obj) or glTF 2.0 (.gltf, .glb) [default: models/cornell/cornell.obj]
     #[arg(long)]
     pub model: Option<PathBuf>,
-    /// Skybox folder with six faces [default: skyboxes/day]
+    /// Sky: a folder of six faces, or an equirectangular panorama (.hdr, .exr, .png, .jpg)
+    /// [default: skyboxes/day]
     #[arg(long)]
     pub skybox: Option<PathBuf>,
     /// Number of random point lights, 0-4096
@@ -32,6 +33,17 @@ pub struct SceneArgs {
     /// Seed for the lights' colours and positions
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// The point the orbit camera turns about, X,Y,Z [default: the model's centre]
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    pub target: Option<glam::Vec3>,
+    /// The fly camera: where the eye is, X,Y,Z (with --look-at; instead of --target, --yaw,
+    /// --pitch and --distance)
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "look_at",
+          conflicts_with_all = ["target", "yaw", "pitch", "distance"])]
+    pub eye: Option<glam::Vec3>,
+    /// The fly camera: the point the eye looks at, X,Y,Z (with --eye)
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "eye")]
+    pub look_at: Option<glam::Vec3>,
     /// Camera yaw around the model in degrees [default: 35]
     #[arg(long, allow_hyphen_values = true)]
     pub yaw: Option<f32>,
@@ -74,6 +86,17 @@ pub fn parse_lights(s: &str) -> std::result::Result<usize, String> {
 
 pub fn parse_layout(s: &str) -> std::result::Result<scene::Layout, String> {
     s.parse::<scene::Layout>().map_err(|e| e.to_string())
+}
+
+/// A point as X,Y,Z: three finite numbers within the largest length setting.
+pub fn parse_point(s: &str) -> std::result::Result<glam::Vec3, String> {
+    let bad = || format!("'{s}' is not a point X,Y,Z of three finite numbers (each within ±{MAX_LENGTH:e})");
+    let parts: Vec<f32> =
+        s.split(',').map(|p| p.trim().parse::<f32>()).collect::<std::result::Result<_, _>>().map_err(|_| bad())?;
+    match parts[..] {
+        [x, y, z] if parts.iter().all(|v| v.is_finite() && v.abs() <= MAX_LENGTH) => Ok(glam::Vec3::new(x, y, z)),
+        _ => Err(bad()),
+    }
 }
 
 pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
@@ -187,6 +210,11 @@ pub fn in_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
     }
 }
 
+/// A point as the command line takes it: X,Y,Z, each number as short as round-trips exactly.
+pub fn point(p: glam::Vec3) -> String {
+    format!("{},{},{}", p.x, p.y, p.z)
+}
+
 /// A number as people write it: 0.25, 1e6, 3.0e-5 (not 30 digits of a huge or tiny float).
 pub fn num(v: f32) -> String {
     if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
@@ -222,6 +250,19 @@ impl SceneArgs {
 
     pub fn camera(&self, scene: &Scene) -> Result<OrbitCamera> {
         let mut camera = self.layout.camera(&scene.model.bounds);
+        if let Some(target) = self.target {
+            camera.target = target;
+        }
+        if let (Some(eye), Some(look_at)) = (self.eye, self.look_at) {
+            camera = camera.looking(eye, look_at).ok_or_else(|| {
+                Error::Setting(format!(
+                    "--eye {} --look-at {}: the eye must be away from the point it looks at, and not straight above or below it",
+                    point(eye),
+                    point(look_at)
+                ))
+            })?;
+            camera.near = camera.distance * 1e-3;
+        }
         if let Some(yaw) = self.yaw {
             camera.yaw_deg = in_range("yaw", yaw, -36000.0, 36000.0)?;
         }

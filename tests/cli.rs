@@ -326,3 +326,37 @@ fn a_window_no_adapter_could_draw_is_refused_before_it_opens() {
     assert_eq!(result.status.code(), Some(2), "{}", stderr(&result));
     assert!(error_line(&result).contains("at most 16384"), "{}", stderr(&result));
 }
+
+#[test]
+fn camera_points_are_flags_and_bad_ones_are_refused() {
+    for (args, needle) in [
+        (vec!["capture", "--eye", "1,2,3"], "--look-at"),
+        (vec!["capture", "--eye", "1,2,3", "--look-at", "0,0,0", "--yaw", "10"], "--yaw"),
+        (vec!["capture", "--target", "1,2"], "is not a point X,Y,Z"),
+        (vec!["capture", "--target", "1,nan,2"], "is not a point X,Y,Z"),
+        (vec!["capture", "--eye", "1,2,3", "--look-at", "1,2,3"], "--eye 1,2,3 --look-at 1,2,3: the eye must be away"),
+    ] {
+        common::refused(&args, 2, needle);
+    }
+    if !has_adapter() {
+        return;
+    }
+    // The same camera said as an orbit and as an eye and a point gives the same picture.
+    let dir = tempfile::tempdir().unwrap();
+    let shoot = |name: &str, camera: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["capture", "--mode", "ssao", "--size", "64x48", "--accumulate", "1"];
+        args.extend(camera);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let result = common::run_ssdo(&args);
+        assert!(result.status.success(), "{}", common::stderr(&result));
+        image::open(out.join("ssao.png")).unwrap().to_rgb8()
+    };
+    let orbit =
+        shoot("orbit", &["--target", "0,0.5,0", "--yaw", "0", "--pitch", "0", "--distance", "5", "--near", "0.005"]);
+    let fly = shoot("fly", &["--eye", "0,0.5,5", "--look-at", "0,0.5,0", "--near", "0.005"]);
+    assert_eq!(orbit, fly);
+    let moved =
+        shoot("moved", &["--target", "0.5,0.5,0", "--yaw", "0", "--pitch", "0", "--distance", "5", "--near", "0.005"]);
+    assert_ne!(orbit, moved, "--target moves the view");
+}

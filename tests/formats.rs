@@ -121,7 +121,7 @@ fn a_redblue_panorama_renders_like_the_redblue_folder() {
     let settings = ssdo::render::Settings { ambient: 0.0, ..Default::default() };
     let mut images = Vec::new();
     for sky in [&folder, &from_panorama] {
-        let mut renderer = common::renderer(&gpu, &scene, sky, size, settings.clone());
+        let mut renderer = common::renderer(&gpu, &scene, sky, size, settings);
         images.push(common::shoot(&gpu, &mut renderer, &camera));
     }
     let (a, b) = (&images[0], &images[1]);
@@ -197,7 +197,7 @@ fn one_node() -> serde_json::Value {
 /// Writes a `.glb`: the JSON chunk and the binary chunk, each padded to 4 bytes.
 fn write_glb(path: &Path, document: &serde_json::Value, bin: &[u8]) {
     let mut json = serde_json::to_vec(document).unwrap();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();

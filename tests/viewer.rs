@@ -1,5 +1,6 @@
 //! The viewer as a person uses it: a real window under Xvfb on the software driver, keys sent with
-//! xdotool (Tab into the panel, then 1-4 with F12 after each, then C, then Escape). The screenshots must exist, differ by
+//! xdotool (Tab into the panel, then 1-4 with F12 after each, then C, then Escape; in a second
+//! window, the fly camera and the command it logs for its view). The screenshots must exist, differ by
 //! mode, and match a headless `ssdo capture` of the same view: mean absolute difference at most
 //! 0.5 of 255 and no channel off by more than 6 (the window encodes sRGB in the shader, the
 //! capture in the texture format, so single levels differ).
@@ -150,6 +151,26 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     wait_for("the second viewer's screenshot", Duration::from_secs(60), || {
         !pngs(shots2.path(), "screenshot-").is_empty()
     });
+    // The fly camera: F, then W held for a moment and a drag to look around; F12 writes the
+    // screenshot and logs the `ssdo capture` command of that view, which must render the same.
+    xdotool(&display, &["key", "--clearmodifiers", "f"]);
+    xdotool(&display, &["keydown", "w"]);
+    std::thread::sleep(Duration::from_millis(400));
+    xdotool(&display, &["keyup", "w"]);
+    xdotool(&display, &["mousemove", "--window", &window, "450", "150", "mousedown", "1"]);
+    xdotool(&display, &["mousemove", "--window", &window, "480", "140", "mouseup", "1"]);
+    xdotool(&display, &["key", "--clearmodifiers", "F12"]);
+    wait_for("the fly camera's screenshot", Duration::from_secs(60), || pngs(shots2.path(), "screenshot-").len() == 2);
+    let flown = pngs(shots2.path(), "screenshot-")[1].clone();
+    let mut command = String::new();
+    wait_for("the fly camera's command in the log", Duration::from_secs(10), || {
+        command = log(shots2.path())
+            .lines()
+            .find(|l| l.contains(&*flown.file_name().unwrap().to_string_lossy()) && l.contains("headless: ssdo "))
+            .map(|l| l.split("headless: ssdo ").nth(1).unwrap().trim().to_owned())
+            .unwrap_or_default();
+        !command.is_empty()
+    });
     xdotool(&display, &["windowclose", &window]);
     wait_for("the viewer to quit after its window was destroyed", Duration::from_secs(30), || {
         viewer.0.try_wait().ok().flatten().is_some()
@@ -178,6 +199,25 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
         .status()
         .unwrap();
     assert!(status.success());
+
+    // The logged command of the flown view renders the flown screenshot.
+    assert!(command.contains("--eye ") && command.contains("--look-at ") && !command.contains('\''), "{command}");
+    let flown_out = tempfile::tempdir().unwrap();
+    let args: Vec<&str> = command.split_whitespace().collect();
+    let status = ssdo().args(&args).args(["--out", flown_out.path().to_str().unwrap()]).status().unwrap();
+    assert!(status.success(), "{command}");
+    let mode = args.iter().skip_while(|a| **a != "--mode").nth(1).expect("the command names the mode");
+    let shot = image::open(&flown).unwrap().to_rgb8();
+    let headless = image::open(flown_out.path().join(format!("{mode}.png"))).unwrap().to_rgb8();
+    let first = image::open(&pngs(shots2.path(), "screenshot-")[0]).unwrap().to_rgb8();
+    assert_ne!(shot, first, "flying moved the view");
+    let diffs: Vec<u8> = shot.as_raw().iter().zip(headless.as_raw()).map(|(a, b)| a.abs_diff(*b)).collect();
+    let mean = diffs.iter().map(|d| *d as f64).sum::<f64>() / diffs.len() as f64;
+    let max = diffs.iter().copied().max().unwrap_or(0);
+    assert!(
+        mean <= 0.5 && max <= 6,
+        "flown view: screenshot vs its command's capture mean {mean:.3}, max {max} (as for the modes above): {command}"
+    );
 
     let mut images = Vec::new();
     for mode in modes {

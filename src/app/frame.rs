@@ -46,10 +46,14 @@ impl Viewer {
                     timestamp(),
                     self.renderer.settings.mode.name()
                 ));
-                let result = capture_settled(&self.gpu, &mut self.renderer, &self.camera)
+                let camera = self.view_camera();
+                let result = capture_settled(&self.gpu, &mut self.renderer, &camera)
                     .and_then(|image| output::save_png(&path, &image));
                 match result {
-                    Ok(()) => self.panel.say(format!("saved {}", path.display()), false),
+                    Ok(()) => {
+                        self.panel.say(format!("saved {}", path.display()), false);
+                        log::info!("{}: the same view headless: {}", path.display(), self.command());
+                    }
                     Err(e) => self.panel.say(format!("screenshot failed: {e}"), true),
                 }
             }
@@ -57,7 +61,45 @@ impl Viewer {
                 Ok(path) => self.panel.say(format!("saved {}", path.display()), false),
                 Err(e) => self.panel.say(format!("comparison failed: {e}"), true),
             },
+            Action::ToggleFly => {
+                self.controls.set_fly(!self.controls.fly);
+                self.panel.fly = self.controls.fly;
+            }
+            Action::CopyCommand => {
+                let command = self.command();
+                self.egui.egui_ctx().copy_text(command.clone());
+                self.panel.say(format!("copied: {command}"), false);
+            }
         }
+    }
+
+    /// The camera the view is drawn with. The fly camera is drawn as `--eye` and `--look-at`
+    /// build it from the command's numbers (which read back to the same floats), so the command
+    /// renders the very same pixels; an orbit camera is its own numbers already.
+    pub(super) fn view_camera(&self) -> crate::scene::OrbitCamera {
+        if self.controls.fly {
+            self.camera.looking(self.camera.eye(), self.camera.target).unwrap_or(self.camera)
+        } else {
+            self.camera
+        }
+    }
+
+    /// The `ssdo capture` command that renders what the 3D view shows.
+    pub(super) fn command(&self) -> String {
+        let view = crate::reproduce::ViewDescription {
+            model: self.model_path.as_deref(),
+            skybox: self.sky_path.as_deref(),
+            layout: self.layout,
+            triangles: self.triangles,
+            scale: self.scale,
+            lights: self.scene.lights.len(),
+            seed: self.panel.seed,
+            camera: &self.camera,
+            fly: self.controls.fly,
+            settings: &self.renderer.settings,
+            size: self.renderer.size(),
+        };
+        crate::reproduce::shell_line(&crate::reproduce::capture_arguments(&view))
     }
 
     /// The four modes of the current view, rendered offscreen at the 3D view's size.
@@ -66,7 +108,8 @@ impl Viewer {
         let mut panels = Vec::new();
         for m in Mode::ALL {
             self.renderer.set_mode(&self.gpu, m);
-            let image = capture_converged(&self.gpu, &mut self.renderer, &self.camera);
+            let camera = self.view_camera();
+            let image = capture_converged(&self.gpu, &mut self.renderer, &camera);
             let caption = compare::caption(
                 &self.renderer.settings,
                 self.renderer.radius(),
@@ -97,6 +140,7 @@ impl Viewer {
                 Loaded::Sky(path, Ok(sky)) => match self.renderer.set_sky(&self.gpu, &sky) {
                     Ok(()) => {
                         self.panel.sky_name = sky.name.clone();
+                        self.sky_path = Some(path.clone());
                         self.panel.say(format!("sky {} loaded", path.display()), false);
                     }
                     Err(e) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
@@ -115,6 +159,9 @@ impl Viewer {
                     self.home = self.layout.camera(&self.scene.model.bounds);
                     self.camera = self.home;
                     self.panel.model_name = self.scene.model.name.clone();
+                    // A model loaded here is not scaled (`--scale` applied to the first).
+                    self.model_path = Some(path.clone());
+                    (self.scale, self.triangles) = (1.0, None);
                     self.panel
                         .say(format!("model {} loaded ({warnings} warnings, see the log)", path.display()), false);
                 }
@@ -162,8 +209,10 @@ impl Viewer {
         };
         let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
 
-        // The panel first: it may change settings for this frame.
+        // The fly camera's step, then the panel: it may change settings for this frame.
+        self.controls.step(&mut self.camera, self.scene.model.bounds.radius(), Instant::now());
         self.panel.still_frames = self.renderer.still_frames();
+        self.panel.command = self.command();
         let input = self.egui_input();
         let default_radius = self.scene.default_radius();
         let ctx = self.egui.egui_ctx().clone();
@@ -180,7 +229,8 @@ impl Viewer {
 
         let mut encoder =
             self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer_frame") });
-        self.renderer.encode_at(&self.gpu, &mut encoder, &self.camera, &target, (self.panel_pixels(), 0));
+        let camera = self.view_camera();
+        self.renderer.encode_at(&self.gpu, &mut encoder, &camera, &target, (self.panel_pixels(), 0));
 
         let pixels_per_point = full.pixels_per_point;
         let jobs = ctx.tessellate(full.shapes, pixels_per_point);

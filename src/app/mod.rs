@@ -1,6 +1,7 @@
 //! The interactive viewer: a winit window with the renderer on the right and an egui panel on the
 //! left. Keys 1-4 switch modes, F12 writes a screenshot of the 3D view, C a labelled comparison
-//! of the four modes, R resets the camera, Escape quits. Skies and models load off the render
+//! of the four modes, F toggles the fly camera, P copies the command of the view, R resets the
+//! camera, Escape quits. Skies and models load off the render
 //! thread; a failed load shows its message and keeps what was on screen.
 
 mod controls;
@@ -16,7 +17,7 @@ use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
-use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
 use crate::gpu::{instance_descriptor, Gpu};
@@ -26,7 +27,7 @@ use crate::spec::SceneArgs;
 use crate::{Error, Result};
 use controls::CameraControls;
 use loader::Loader;
-use ui::{Action, PanelState, PANEL_WIDTH};
+use ui::{PanelState, PANEL_WIDTH};
 
 /// What the viewer starts with.
 pub struct ViewerOptions {
@@ -116,6 +117,12 @@ struct Viewer {
     screenshot_dir: PathBuf,
     /// Where models are placed (`--scene`), the first and every one loaded later.
     layout: scene::Layout,
+    /// The files on screen (`None`: the defaults) and the scene flags, for the command that
+    /// reproduces the view.
+    model_path: Option<PathBuf>,
+    sky_path: Option<PathBuf>,
+    triangles: Option<usize>,
+    scale: f32,
     /// Cursor position in physical pixels.
     cursor: (f64, f64),
     /// When egui asked to be drawn again (an animation, a tooltip's delay).
@@ -220,6 +227,8 @@ impl Viewer {
             loading: None,
             still_frames: 0,
             accumulate: if options.settings.accumulates() { options.settings.accumulate } else { ACCUMULATE.default },
+            fly: false,
+            command: String::new(),
         };
         Ok(Self {
             window,
@@ -237,6 +246,10 @@ impl Viewer {
             panel,
             screenshot_dir: options.screenshot_dir.clone(),
             layout: options.scene.layout,
+            model_path: options.scene.model.clone(),
+            sky_path: options.scene.skybox.clone(),
+            triangles: options.scene.triangles,
+            scale: options.scene.scale,
             cursor: (0.0, 0.0),
             egui_repaint: None,
             timing_refresh: None,
@@ -271,8 +284,8 @@ impl Viewer {
             }
             wake = Some(now + LOAD_POLL);
         }
-        // A still view still averaging its frames draws the next one.
-        if self.renderer.converging() {
+        // A still view still averaging its frames draws the next one; so does a flying camera.
+        if self.renderer.converging() || self.controls.flying() {
             self.window.request_redraw();
         }
         // Each deadline that has come asks for a frame; the others say when to wake.
@@ -318,10 +331,13 @@ impl Viewer {
             WindowEvent::RedrawRequested => self.redraw()?,
             WindowEvent::DroppedFile(path) => self.drop_file(path),
             WindowEvent::KeyboardInput {
-                event:
-                    KeyEvent { physical_key: PhysicalKey::Code(key), state: ElementState::Pressed, repeat: false, .. },
+                event: KeyEvent { physical_key: PhysicalKey::Code(key), state, repeat, .. },
                 ..
-            } if !self.egui.egui_ctx().text_edit_focused() => self.key(event_loop, key),
+            } if !self.egui.egui_ctx().text_edit_focused() => {
+                if !self.controls.fly_key(key, state) && state == ElementState::Pressed && !repeat {
+                    self.key(event_loop, key);
+                }
+            }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x, position.y);
                 let height = self.renderer.size().1;
@@ -336,33 +352,6 @@ impl Viewer {
             _ => {}
         }
         Ok(())
-    }
-
-    fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
-        if let Some(mode) = controls::mode_for_key(key) {
-            return self.act(Action::Mode(mode));
-        }
-        match key {
-            KeyCode::F12 => self.act(Action::Screenshot),
-            KeyCode::KeyC => self.act(Action::Compare),
-            KeyCode::KeyR => self.act(Action::ResetCamera),
-            KeyCode::KeyT => self.act(Action::ToggleAccumulation),
-            KeyCode::Escape => event_loop.exit(),
-            _ => {}
-        }
-    }
-
-    fn drop_file(&mut self, path: PathBuf) {
-        if path.is_dir() || crate::scene::panorama::is_image(&path) {
-            self.act(Action::LoadSky(path));
-        } else if crate::scene::model::is_model(&path) {
-            self.act(Action::LoadModel(path));
-        } else {
-            self.panel.say(
-                format!("{}: drop a skybox folder, a panorama image or a model (.obj, .gltf, .glb)", path.display()),
-                true,
-            );
-        }
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) {

@@ -23,6 +23,10 @@ pub enum Action {
     ToggleAccumulation,
     Screenshot,
     Compare,
+    /// The fly camera on or off.
+    ToggleFly,
+    /// The `ssdo capture` command of the view onto the clipboard.
+    CopyCommand,
 }
 
 /// A line for the user: what happened, or what went wrong.
@@ -54,6 +58,10 @@ pub struct PanelState {
     /// turned back on.
     pub still_frames: u32,
     pub accumulate: usize,
+    /// The fly camera is on.
+    pub fly: bool,
+    /// The `ssdo capture` command that renders the view.
+    pub command: String,
 }
 
 impl PanelState {
@@ -242,6 +250,14 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             });
             ui.separator();
 
+            let mut fly = state.fly;
+            if ui
+                .checkbox(&mut fly, "fly camera (F)")
+                .on_hover_text("W A S D move, Q/E or Ctrl/Space down and up, Shift faster, drag to look")
+                .changed()
+            {
+                actions.push(Action::ToggleFly);
+            }
             ui.horizontal_wrapped(|ui| {
                 if ui.button("reset camera (R)").clicked() {
                     actions.push(Action::ResetCamera);
@@ -253,6 +269,13 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                     actions.push(Action::Compare);
                 }
             });
+            ui.horizontal(|ui| {
+                ui.label("This view headless:");
+                if ui.button("copy command (P)").clicked() {
+                    actions.push(Action::CopyCommand);
+                }
+            });
+            ui.add(egui::Label::new(egui::RichText::new(&state.command).monospace().small()).wrap());
             ui.separator();
 
             ui.label(format!("GPU time per pass ({})", state.timing_source));

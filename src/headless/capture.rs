@@ -74,9 +74,13 @@ pub fn capture_path(
 }
 
 /// The still camera's converged image from where the average stands: the frames it still lacks
-/// rendered first (the viewer's screenshot, after however many frames it has shown).
+/// rendered first (the viewer's screenshot, after however many frames it has shown). An average
+/// that began while the camera moved starts anew, so the image is [`capture_converged`]'s.
 pub fn capture_settled(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<image::RgbaImage> {
     renderer.apply(gpu);
+    if renderer.plan().accumulates() && !renderer.still_average_is_clean(camera) {
+        renderer.reset_history();
+    }
     let missing = renderer.frames_to_settle(camera);
     render_frames(gpu, renderer, (0..missing).map(|_| *camera))?;
     capture(gpu, renderer, camera)

@@ -12,6 +12,9 @@ pub(super) struct StillView {
     pub(super) camera: Option<OrbitCamera>,
     /// The history's generation the frames went into.
     pub(super) generation: u64,
+    /// The view's first frame went into an empty history: the average holds this view's frames
+    /// alone, none reprojected from a moving camera's.
+    pub(super) clean: bool,
 }
 
 impl StillView {
@@ -19,6 +22,9 @@ impl StillView {
     pub(super) fn count(&mut self, camera: &OrbitCamera, history: Option<&PingPong>) {
         let same =
             history.is_some_and(|h| h.frames > 0 && h.generation == self.generation) && self.camera == Some(*camera);
+        if !same {
+            self.clean = history.is_none_or(|h| h.frames == 0);
+        }
         self.frames = if same { self.frames.saturating_add(1) } else { 1 };
         self.camera = Some(*camera);
         self.generation = history.map_or(0, |h| h.generation);
@@ -66,6 +72,13 @@ impl Renderer {
     pub fn frames_to_settle(&self, camera: &OrbitCamera) -> u32 {
         let held = if self.still.camera == Some(*camera) { self.still_frames() } else { 0 };
         self.accumulation().saturating_sub(held + 1)
+    }
+
+    /// Whether the average `camera`'s next frames complete holds that view's frames alone: false
+    /// when the camera came to rest after moving (the history keeps what it reprojected), so a
+    /// screenshot starts anew and shows what `capture` does.
+    pub fn still_average_is_clean(&self, camera: &OrbitCamera) -> bool {
+        self.still.camera == Some(*camera) && self.still.clean && self.still_frames() > 0
     }
 
     /// Whether a still view has frames left to average before its image is converged: the

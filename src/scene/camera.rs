@@ -1,4 +1,4 @@
-//! An orbit camera and reverse-Z projections.
+//! An orbit camera (which the viewer's fly camera steers too) and reverse-Z projections.
 //!
 //! Reverse-Z maps the near plane to depth 1 and the far plane (or infinity) to 0; with a float
 //! depth buffer this keeps depth precision roughly uniform in log scale, so a near plane of 1e-6
@@ -45,6 +45,43 @@ impl OrbitCamera {
                 * Vec3::new(pitch.cos() * yaw.sin(), pitch.sin(), pitch.cos() * yaw.cos())
     }
 
+    /// The camera at `eye` looking at `look_at`, as an orbit about `look_at` (so every view the
+    /// fly camera reaches is an orbit camera too), with this camera's lens. `None` when the two
+    /// points are the same or not finite, or the view looks straight up or down.
+    pub fn looking(&self, eye: Vec3, look_at: Vec3) -> Option<Self> {
+        let offset = eye - look_at;
+        let distance = offset.length();
+        if !(distance.is_finite() && distance > 0.0) {
+            return None;
+        }
+        let d = offset / distance;
+        let pitch_deg = d.y.clamp(-1.0, 1.0).asin().to_degrees();
+        if pitch_deg.abs() > 89.9 {
+            return None;
+        }
+        let yaw_deg = d.x.atan2(d.z).to_degrees();
+        Some(Self { target: look_at, yaw_deg, pitch_deg, distance, ..*self })
+    }
+
+    /// The unit direction the camera looks in.
+    pub fn forward(&self) -> Vec3 {
+        (self.target - self.eye()).normalize_or(Vec3::NEG_Z)
+    }
+
+    /// The fly camera's step: the eye and what it looks at move together by `by`.
+    pub fn translate(&mut self, by: Vec3) {
+        self.target += by;
+    }
+
+    /// The fly camera's look: turns the view about the eye (the orbit camera turns about its
+    /// target), by degrees of yaw and pitch.
+    pub fn turn(&mut self, yaw_deg: f32, pitch_deg: f32) {
+        let eye = self.eye();
+        self.yaw_deg += yaw_deg;
+        self.pitch_deg = (self.pitch_deg + pitch_deg).clamp(-89.0, 89.0);
+        self.target = eye - (self.eye() - self.target);
+    }
+
     pub fn world_to_view(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye(), self.target, Vec3::Y)
     }
@@ -69,4 +106,26 @@ pub fn reverse_z_perspective(fov_y: f32, aspect: f32, near: f32, far: Option<f32
         Vec4::new(0.0, 0.0, a, -1.0),
         Vec4::new(0.0, 0.0, b, 0.0),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_view_from_an_eye_to_a_point_and_the_fly_moves_keep_what_they_should() {
+        let base = OrbitCamera::framing(&Bounds { min: Vec3::splat(-1.0), max: Vec3::ONE });
+        let (eye, look_at) = (Vec3::new(3.0, 2.0, -4.0), Vec3::new(0.5, 0.0, 0.25));
+        let c = base.looking(eye, look_at).unwrap();
+        assert!((c.eye() - eye).length() < 1e-5 && c.target == look_at, "{} {}", c.eye(), c.target);
+        assert!((c.forward() - (look_at - eye).normalize()).length() < 1e-6);
+        assert!(base.looking(eye, eye).is_none() && base.looking(Vec3::Y * 5.0, Vec3::ZERO).is_none());
+        // Turning keeps the eye; moving keeps the direction.
+        let mut turned = c;
+        turned.turn(30.0, -10.0);
+        assert!((turned.eye() - eye).length() < 1e-4 && (turned.forward() - c.forward()).length() > 0.1);
+        let mut moved = c;
+        moved.translate(Vec3::X);
+        assert!((moved.eye() - eye - Vec3::X).length() < 1e-5 && (moved.forward() - c.forward()).length() < 1e-6);
+    }
 }
