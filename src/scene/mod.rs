@@ -12,6 +12,7 @@ pub mod panorama;
 pub mod room;
 pub mod skybox;
 pub mod texture;
+mod triangle;
 
 use std::path::Path;
 
