@@ -59,6 +59,6 @@ WGPU_BACKEND=vulkan cargo test --locked "$@"
 # ...and every test that renders once more on GL (llvmpipe without a GPU), with the same
 # assertions, so a shader or a binding that breaks one backend cannot land.
 echo "scripts/test.sh: the rendering tests again on wgpu's GL backend"
-WGPU_BACKEND=gl cargo test --locked --test render --test occlusion --test winding --test reference \
+WGPU_BACKEND=gl cargo test --locked --test render --test occlusion --test winding --test reference --test formats \
     --test stability --test cli --test resources --test display --test viewer --test sky_bounce --test hardening \
     --test temporal "$@"
