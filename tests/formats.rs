@@ -95,6 +95,12 @@ fn an_ldr_panorama_is_srgb_and_bad_panoramas_are_one_clear_line() {
     let message = Skybox::load(&corrupt).unwrap_err().to_string();
     assert!(message.contains("corrupt.hdr") && !message.contains('\n'), "{message}");
 
+    // Larger than the budget: refused from the header, before the pixels are read.
+    let huge = dir.path().join("huge.hdr");
+    std::fs::write(&huge, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 9000 +X 18000\n").unwrap();
+    let message = Skybox::load(&huge).unwrap_err().to_string();
+    assert!(message.contains("huge.hdr") && !message.contains('\n'), "{message}");
+
     // Negative and non-finite texels become 0, with a warning.
     let mut texels = vec![1.0f32; 16 * 8 * 3];
     texels[9..12].copy_from_slice(&[-1.0, f32::NAN, f32::INFINITY]);
@@ -291,7 +297,8 @@ fn gltf_node_transforms_compose_and_a_mirror_keeps_the_outside_out() {
 fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("quad.bin"), quad_buffer()).unwrap();
-    image::RgbaImage::from_pixel(4, 2, image::Rgba([255, 0, 0, 255])).save(dir.path().join("red.png")).unwrap();
+    // Named in another letter case than the file says, as Windows exports often are.
+    image::RgbaImage::from_pixel(4, 2, image::Rgba([255, 0, 0, 255])).save(dir.path().join("Red.PNG")).unwrap();
     let textured = |image: &str, metallic: f32| {
         let material = json!({
             "pbrMetallicRoughness": {
@@ -406,4 +413,31 @@ fn capture_and_report_take_a_glb_model_and_a_panorama_sky() {
     ]);
     assert!(result.status.success(), "{}", common::stderr(&result));
     assert!(std::fs::read_to_string(report.join("report.csv")).unwrap().lines().count() > 4);
+}
+
+#[test]
+fn gltf_strips_and_fans_are_triangles_and_unread_extensions_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    for (mode, order) in [(5, [0u16, 1, 2, 3]), (6, [0, 1, 3, 2])] {
+        let mut bin = quad_buffer();
+        bin[128..136].copy_from_slice(bytemuck::cast_slice(&order));
+        let mut document = quad_gltf(json!({ "byteLength": 144 }), one_node(), plain_material());
+        document["meshes"][0]["primitives"][0]["mode"] = json!(mode);
+        document["accessors"][3]["count"] = json!(4);
+        let path = dir.path().join(format!("mode{mode}.glb"));
+        write_glb(&path, &document, &bin);
+        let m = model::load(&path).unwrap();
+        assert_eq!(m.triangle_count(), 2, "mode {mode}");
+        for t in 0..2 {
+            let [a, b, c] = m.triangle(t);
+            assert!((b - a).cross(c - a).y > 0.0, "mode {mode}: triangle {t} winds downwards");
+        }
+    }
+    let mut document = quad_gltf(json!({ "byteLength": 144 }), one_node(), plain_material());
+    document["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
+    document["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
+    let path = dir.path().join("draco.glb");
+    write_glb(&path, &document, &quad_buffer());
+    let message = model::load(&path).unwrap_err().to_string();
+    assert!(message.contains("draco.glb: needs the glTF extension(s) KHR_draco_mesh_compression"), "{message}");
 }

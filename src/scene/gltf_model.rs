@@ -21,8 +21,8 @@ use std::path::{Path, PathBuf};
 use glam::{Mat3, Mat4, Vec3};
 
 use super::files::read_bounded;
-use super::model::{finish, push_triangle, Material, Model, Triangle, Vertex, NO_TRIANGLES};
-use super::texture::{TextureCache, TextureImage};
+use super::model::{finish, push_triangle, Material, Model, Triangle, Vertex};
+use super::texture::{find_texture, TextureCache, TextureImage};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
 
@@ -41,7 +41,7 @@ pub fn is_gltf(path: &Path) -> bool {
 pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
     let bytes = read_bounded(path, MAX_GLTF_BYTES).map_err(|problem| Error::input(path, problem))?;
     let ::gltf::Gltf { document, blob } =
-        ::gltf::Gltf::from_slice(&bytes).map_err(|e| Error::input(path, format!("malformed glTF: {e}")))?;
+        ::gltf::Gltf::from_slice(&bytes).map_err(|e| Error::input(path, refusal(&bytes, &e)))?;
     drop(bytes);
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let buffers = read_buffers(&document, &dir, blob).map_err(|problem| Error::input(path, problem))?;
@@ -70,7 +70,14 @@ pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
     let triangles: u64 = instances
         .iter()
         .flat_map(|(mesh, _)| mesh.primitives())
-        .map(|p| p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64 / 3))
+        .map(|p| {
+            let count = p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64);
+            if p.mode() == ::gltf::mesh::Mode::Triangles {
+                count / 3
+            } else {
+                count
+            }
+        })
         .sum();
     let needed = triangles.saturating_mul(budget::BYTES_PER_TRIANGLE);
     budget::check(Share::Geometry, needed, || format!("{triangles} triangles"))
@@ -83,13 +90,7 @@ pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
     }))
     .map_err(|_| Error::input(path, "malformed glTF (reading its meshes failed)"))?;
     let groups = built.map_err(|problem| Error::input(path, problem))?;
-    if groups.iter().all(Vec::is_empty) {
-        return Err(Error::input(path, NO_TRIANGLES));
-    }
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
-    let model = Model::from_groups(&name, materials, groups)
-        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
-    finish(model, path, warnings)
+    finish(path, materials, groups, warnings)
 }
 
 /// The bytes an URI names: a base64 `data:` URI, or a file relative to the glTF's folder.
@@ -146,8 +147,9 @@ type Picture = (PathBuf, std::result::Result<Vec<u8>, String>);
 fn image_bytes(image: &::gltf::Image, dir: &Path, buffers: &[Vec<u8>]) -> Picture {
     match image.source() {
         ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            // Found as OBJ's maps are: as written, by file name alone, or ignoring letter case.
             let name = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
-            let path = dir.join(name);
+            let path = find_texture(dir, &name).unwrap_or_else(|| dir.join(&name));
             let bytes = read_bounded(&path, 1 << 30).map_err(|problem| format!("{}: {problem}", path.display()));
             (path, bytes)
         }
@@ -248,6 +250,40 @@ fn mesh_instances<'a>(document: &'a ::gltf::Document, warnings: &mut Vec<String>
     out
 }
 
+/// A primitive's triangles as index triples: a list as it is, a strip with every other triangle
+/// turned to keep the winding, a fan about its first vertex.
+fn triangle_list(mode: ::gltf::mesh::Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    use ::gltf::mesh::Mode;
+    let n = indices.len();
+    match mode {
+        Mode::TriangleStrip => (0..n.saturating_sub(2))
+            .map(|i| {
+                if i % 2 == 0 {
+                    [indices[i], indices[i + 1], indices[i + 2]]
+                } else {
+                    [indices[i + 1], indices[i], indices[i + 2]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (1..n.saturating_sub(1)).map(|i| [indices[0], indices[i], indices[i + 1]]).collect(),
+        _ => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
+}
+
+/// The line for a file the crate refuses: the extensions it needs when it names some this
+/// program does not read (a Draco-compressed mesh fails validation for want of its accessors'
+/// views, which says little), else the crate's own words.
+fn refusal(bytes: &[u8], error: &::gltf::Error) -> String {
+    let required: Vec<String> = ::gltf::Gltf::from_slice_without_validation(bytes)
+        .map(|g| g.document.extensions_required().map(str::to_string).collect())
+        .unwrap_or_default();
+    if required.is_empty() {
+        format!("malformed glTF: {error}")
+    } else {
+        format!("needs the glTF extension(s) {}, which this program does not read", required.join(", "))
+    }
+}
+
 /// An accessor's element type: dimensions and component type.
 type Kind = (::gltf::accessor::Dimensions, ::gltf::accessor::DataType);
 
@@ -304,7 +340,8 @@ fn build_groups(
         // A mirroring transform turns the winding around (glTF's rule for negative determinants).
         let mirrored = world.determinant() < 0.0;
         for primitive in mesh.primitives() {
-            if primitive.mode() != ::gltf::mesh::Mode::Triangles {
+            use ::gltf::mesh::Mode;
+            if !matches!(primitive.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
                 skipped += 1;
                 continue;
             }
@@ -353,8 +390,8 @@ fn build_groups(
                 None => (0..count as u32).collect(),
             };
             let material = primitive.material().index().filter(|&i| i < default_material).unwrap_or(default_material);
-            for tri in indices.chunks_exact(3) {
-                let mut idx = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+            for tri in triangle_list(primitive.mode(), &indices) {
+                let mut idx = tri.map(|i| i as usize);
                 if idx.iter().any(|&i| i >= count) {
                     dropped += 1;
                     continue;
@@ -380,7 +417,7 @@ fn build_groups(
     for (n, what) in [
         (dropped, "triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12 dropped"),
         (flipped, "triangle(s) reversed in winding to agree with their normals"),
-        (skipped, "primitive(s) of points or lines (or strips and fans) left out"),
+        (skipped, "primitive(s) of points or lines left out"),
         (unreadable, "primitive(s) whose positions or indices could not be read left out"),
     ] {
         if n > 0 {

@@ -97,7 +97,7 @@ impl Scene {
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
     match path {
         Some(p) => model::load(p),
-        None if Path::new(DEFAULT_MODEL).is_file() => model::load_obj(Path::new(DEFAULT_MODEL)),
+        None if Path::new(DEFAULT_MODEL).is_file() => model::load(Path::new(DEFAULT_MODEL)),
         None => {
             log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
             builtin::cornell()

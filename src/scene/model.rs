@@ -205,8 +205,21 @@ pub fn load_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     }
 }
 
-/// Logs a loader's warnings and keeps them on the model.
-pub(super) fn finish(mut model: Model, path: &Path, mut warnings: Vec<String>) -> Result<Model> {
+/// The end of every loader: the model named after its file from triangles grouped by material
+/// (an error when there are none), brought into f32's range, with the loader's warnings logged
+/// and kept on it.
+pub(super) fn finish(
+    path: &Path,
+    materials: Vec<Material>,
+    groups: Vec<Vec<Vertex>>,
+    mut warnings: Vec<String>,
+) -> Result<Model> {
+    if groups.iter().all(Vec::is_empty) {
+        return Err(Error::input(path, NO_TRIANGLES));
+    }
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
+    let mut model = Model::from_groups(&name, materials, groups)
+        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
     warnings.extend(model.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
     for w in &warnings {
         log::warn!("{}: {w}", path.display());
@@ -233,7 +246,7 @@ fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, wa
     }
 }
 
-pub(super) const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
+const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
 
 /// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
 pub const MAX_OBJ_BYTES: u64 = 1 << 30;
@@ -379,11 +392,5 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     if flipped > 0 {
         warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));
     }
-    if groups.iter().all(Vec::is_empty) {
-        return Err(Error::input(path, NO_TRIANGLES));
-    }
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
-    let out = Model::from_groups(&name, materials, groups)
-        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
-    finish(out, path, warnings)
+    finish(path, materials, groups, warnings)
 }

@@ -160,7 +160,7 @@ pub fn texture_file_name(argument: &str) -> Option<String> {
 
 /// Finds a texture file next to the MTL: as written, then by its file name alone, then ignoring
 /// letter case (files made on Windows often disagree with their MTL about case).
-fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
+pub(super) fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
     let direct = dir.join(name);
     if direct.is_file() {
         return Some(direct);
