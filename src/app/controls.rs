@@ -50,6 +50,11 @@ pub struct CameraControls {
 }
 
 impl CameraControls {
+    /// Controls with the fly camera on or off (on for a view started from `--eye`).
+    pub fn flying_from_start(fly: bool) -> Self {
+        Self { fly, ..Self::default() }
+    }
+
     /// Whether a drag is moving the camera.
     pub fn dragging(&self) -> bool {
         self.orbiting || self.panning

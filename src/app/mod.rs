@@ -227,7 +227,7 @@ impl Viewer {
             loading: None,
             still_frames: 0,
             accumulate: if options.settings.accumulates() { options.settings.accumulate } else { ACCUMULATE.default },
-            fly: false,
+            fly: options.scene.eye.is_some(),
             command: String::new(),
         };
         Ok(Self {
@@ -239,7 +239,7 @@ impl Viewer {
             scene,
             home: camera,
             camera,
-            controls: CameraControls::default(),
+            controls: CameraControls::flying_from_start(options.scene.eye.is_some()),
             loader: Loader::default(),
             egui,
             egui_renderer,
