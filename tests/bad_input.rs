@@ -44,17 +44,24 @@ fn run(label: &str, extra: &[&str]) -> Outcome {
     }
 }
 
-#[test]
-fn every_assimp_test_obj_loads_or_fails_cleanly() {
-    let root = Path::new("/usr/share/assimp/models");
+/// A folder of Debian's assimp-testmodels, or `None` (test skipped) when the package is not
+/// installed; under `CI=true` its absence fails the test.
+fn assimp_models(folder: &str) -> Option<PathBuf> {
+    let root = Path::new("/usr/share/assimp/models").join(folder);
     if !root.exists() {
         assert!(
             std::env::var("CI").map_or(true, |v| v != "true"),
             "CI needs assimp-testmodels (scripts/test.sh installs it)"
         );
         eprintln!("skipping: assimp-testmodels not installed");
-        return;
+        return None;
     }
+    Some(root)
+}
+
+#[test]
+fn every_assimp_test_obj_loads_or_fails_cleanly() {
+    let Some(root) = assimp_models("") else { return };
     if !have_adapter() {
         return;
     }
@@ -251,15 +258,7 @@ fn crafted_skies_fail_naming_the_folder_or_face() {
 
 #[test]
 fn every_assimp_test_gltf_loads_or_fails_cleanly() {
-    let root = Path::new("/usr/share/assimp/models/glTF2");
-    if !root.exists() {
-        assert!(
-            std::env::var("CI").map_or(true, |v| v != "true"),
-            "CI needs assimp-testmodels (scripts/test.sh installs it)"
-        );
-        eprintln!("skipping: assimp-testmodels not installed");
-        return;
-    }
+    let Some(root) = assimp_models("glTF2") else { return };
     // Every .gltf and .glb below, valid samples and broken ones alike, loaded in process (the
     // loader is what is tested; the GPU side is the one OBJ models take).
     let mut files = Vec::new();

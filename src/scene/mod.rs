@@ -4,6 +4,7 @@
 pub mod builtin;
 pub mod camera;
 pub mod files;
+mod gltf_data;
 pub mod gltf_model;
 pub mod lights;
 pub mod model;
