@@ -10,6 +10,16 @@ use super::texture::find_texture;
 /// The largest glTF, `.glb` or buffer file read.
 pub const MAX_GLTF_BYTES: u64 = 1 << 30;
 
+/// The relative file name a non-data URI stands for: percent-decoded, with `/` for `\\` and
+/// no `file:` scheme; an URI of another scheme (`https://`) is no local file.
+fn uri_file(uri: &str) -> std::result::Result<String, String> {
+    if uri.contains("://") && !uri.starts_with("file://") {
+        return Err(format!("'{uri}' is not a local file"));
+    }
+    let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
+    Ok(decoded.trim_start_matches("file:").to_string())
+}
+
 /// The bytes an URI names: a base64 `data:` URI, or a file relative to the glTF's folder.
 pub(super) fn read_uri(uri: &str, dir: &Path) -> std::result::Result<Vec<u8>, String> {
     use base64::Engine;
@@ -19,11 +29,7 @@ pub(super) fn read_uri(uri: &str, dir: &Path) -> std::result::Result<Vec<u8>, St
             .decode(data)
             .map_err(|e| format!("a data URI that is not valid base64: {e}"));
     }
-    if uri.contains("://") {
-        return Err(format!("'{uri}' is not a local file"));
-    }
-    let decoded = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
-    let path: PathBuf = dir.join(decoded.trim_start_matches("file:"));
+    let path: PathBuf = dir.join(uri_file(uri)?);
     read_bounded(&path, MAX_GLTF_BYTES).map_err(|problem| format!("{}: {problem}", path.display()))
 }
 
@@ -65,9 +71,12 @@ pub(super) fn image_bytes(image: &::gltf::Image, dir: &Path, buffers: &[Vec<u8>]
     match image.source() {
         ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
             // Found as OBJ's maps are: as written, by file name alone, or ignoring letter case.
-            let name = percent_encoding::percent_decode_str(uri).decode_utf8_lossy().replace('\\', "/");
+            let name = match uri_file(uri) {
+                Ok(name) => name,
+                Err(problem) => return (PathBuf::from(uri), Err(problem)),
+            };
             let path = find_texture(dir, &name).unwrap_or_else(|| dir.join(&name));
-            let bytes = read_bounded(&path, 1 << 30).map_err(|problem| format!("{}: {problem}", path.display()));
+            let bytes = read_bounded(&path, MAX_GLTF_BYTES).map_err(|problem| format!("{}: {problem}", path.display()));
             (path, bytes)
         }
         ::gltf::image::Source::Uri { uri, .. } => {
