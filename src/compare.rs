@@ -11,13 +11,17 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
     let s = settings;
     let mut lines = vec![format!("{}  [{}]", s.mode.title(), s.mode.key())];
     if !s.mode.declaration().runs_sampling() {
-        let light = s.variant.decl().composite.label();
+        let light = s.sampling.variant.decl().composite.label();
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {
         let blur = if s.blur { "blurred" } else { "no blur" };
         let half = if s.half_resolution { " at half res" } else { "" };
         let frames = if s.accumulates() { format!(", {} frames", s.accumulate) } else { String::new() };
-        lines.push(format!("{}, {}{half}, radius {radius:.3}, {blur}{frames}", s.variant, s.count_label()));
+        lines.push(format!(
+            "{}, {}{half}, radius {radius:.3}, {blur}{frames}",
+            s.sampling.variant,
+            s.sampling.count_label()
+        ));
     }
     lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
     lines

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use crate::render::{Settings, View};
+use crate::render::{Settings, Variant, View, SAMPLES, SLICES, STEPS};
 use crate::scene::{Layout, OrbitCamera};
 use crate::spec::point;
 
@@ -64,7 +64,8 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
     settings_flags(view.settings, &mut flag);
     flag("size", format!("{}x{}", view.size.0, view.size.1));
     let s = view.settings;
-    for (on, name) in [(s.depth_pyramid, "--depth-pyramid"), (!s.blur, "--no-blur"), (!s.half_resolution, "--full-res")]
+    for (on, name) in
+        [(s.sampling.depth_pyramid, "--depth-pyramid"), (!s.blur, "--no-blur"), (!s.half_resolution, "--full-res")]
     {
         if on {
             args.push(name.into());
@@ -75,26 +76,25 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
 
 /// The valued flags of the settings that differ from the defaults of their variant.
 fn settings_flags(s: &Settings, flag: &mut impl FnMut(&str, String)) {
-    let base = Settings::for_variant(s.variant);
+    let base = Settings::for_variant(s.sampling.variant);
     flag("mode", s.mode.name().into());
-    if s.variant != Settings::default().variant {
-        flag("variant", s.variant.name().into());
+    if s.sampling.variant != Variant::default() {
+        flag("variant", s.sampling.variant.name().into());
     }
-    let counts =
-        [("samples", s.samples, base.samples), ("slices", s.slices, base.slices), ("steps", s.steps, base.steps)];
-    for (name, value, default) in counts {
-        if value != default {
-            flag(name, value.to_string());
+    for count in [SAMPLES, SLICES, STEPS] {
+        if s.sampling.count(count.id) != base.sampling.count(count.id) {
+            flag(count.flag, s.count(count.id).to_string());
         }
     }
-    let lengths = [("reach", s.reach), ("thickness", s.thickness), ("radius", s.radius)];
+    let sampling = s.sampling;
+    let lengths = [("reach", sampling.reach), ("thickness", sampling.thickness), ("radius", sampling.radius)];
     for (name, value) in lengths {
         if let Some(v) = value {
             flag(name, v.to_string());
         }
     }
     let numbers = [
-        ("bias", s.bias, base.bias),
+        ("bias", sampling.bias, base.sampling.bias),
         ("ao-strength", s.ao_strength, base.ao_strength),
         ("ao-power", s.ao_power, base.ao_power),
         ("sky-strength", s.sky_strength, base.sky_strength),

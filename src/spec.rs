@@ -7,7 +7,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::render::{Mode, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::render::sampling::DEFAULT_BIAS;
+use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
 
@@ -134,7 +135,7 @@ pub struct RenderArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f32>,
     /// Depth bias of the occlusion test, as a fraction of the radius
-    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DEFAULT_BIAS, allow_hyphen_values = true)]
     pub bias: f32,
     /// How much of the AO is applied (0 to 1)
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
@@ -305,21 +306,28 @@ impl SceneArgs {
 }
 
 impl RenderArgs {
-    pub fn settings(&self, mode: Mode) -> Result<Settings> {
-        let base = Settings::for_variant(self.variant);
-        let samples = SAMPLES.check(self.samples.unwrap_or(base.samples))?;
-        let radius = self.radius.map(|r| non_negative("radius", r)).transpose()?;
-        Ok(Settings {
-            mode,
+    /// The sampling flags as a [`Sampling`], each checked against its range.
+    pub fn sampling(&self) -> Result<Sampling> {
+        let base = Sampling::for_variant(self.variant);
+        let length = |name: &str, v: Option<f32>| v.map(|r| non_negative(name, r)).transpose();
+        Ok(Sampling {
             variant: self.variant,
-            samples,
+            samples: SAMPLES.check(self.samples.unwrap_or(base.samples))?,
             slices: SLICES.check(self.slices)?,
             steps: STEPS.check(self.steps)?,
-            reach: self.reach.map(|r| non_negative("reach", r)).transpose()?,
-            thickness: self.thickness.map(|r| non_negative("thickness", r)).transpose()?,
-            depth_pyramid: self.depth_pyramid,
-            radius,
+            radius: length("radius", self.radius)?,
+            reach: length("reach", self.reach)?,
+            thickness: length("thickness", self.thickness)?,
             bias: non_negative("bias", self.bias)?,
+            depth_pyramid: self.depth_pyramid,
+        })
+    }
+
+    pub fn settings(&self, mode: Mode) -> Result<Settings> {
+        let base = Settings::for_variant(self.variant);
+        Ok(Settings {
+            mode,
+            sampling: self.sampling()?,
             ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
             ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
             sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,

@@ -7,7 +7,7 @@ mod common;
 use common::{gpu, looking, renderer, shoot};
 use glam::Vec3;
 use ssdo::headless::readback::read_rgba16f;
-use ssdo::render::{Mode, Settings, Variant, View};
+use ssdo::render::{Mode, Sampling, Settings, Variant, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, Scene, Skybox};
 
@@ -48,10 +48,13 @@ fn directional(
 fn march(radius: f32) -> Settings {
     Settings {
         mode: Mode::Ssdo,
-        variant: Variant::March,
-        slices: 8,
-        steps: 16,
-        radius: Some(radius),
+        sampling: Sampling {
+            variant: Variant::March,
+            slices: 8,
+            steps: 16,
+            radius: Some(radius),
+            ..Default::default()
+        },
         ambient: 0.0,
         ..Settings::default()
     }
@@ -76,9 +79,14 @@ fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
     // wall long enough to count as infinite (crossed strings): (1 − d/√(d² + h²))/2.
     let want = 1.0 - 0.5 * (1.0 - d / (d * d + h * h).sqrt());
     // The sky light alone: under a white sky the white wall also bounces light onto the floor.
-    let s = Settings { reach: Some(10.0), thickness: Some(1.0), view: View::DoDirect, ..march(radius) };
+    let s = march(radius);
+    let s = Settings {
+        sampling: Sampling { reach: Some(10.0), thickness: Some(1.0), ..s.sampling },
+        view: View::DoDirect,
+        ..s
+    };
     let got = directional(&gpu, &scene, &sky, &camera, s, &[receiver])[0].x;
-    let points = Settings { variant: Variant::Points, samples: 64, ..s };
+    let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
     let old = directional(&gpu, &scene, &sky, &camera, points, &[receiver])[0].x;
     eprintln!("sky fraction at 3R from the wall: analytic {want:.4}, march {got:.4}, points {old:.4}");
     assert!((got - want).abs() <= 0.05 * want, "march sees {got}, the closed form {want}");
@@ -104,12 +112,13 @@ fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
     let behind = project(&camera, v(0.15, 0.0, -1.2));
     let open = project(&camera, v(1.5, 0.0, -1.2));
     // The default thickness and reach, in radii, as the renderer derives them from a scene.
-    let s = Settings {
+    let s = march(radius);
+    let sampling = Sampling {
         thickness: Some(ssdo::render::THICKNESS_RADII * radius),
         reach: Some(ssdo::render::REACH_RADII * radius),
-        view: View::DoDirect,
-        ..march(radius)
+        ..s.sampling
     };
+    let s = Settings { sampling, view: View::DoDirect, ..s };
     let d = directional(&gpu, &scene, &sky, &camera, s, &[foot, behind, open]);
     let (foot, behind, open) = (d[0].x, d[1].x, d[2].x);
     eprintln!("pole: foot {foot:.4}, floor behind {behind:.4}, open floor {open:.4}");
@@ -128,9 +137,10 @@ fn a_red_wall_beyond_the_radius_still_bounces_red_onto_the_floor() {
     let camera = looking(v(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
     // R = 0.1; the floor point lies 0.4 = 4R from the wall.
     let receiver = project(&camera, v(0.4, 0.0, 0.0));
-    let s = Settings { reach: Some(3.0), thickness: Some(0.3), ..march(0.1) };
+    let s = march(0.1);
+    let s = Settings { sampling: Sampling { reach: Some(3.0), thickness: Some(0.3), ..s.sampling }, ..s };
     let bounce = directional(&gpu, &scene, &sky, &camera, s, &[receiver])[0];
-    let points = Settings { variant: Variant::Points, samples: 64, ..s };
+    let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
     let old = directional(&gpu, &scene, &sky, &camera, points, &[receiver])[0];
     eprintln!("bounce at 4R from a red wall: march {bounce}, points {old}");
     assert!(bounce.x > 0.01 && bounce.x > 5.0 * bounce.y, "red bounce from beyond R: {bounce}");

@@ -8,7 +8,7 @@ use common::{gpu, looking, red_wall_scene, renderer, shoot};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, OcclusionValues};
-use ssdo::render::{Mode, Renderer, Settings, Variant};
+use ssdo::render::{Mode, Renderer, Sampling, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 
@@ -19,6 +19,11 @@ const H: u32 = 120;
 /// half-resolution upsample, and the white furnace with it).
 fn settings(mode: Mode) -> Settings {
     Settings { mode, ambient: 0.0, half_resolution: false, ..Settings::default() }
+}
+
+/// The default sampling at radius `r`.
+fn radius(r: f32) -> Sampling {
+    Sampling { radius: Some(r), ..Default::default() }
 }
 
 /// Pixel coordinates of world point `p`.
@@ -80,7 +85,8 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
     }) {
         {
             // Points take `samples` points; the march takes `samples` slices.
-            let s = Settings { variant, samples, slices: samples, blur, radius: Some(0.5), ..settings(Mode::Ssdo) };
+            let sampling = Sampling { variant, samples, slices: samples, radius: Some(0.5), ..Default::default() };
+            let s = Settings { sampling, blur, ..settings(Mode::Ssdo) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             let b = render(&gpu, &mut r, &camera, true);
             let direct = b.directional.unwrap();
@@ -100,7 +106,7 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
     // give ρ·L as well, with and without a constant ambient A on top (ρ·(L + A)).
     for ambient in [0.0, 0.2] {
         for mode in Mode::ALL {
-            let s = Settings { radius: Some(0.5), ambient, ..settings(mode) };
+            let s = Settings { sampling: radius(0.5), ambient, ..settings(mode) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             let hdr = render(&gpu, &mut r, &camera, true).hdr;
             let want = albedo * (sky_radiance + Vec3::splat(ambient));
@@ -120,7 +126,8 @@ fn open_plane_ao_is_one_everywhere_including_the_edges() {
     // Looking down steeply: samples near the borders project off-screen and must be skipped.
     let camera = looking(Vec3::ZERO, 0.0, 70.0, 2.0);
     for variant in Variant::ALL {
-        let s = Settings { variant, samples: 32, radius: Some(0.4), blur: false, ..settings(Mode::Ssao) };
+        let sampling = Sampling { variant, samples: 32, radius: Some(0.4), ..Default::default() };
+        let s = Settings { sampling, blur: false, ..settings(Mode::Ssao) };
         let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
         let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
         let low = ao.iter().copied().fold(1.0, f32::min);
@@ -138,7 +145,10 @@ fn inside_corner_is_more_occluded_than_open_floor() {
     // Facing the wall: the corner is a horizontal line across the middle of the view.
     let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
     for variant in Variant::ALL {
-        let s = Settings { variant, samples: 32, radius: Some(0.5), ..settings(Mode::Ssao) };
+        let s = Settings {
+            sampling: Sampling { variant, samples: 32, radius: Some(0.5), ..Default::default() },
+            ..settings(Mode::Ssao)
+        };
         let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
         let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
         let corner = at(&ao, project(&camera, Vec3::new(0.1, 0.0, 0.0)));
@@ -159,8 +169,13 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let far = project(&camera, Vec3::new(1.8, 0.0, 1.0));
     let ratio = |c: Vec3| c.x / c.y.max(1e-6);
 
-    let mut r =
-        renderer(&gpu, &scene, &sky, (W, H), Settings { radius: Some(0.5), samples: 32, ..settings(Mode::Ssdo) });
+    let mut r = renderer(
+        &gpu,
+        &scene,
+        &sky,
+        (W, H),
+        Settings { sampling: Sampling { samples: 32, ..radius(0.5) }, ..settings(Mode::Ssdo) },
+    );
     let b = render(&gpu, &mut r, &camera, true);
     // The sky is black: DO is the indirect bounce alone.
     let indirect = mean_rgb(&b.directional.unwrap(), near, 1);
@@ -209,7 +224,7 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
 
     // The classic variant keeps the SSDO course project's constant grey ambient in Off: no sky.
-    r.settings = Settings { variant: Variant::Classic, ..r.settings };
+    r.settings.sampling.variant = Variant::Classic;
     let hdr = render(&gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!((up - down).abs().max_element() < 1e-3, "classic Off has no directional sky: top {up}, bottom {down}");
@@ -222,7 +237,7 @@ fn ssao_and_ssdo_differ_only_where_the_sky_is_occluded() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = redblue_ball();
     let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
-    let s = Settings { samples: 64, ..settings(Mode::Ssao) };
+    let s = Settings { sampling: Sampling { samples: 64, ..Default::default() }, ..settings(Mode::Ssao) };
     let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
     let ssao = mean_rgb(&render(&gpu, &mut r, &camera, true).hdr, top, 1);
     r.set_mode(&gpu, Mode::Ssdo);
@@ -237,7 +252,7 @@ fn both_is_one_pass_with_the_same_ao_and_do_as_the_separate_modes() {
     let sky = ssdo::scene::load_skybox(None).unwrap();
     let camera = OrbitCamera::framing(&scene.model.bounds);
     for variant in Variant::ALL {
-        let s = Settings { variant, blur: false, ..settings(Mode::Ssao) };
+        let s = Settings { sampling: Sampling { variant, ..Default::default() }, blur: false, ..settings(Mode::Ssao) };
         let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
         let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
         r.set_mode(&gpu, Mode::Ssdo);
@@ -342,7 +357,13 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
     let camera = OrbitCamera::framing(&scene.model.bounds);
     for variant in Variant::ALL {
         for mode in Mode::ALL {
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { mode, variant, ..Settings::default() });
+            let mut r = renderer(
+                &gpu,
+                &scene,
+                &sky,
+                (W, H),
+                Settings { mode, sampling: Sampling { variant, ..Default::default() }, ..Settings::default() },
+            );
             for blurred in [false, true] {
                 let b = render(&gpu, &mut r, &camera, blurred);
                 let finite = |v: &[[f32; 4]]| v.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0));
@@ -377,8 +398,13 @@ fn blur_does_not_bleed_across_silhouettes() {
     let scene = Scene::new(model, 0, 1);
     let sky = Skybox::constant(Vec3::ONE);
     let camera = looking(v(0.0, 0.5, 0.0), 0.0, 30.0, 4.0);
-    let mut r =
-        renderer(&gpu, &scene, &sky, (W, H), Settings { radius: Some(0.3), samples: 32, ..settings(Mode::Ssao) });
+    let mut r = renderer(
+        &gpu,
+        &scene,
+        &sky,
+        (W, H),
+        Settings { sampling: Sampling { samples: 32, ..radius(0.3) }, ..settings(Mode::Ssao) },
+    );
     let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
     // The top face of the block is open: its AO must stay 1 up to the silhouette edge.
     let top_edge = project(&camera, v(0.0, 1.5, -0.45));

@@ -125,16 +125,16 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(with_model("missing normals", "--model no_normals.obj", messy_obj(dir, false)));
     list.push(with_model("half the faces wound against their normals", "--model rewound.obj", rewound_obj(dir)));
     let mut c = base("radius 0", "--radius 0");
-    c.settings.radius = Some(0.0);
+    c.settings.sampling.radius = Some(0.0);
     list.push(c);
     let mut c = base("radius 1e6", "--radius 1e6");
-    c.settings.radius = Some(1e6);
+    c.settings.sampling.radius = Some(1e6);
     list.push(c);
     let mut c = base("1 sample", "--samples 1");
-    c.settings.samples = 1;
+    c.settings.sampling.samples = 1;
     list.push(c);
     let mut c = base("256 samples", "--samples 256");
-    c.settings.samples = 256;
+    c.settings.sampling.samples = 256;
     list.push(c);
     let mut c = base("1x1 target", "--size 1x1");
     c.size = (1, 1);
@@ -144,11 +144,11 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(c);
     let mut c = base("depth pyramid, 37x23 (odd sizes down the chain)", "--depth-pyramid --size 37x23");
     c.size = (37, 23);
-    c.settings.depth_pyramid = true;
+    c.settings.sampling.depth_pyramid = true;
     list.push(c);
     let mut c = base("depth pyramid, 1x1", "--depth-pyramid --size 1x1");
     c.size = (1, 1);
-    c.settings.depth_pyramid = true;
+    c.settings.sampling.depth_pyramid = true;
     list.push(c);
     let max = gpu.device.limits().max_texture_dimension_2d;
     let mut c = base("largest 2D size (width)", "--size <max>x2");
@@ -228,7 +228,8 @@ fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
         renderer.keep_hdr(&gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::ALL {
-                renderer.settings = Settings { mode, variant, ..case.settings };
+                renderer.settings = case.settings;
+                (renderer.settings.mode, renderer.settings.sampling.variant) = (mode, variant);
                 let stats =
                     frame_stats(&gpu, &mut renderer, &case.camera).unwrap_or_else(|e| panic!("{}: {e}", case.name));
                 let find = |n: &str| stats.iter().find(|s| s.name == n);
@@ -315,7 +316,8 @@ fn accumulation_stays_finite_at_any_size_while_moving_and_across_a_resize() {
         r.keep_hdr(&gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::sampled() {
-                r.settings = Settings { mode, variant, ..settings };
+                r.settings = settings;
+                (r.settings.mode, r.settings.sampling.variant) = (mode, variant);
                 r.resize(&gpu, size.0, size.1).unwrap();
                 // Twelve frames turning 5° and tilting; half way through the window grows.
                 for k in 0..12 {

@@ -13,7 +13,7 @@ use ssdo::gpu::Gpu;
 use ssdo::headless::capture::{capture_converged, render_frames};
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, read_texture};
 use ssdo::render::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY};
-use ssdo::render::{Mode, Renderer, Settings, Step, Variant};
+use ssdo::render::{Mode, Renderer, Sampling, Settings, Step, Variant};
 use ssdo::scene::{self, builtin, OrbitCamera, Scene, Skybox};
 
 const W: u32 = 160;
@@ -75,7 +75,8 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
     let camera = looking(Vec3::ZERO, 10.0, 40.0, 3.0);
     for variant in [Variant::March, Variant::Points] {
         for blur in [true, false] {
-            let s = Settings { variant, slices: 1, samples: 8, blur, radius: Some(0.5), ..settings(Mode::Both, 16) };
+            let sampling = Sampling { variant, slices: 1, samples: 8, radius: Some(0.5), ..Default::default() };
+            let s = Settings { sampling, blur, ..settings(Mode::Both, 16) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             assert!(r.plan().has(Step::Temporal));
             for frames in [1, 16] {
@@ -109,7 +110,8 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
     for mode in [Mode::Ssao, Mode::Ssdo] {
         let render = |slices: usize, accumulate: usize| {
             // At full resolution, so that each pixel's own samples are compared.
-            let s = Settings { slices, blur: false, half_resolution: false, ..settings(mode, accumulate) };
+            let sampling = Sampling { slices, ..Default::default() };
+            let s = Settings { sampling, blur: false, half_resolution: false, ..settings(mode, accumulate) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             capture_converged(&gpu, &mut r, &camera).unwrap();
             let depth = ssdo::headless::readback::read_depth(&gpu, &r.targets().depth.texture).unwrap();
@@ -196,7 +198,7 @@ fn a_moving_camera_keeps_ao_in_range_and_every_value_finite() {
     let (scene, sky, camera) = cornell();
     for mode in [Mode::Ssao, Mode::Both] {
         for variant in [Variant::March, Variant::Points] {
-            let s = Settings { variant, ..settings(mode, 16) };
+            let s = Settings { sampling: Sampling { variant, ..Default::default() }, ..settings(mode, 16) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             for frame in 0..24 {
                 let turned = OrbitCamera {
@@ -237,7 +239,7 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     assert_eq!(r.frames_accumulated(), 4);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);
     // Another radius starts it anew in the same textures.
-    r.settings.radius = Some(0.2);
+    r.settings.sampling.radius = Some(0.2);
     render_frames(&gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.frames_accumulated(), 1);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);

@@ -124,9 +124,9 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                     }
                 }
             });
-            egui::ComboBox::from_label("variant").selected_text(settings.variant.name()).show_ui(ui, |ui| {
+            egui::ComboBox::from_label("variant").selected_text(settings.sampling.variant.name()).show_ui(ui, |ui| {
                 for v in Variant::ALL {
-                    ui.selectable_value(&mut settings.variant, v, v.name());
+                    ui.selectable_value(&mut settings.sampling.variant, v, v.name());
                 }
             });
             egui::ComboBox::from_label("view").selected_text(settings.view.title()).show_ui(ui, |ui| {
@@ -137,7 +137,7 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.separator();
 
             ui.label("Sampling");
-            for count in settings.variant.decl().counts {
+            for count in settings.sampling.variant.decl().counts {
                 let value = settings.count_mut(count.id);
                 ui.add(egui::Slider::new(value, count.range()).logarithmic(true).text(count.label));
             }
@@ -150,15 +150,15 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                     *value = Some(v);
                 }
             };
-            length(ui, &mut settings.radius, default_radius, default_radius * 5.0, "radius");
-            if settings.variant.decl().marched_lengths {
-                let reach = default_radius * crate::render::REACH_RADII;
-                let thickness = default_radius * crate::render::THICKNESS_RADII;
-                length(ui, &mut settings.reach, reach, reach * 4.0, "reach");
-                length(ui, &mut settings.thickness, thickness, thickness * 10.0, "thickness");
-                ui.checkbox(&mut settings.depth_pyramid, "depth pyramid for far steps");
+            length(ui, &mut settings.sampling.radius, default_radius, default_radius * 5.0, "radius");
+            if settings.sampling.variant.decl().marched_lengths {
+                let defaults = crate::render::Sampling::default().lengths(default_radius);
+                let (reach, thickness) = (defaults.reach, defaults.thickness);
+                length(ui, &mut settings.sampling.reach, reach, reach * 4.0, "reach");
+                length(ui, &mut settings.sampling.thickness, thickness, thickness * 10.0, "thickness");
+                ui.checkbox(&mut settings.sampling.depth_pyramid, "depth pyramid for far steps");
             }
-            slider(ui, &mut settings.bias, 0.0..=0.3, "bias (× radius)");
+            slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
             ui.checkbox(&mut settings.blur, "blur");
             ui.checkbox(&mut settings.half_resolution, "half resolution")
                 .on_hover_text("sample at half width and height, then upsample by depth and normal");

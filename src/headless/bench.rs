@@ -61,8 +61,8 @@ impl BenchReport {
             "timing": if self.timestamps { "timestamp" } else { "wall" },
             "size": [self.size.0, self.size.1],
             "frames": self.frames,
-            "variant": s.variant.name(),
-            "samples": s.samples,
+            "variant": s.sampling.variant.name(),
+            "samples": s.sampling.samples,
             "blur": s.blur,
             "modes": modes,
             "ratios": { "ssdo_over_ssao": ssdo_over_ssao, "both_over_ssdo": both_over_ssdo },
@@ -79,11 +79,12 @@ impl BenchReport {
         } else {
             "synchronised wall time per frame (no timestamp queries)"
         };
-        let count = s.count_label();
+        let count = s.sampling.count_label();
         let _ = writeln!(out, "device: {}{software}", self.device);
         let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames", self.frames);
         let blur = if s.blur { "on" } else { "off" };
-        let _ = writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.variant);
+        let _ =
+            writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.sampling.variant);
         for (mode, r) in &self.modes {
             let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
             let _ = writeln!(

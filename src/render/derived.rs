@@ -8,8 +8,8 @@ use super::frame::{pre_exposure_for, FrameInputs};
 use super::kernel;
 use super::modes::OCCLUSION_HISTORY;
 use super::resources::sampling::SamplingParams;
-use super::settings::{View, MOTION_ACCUMULATE, REACH_RADII, THICKNESS_RADII};
-use super::variant::{SAMPLES, SLICES, STEPS};
+use super::sampling::Lengths;
+use super::settings::{View, MOTION_ACCUMULATE};
 use super::Renderer;
 use crate::scene::OrbitCamera;
 
@@ -32,17 +32,12 @@ impl Renderer {
 
     /// The sampling radius in use, in model units.
     pub fn radius(&self) -> f32 {
-        self.settings.radius.unwrap_or(self.scene_radius)
+        self.lengths().radius
     }
 
-    /// The march's reach in use, in model units (never below the radius).
-    pub fn reach(&self) -> f32 {
-        self.settings.reach.unwrap_or(REACH_RADII * self.scene_radius).max(self.radius())
-    }
-
-    /// The march's surface thickness in use, in model units.
-    pub fn thickness(&self) -> f32 {
-        self.settings.thickness.unwrap_or(THICKNESS_RADII * self.scene_radius)
+    /// The radius, reach, thickness and bias in use, in model units.
+    pub fn lengths(&self) -> Lengths {
+        self.settings.sampling.lengths(self.scene_radius)
     }
 
     /// Writes this frame's uniforms and, when the plan samples, the sampling parameters.
@@ -62,24 +57,16 @@ impl Renderer {
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.runs_sampling() {
-            let radius = self.radius();
-            let samples = SAMPLES.clamp(s.samples);
-            // The march reads the sky once per group of sectors: slices × 4 directions.
+            let sampling = s.sampling.clamped();
             // The frames the temporal pass's history holds: this frame's place in the schedule.
             let held = self.history.get(OCCLUSION_HISTORY).map_or(0, |h| h.frames);
             let accumulate = if self.plan.accumulates() { s.accumulate as u32 } else { 1 };
             // The sky's mip is the solid angle of one direction of the converged average: the
             // frames' directions differ (the schedule), so together they resolve finer detail.
-            let directions = s.variant.decl().sky_directions(samples, s.slices) * accumulate as usize;
+            let directions = sampling.sky_directions() * accumulate as usize;
             let params = SamplingParams {
-                variant: s.variant,
-                samples,
-                slices: SLICES.clamp(s.slices),
-                steps: STEPS.clamp(s.steps),
-                reach: self.reach(),
-                thickness: self.thickness(),
-                radius,
-                bias: s.bias * radius,
+                sampling,
+                lengths: self.lengths(),
                 sky_mip: kernel::sky_mip_level(self.sky.size, directions),
                 sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
                 indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },

@@ -12,6 +12,7 @@ pub mod kernel;
 pub mod modes;
 pub mod passes;
 pub mod resources;
+pub mod sampling;
 pub mod settings;
 pub mod targets;
 pub mod timer;
@@ -33,7 +34,8 @@ use passes::{FrameState, Preparation, Recording};
 use resources::sampling::OcclusionData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
-pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE, REACH_RADII, THICKNESS_RADII};
+pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
+pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE};
 use targets::Targets;
 use timer::GpuTimer;
 pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
@@ -101,7 +103,7 @@ impl Renderer {
         let unused_pyramid = targets::Target::new(device, "unused_pyramid", (1, 1), targets::PYRAMID_FORMAT).view;
         let mut renderer = Self {
             settings,
-            prepared: (settings.variant, settings.view),
+            prepared: (settings.sampling.variant, settings.view),
             lights: scene.lights.clone(),
             rig: scene.rig,
             scene_radius: scene.default_radius(),
@@ -157,7 +159,7 @@ impl Renderer {
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
-        } else if (self.settings.variant, self.settings.view) != self.prepared {
+        } else if (self.settings.sampling.variant, self.settings.view) != self.prepared {
             self.prepare_passes(gpu);
         }
     }
@@ -165,7 +167,7 @@ impl Renderer {
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
     /// frame) unless HDR is kept or a debug view needs the tone-map pass.
     fn plan_for(settings: &Settings, features: SceneFeatures, keep_hdr: bool) -> Plan {
-        let pyramid = settings.variant.decl().marched_lengths && settings.depth_pyramid;
+        let pyramid = settings.sampling.reads_pyramid();
         let display = !keep_hdr && settings.view == View::Final;
         let options = PlanOptions {
             blur: settings.blur,
@@ -198,7 +200,7 @@ impl Renderer {
     /// Rebuilds the passes' bind groups for the targets, and their pipelines where the plan or
     /// variant asks for a different one.
     fn prepare_passes(&mut self, gpu: &Gpu) {
-        let (variant, view) = (self.settings.variant, self.settings.view);
+        let (variant, view) = (self.settings.sampling.variant, self.settings.view);
         let preparation = Preparation {
             targets: &self.targets,
             plan: &self.plan,

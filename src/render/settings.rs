@@ -2,7 +2,8 @@
 //! and shading settings, what is shown — with their defaults.
 
 use super::modes::table::Mode;
-use super::variant::{Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use super::sampling::Sampling;
+use super::variant::{CountId, Variant, ACCUMULATE};
 use crate::Result;
 
 /// What the window shows: the final image or one of the intermediate buffers.
@@ -120,26 +121,8 @@ impl std::str::FromStr for SenderSky {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     pub mode: Mode,
-    pub variant: Variant,
-    /// Samples per pixel of the sampling pass, points and classic variants (1 to 256).
-    pub samples: usize,
-    /// The march: slices (directions around the view vector) per pixel (1 to 32)...
-    pub slices: usize,
-    /// ...and steps along each side of a slice (1 to 64); half within the radius, half beyond.
-    pub steps: usize,
-    /// How far the march looks for what blocks the sky and sends the bounce, in model units;
-    /// `None` is the scene's bounding radius × 2.4 (24 sampling radii).
-    pub reach: Option<f32>,
-    /// How deep a surface in the depth buffer is taken to be, in model units; `None` is the
-    /// bounding radius × 0.1 (1 sampling radius).
-    pub thickness: Option<f32>,
-    /// The march's far steps read a closest-depth pyramid instead of the depth buffer (off by
-    /// default: the report measured it over-occluding on three scenes of four).
-    pub depth_pyramid: bool,
-    /// Sampling radius in model units; `None` is a tenth of the scene's bounding radius.
-    pub radius: Option<f32>,
-    /// Depth bias of the occlusion test, as a fraction of the radius.
-    pub bias: f32,
+    /// The sampling pass: the variant, its counts, lengths and bias.
+    pub sampling: Sampling,
     /// 0 leaves the ambient term unoccluded, 1 applies AO fully.
     pub ao_strength: f32,
     /// AO is raised to this power before it is applied.
@@ -174,15 +157,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             mode: Mode::Off,
-            variant: Variant::default(),
-            samples: SAMPLES.default,
-            slices: SLICES.default,
-            steps: STEPS.default,
-            reach: None,
-            thickness: None,
-            depth_pyramid: false,
-            radius: None,
-            bias: 0.03,
+            sampling: Sampling::default(),
             ao_strength: 1.0,
             ao_power: 1.0,
             sky_strength: 1.0,
@@ -202,8 +177,7 @@ impl Default for Settings {
 impl Settings {
     /// The defaults of `variant`: the shared ones, with the variant's own samples and ambient.
     pub fn for_variant(variant: Variant) -> Self {
-        let d = variant.decl();
-        Self { variant, samples: d.default_samples, ambient: d.default_ambient, ..Self::default() }
+        Self { sampling: Sampling::for_variant(variant), ambient: variant.decl().default_ambient, ..Self::default() }
     }
 
     /// The classic variant's defaults: 64 samples and the SSDO course report's `albedo·0.5·AO` ambient.
@@ -211,25 +185,16 @@ impl Settings {
         Self::for_variant(Variant::Classic)
     }
 
-    /// The value of a sampling count.
-    pub fn count(&self, id: super::variant::CountId) -> usize {
-        use super::variant::CountId;
-        match id {
-            CountId::Samples => self.samples,
-            CountId::Slices => self.slices,
-            CountId::Steps => self.steps,
-            CountId::Accumulate => self.accumulate,
-        }
+    /// The value of a count: a sampling count or the frames averaged.
+    pub fn count(&self, id: CountId) -> usize {
+        self.sampling.count(id).unwrap_or(self.accumulate)
     }
 
-    /// A sampling count to change (the panel's sliders).
-    pub fn count_mut(&mut self, id: super::variant::CountId) -> &mut usize {
-        use super::variant::CountId;
-        match id {
-            CountId::Samples => &mut self.samples,
-            CountId::Slices => &mut self.slices,
-            CountId::Steps => &mut self.steps,
-            CountId::Accumulate => &mut self.accumulate,
+    /// A count to change (the panel's sliders).
+    pub fn count_mut(&mut self, id: CountId) -> &mut usize {
+        match self.sampling.count_mut(id) {
+            Some(n) => n,
+            None => &mut self.accumulate,
         }
     }
 
@@ -244,22 +209,9 @@ impl Settings {
         let plain = |s: &Settings| Settings { exposure: 1.0, accumulate: 1, ..*s };
         plain(self) == plain(other)
     }
-
-    /// "2 slices × 12 steps" or "16 samples": the counts this variant takes.
-    pub fn count_label(&self) -> String {
-        self.variant.decl().count_label(self.samples, self.slices, self.steps)
-    }
 }
 
 /// The most frames the temporal pass averages where the view moves (`shaders/temporal.wgsl`):
 /// screen-space occlusion changes with what the view shows, so a moving pixel keeps at most this
 /// many frames' worth of its past (a blend of at least 1/8, as kajiya's).
 pub const MOTION_ACCUMULATE: u32 = 8;
-
-/// The march's default reach and thickness, in default sampling radii (a tenth of the scene's
-/// bounding radius each): far enough to see the walls of a room from its middle; thin enough that
-/// a pole does not shadow the floor behind it (walls need no more: consecutive samples on one
-/// surface are bridged). Chosen with the report on cornell, open and stairs (see docs/accuracy.md):
-/// 3 radii lowered cornell's error at 2×8 a little but made it rise again with more steps.
-pub const REACH_RADII: f32 = 24.0;
-pub const THICKNESS_RADII: f32 = 1.0;

@@ -3,7 +3,7 @@
 
 use super::ReportOptions;
 use crate::render::variant::{Sampler, VARIANTS};
-use crate::render::{Mode, SenderSky, Settings, Variant};
+use crate::render::{Mode, Sampling, SenderSky, Settings, Variant};
 
 /// One configuration the report renders and measures at a radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -84,7 +84,10 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                 if decl.marched_lengths && directional {
                     configs.push(at(true, true, bounce));
                 }
-                if variant == Variant::default() && directional && (samples, steps) == (base.slices, base.steps) {
+                if variant == Variant::default()
+                    && directional
+                    && (samples, steps) == (base.sampling.slices, base.sampling.steps)
+                {
                     for other in SenderSky::ALL.map(Some).into_iter().chain([None]) {
                         if other != bounce {
                             configs.push(at(true, false, other));
@@ -109,18 +112,22 @@ impl Config {
     pub fn settings(&self, radius: f32) -> Settings {
         let base = Settings::default();
         let marches = self.variant.decl().sampler == Sampler::March;
-        let (slices, steps) = if marches { (self.samples, self.steps) } else { (base.slices, base.steps) };
+        let defaults = base.sampling;
+        let (slices, steps) = if marches { (self.samples, self.steps) } else { (defaults.slices, defaults.steps) };
         // No bounce (`none`) is the bounce's strength at 0.
         let no_bounce = self.bounce.is_none() && self.mode.declaration().directional_occlusion;
         Settings {
             mode: self.mode,
-            variant: self.variant,
-            samples: if marches { base.samples } else { self.samples.max(1) },
-            slices,
-            steps,
+            sampling: Sampling {
+                variant: self.variant,
+                samples: if marches { defaults.samples } else { self.samples.max(1) },
+                slices,
+                steps,
+                depth_pyramid: self.pyramid,
+                radius: Some(radius),
+                ..defaults
+            },
             blur: self.blur,
-            depth_pyramid: self.pyramid,
-            radius: Some(radius),
             sender_sky: self.bounce.unwrap_or(base.sender_sky),
             indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
             accumulate: self.accumulate,
@@ -133,7 +140,7 @@ impl Config {
     pub fn is_the_default_both(&self) -> bool {
         let base = Settings::default();
         self.variant == Variant::default()
-            && (self.samples, self.steps) == (base.slices, base.steps)
+            && (self.samples, self.steps) == (base.sampling.slices, base.sampling.steps)
             && !self.pyramid
             && self.blur
             && self.bounce == Some(base.sender_sky)
@@ -147,6 +154,7 @@ impl Config {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::{SLICES, STEPS};
 
     fn options(samples: usize, march: usize, radii: usize) -> ReportOptions {
         ReportOptions {
@@ -209,10 +217,13 @@ mod tests {
         };
         let s = none.settings(0.5);
         assert_eq!((s.accumulate, s.half_resolution), (4, true));
-        assert_eq!((s.indirect_strength, s.slices, s.steps, s.radius), (0.0, 4, 16, Some(0.5)));
+        assert_eq!(
+            (s.indirect_strength, s.sampling.slices, s.sampling.steps, s.sampling.radius),
+            (0.0, 4, 16, Some(0.5))
+        );
         let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };
         let s = points.settings(0.5);
-        assert_eq!((s.samples, s.indirect_strength), (32, 1.0));
-        assert_eq!((s.slices, s.steps), (Settings::default().slices, Settings::default().steps));
+        assert_eq!((s.sampling.samples, s.indirect_strength), (32, 1.0));
+        assert_eq!((s.sampling.slices, s.sampling.steps), (SLICES.default, STEPS.default));
     }
 }

@@ -3,23 +3,16 @@
 //! slices, steps, reach and thickness. Read by the sampling pass and the blur.
 
 use super::super::kernel;
-use super::super::uniforms::{OcclusionParams, MAX_SAMPLES};
+use super::super::sampling::{Lengths, Sampling};
+use super::super::uniforms::OcclusionParams;
 use super::super::variant::Variant;
 
-/// Sampling parameters for one frame.
+/// Sampling parameters for one frame: the settings' [`Sampling`] with its counts clamped, the
+/// lengths it resolves to, and what the sky and the temporal pass add.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SamplingParams {
-    pub variant: Variant,
-    pub samples: usize,
-    pub slices: usize,
-    pub steps: usize,
-    /// View-space reach and thickness of the march.
-    pub reach: f32,
-    pub thickness: f32,
-    /// View-space radius of the hemisphere.
-    pub radius: f32,
-    /// Depth bias in view units.
-    pub bias: f32,
+    pub sampling: Sampling,
+    pub lengths: Lengths,
     pub sky_mip: f32,
     pub sky_strength: f32,
     pub indirect_strength: f32,
@@ -52,26 +45,27 @@ impl OcclusionData {
         Self { buffer, uniforms: Box::new(bytemuck::Zeroable::zeroed()), kernel_key: None }
     }
 
-    /// Writes the parameters; the kernel is regenerated only when variant or count change.
+    /// Writes the parameters (their counts already clamped); the kernel is regenerated only when
+    /// the variant or the sample count changes.
     pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
-        let samples = params.samples.clamp(1, MAX_SAMPLES);
-        if self.kernel_key != Some((params.variant, samples)) {
-            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(params.variant.decl().kernel, samples))
-            {
+        let (sampling, lengths) = (&params.sampling, &params.lengths);
+        let (variant, samples) = (sampling.variant, sampling.samples);
+        if self.kernel_key != Some((variant, samples)) {
+            for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(variant.decl().kernel, samples)) {
                 *slot = k.extend(0.0).into();
             }
-            self.uniforms.rotations = kernel::rotations(params.variant.decl().kernel);
-            self.kernel_key = Some((params.variant, samples));
+            self.uniforms.rotations = kernel::rotations(variant.decl().kernel);
+            self.kernel_key = Some((variant, samples));
         }
         let u = self.uniforms.as_mut();
-        (u.radius, u.bias, u.sample_count, u.sky_mip) = (params.radius, params.bias, samples as u32, params.sky_mip);
+        (u.radius, u.bias, u.sample_count, u.sky_mip) = (lengths.radius, lengths.bias, samples as u32, params.sky_mip);
         (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
         u.sender_sky_strength = params.sender_sky_strength;
         u.schedule = params.schedule;
         (u.accumulate, u.motion_accumulate, u.history_frames) =
             (params.accumulate, params.motion_accumulate, params.history_frames);
         (u.slices, u.steps, u.reach, u.thickness) =
-            (params.slices as u32, params.steps as u32, params.reach, params.thickness);
+            (sampling.slices as u32, sampling.steps as u32, lengths.reach, lengths.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
     }
 }
