@@ -37,6 +37,26 @@ pub fn by_name<T: Copy>(what: &str, s: &str, named: impl IntoIterator<Item = (&'
     })
 }
 
+/// A named choice's `Display` (its name) and `FromStr` (through [`by_name`], any letter case):
+/// `named_choice!(View, "view", View::ALL.map(|v| (v.name(), v)))`. The type has a `name()`.
+macro_rules! named_choice {
+    ($ty:ty, $what:literal, $named:expr) => {
+        impl std::fmt::Display for $ty {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl std::str::FromStr for $ty {
+            type Err = $crate::Error;
+            fn from_str(s: &str) -> $crate::Result<Self> {
+                $crate::error::by_name($what, s, $named)
+            }
+        }
+    };
+}
+pub(crate) use named_choice;
+
 impl Error {
     pub fn input(path: impl AsRef<Path>, problem: impl Into<String>) -> Self {
         Error::Input { path: path.as_ref().to_path_buf(), problem: problem.into() }

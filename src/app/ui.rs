@@ -96,6 +96,17 @@ fn slider(ui: &mut egui::Ui, value: &mut f32, range: std::ops::RangeInclusive<f3
 }
 
 /// Draws the panel; returns what the application has to do.
+/// A path typed into a text field and a "load" button: the path when the button is pressed on a
+/// field that is not blank.
+fn path_field(ui: &mut egui::Ui, text: &mut String, hint: &str) -> Option<PathBuf> {
+    ui.horizontal(|ui| {
+        ui.add(egui::TextEdit::singleline(text).hint_text(hint).desired_width(PANEL_WIDTH - 80.0));
+        let pressed = ui.button("load").clicked();
+        (pressed && !text.trim().is_empty()).then(|| PathBuf::from(text.trim()))
+    })
+    .inner
+}
+
 pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::Panel::left("controls").exact_size(PANEL_WIDTH).resizable(false).show(ui, |ui| {
@@ -227,27 +238,13 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             if combo.response.clicked() {
                 state.sky_folders = super::loader::skybox_folders();
             }
-            ui.horizontal(|ui| {
-                ui.add(
-                    egui::TextEdit::singleline(&mut state.sky_path)
-                        .hint_text("sky folder or panorama.hdr")
-                        .desired_width(PANEL_WIDTH - 80.0),
-                );
-                if ui.button("load").clicked() && !state.sky_path.trim().is_empty() {
-                    actions.push(Action::LoadSky(PathBuf::from(state.sky_path.trim())));
-                }
-            });
+            if let Some(path) = path_field(ui, &mut state.sky_path, "sky folder or panorama.hdr") {
+                actions.push(Action::LoadSky(path));
+            }
             ui.label("Model: .obj, .gltf, .glb (or drop one on the window)");
-            ui.horizontal(|ui| {
-                ui.add(
-                    egui::TextEdit::singleline(&mut state.model_path)
-                        .hint_text("path/to/model.obj or .glb")
-                        .desired_width(PANEL_WIDTH - 80.0),
-                );
-                if ui.button("load").clicked() && !state.model_path.trim().is_empty() {
-                    actions.push(Action::LoadModel(PathBuf::from(state.model_path.trim())));
-                }
-            });
+            if let Some(path) = path_field(ui, &mut state.model_path, "path/to/model.obj or .glb") {
+                actions.push(Action::LoadModel(path));
+            }
             ui.separator();
 
             let mut fly = state.fly;

@@ -18,22 +18,22 @@ pub const THICKNESS_RADII: f32 = 1.0;
 pub const DEFAULT_BIAS: f32 = 0.03;
 
 /// The sampling pass's variant and parameters.
+///
+/// The counts: `samples` per pixel for the points and classic variants ([`SAMPLES`]); for the
+/// march, `slices` (directions around the view vector) per pixel ([`SLICES`]) and `steps` along
+/// each side of a slice ([`STEPS`]), half within the radius and half beyond. The lengths, in model
+/// units, `None` for the scene's default: the sampling `radius` (a tenth of the scene's bounding
+/// radius); the march's `reach` for what blocks the sky and sends the bounce ([`REACH_RADII`]
+/// default radii) and the `thickness` a surface in the depth buffer is taken to have
+/// ([`THICKNESS_RADII`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sampling {
     pub variant: Variant,
-    /// Samples per pixel of the points and classic variants ([`SAMPLES`]).
     pub samples: usize,
-    /// The march: slices (directions around the view vector) per pixel ([`SLICES`])...
     pub slices: usize,
-    /// ...and steps along each side of a slice ([`STEPS`]); half within the radius, half beyond.
     pub steps: usize,
-    /// Sampling radius in model units; `None` is a tenth of the scene's bounding radius.
     pub radius: Option<f32>,
-    /// How far the march looks for what blocks the sky and sends the bounce, in model units;
-    /// `None` is [`REACH_RADII`] default radii.
     pub reach: Option<f32>,
-    /// How deep a surface in the depth buffer is taken to be, in model units; `None` is
-    /// [`THICKNESS_RADII`] default radii.
     pub thickness: Option<f32>,
     /// Depth bias of the occlusion test, as a fraction of the radius.
     pub bias: f32,
@@ -42,14 +42,14 @@ pub struct Sampling {
     pub depth_pyramid: bool,
 }
 
-/// The lengths a frame samples with, in model units (the view transform does not scale them).
+/// The lengths a frame samples with, in model units (the view transform does not scale them):
+/// the radius, the reach (never below the radius), the thickness, and the depth bias as a length
+/// (the bias fraction times the radius).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lengths {
     pub radius: f32,
-    /// Never below the radius.
     pub reach: f32,
     pub thickness: f32,
-    /// The depth bias as a length: the bias fraction times the radius.
     pub bias: f32,
 }
 

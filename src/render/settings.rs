@@ -4,7 +4,7 @@
 use super::modes::table::Mode;
 use super::sampling::Sampling;
 use super::variant::{CountId, Variant, ACCUMULATE};
-use crate::Result;
+use crate::error::named_choice;
 
 /// What the window shows: the final image or one of the intermediate buffers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -63,12 +63,7 @@ impl View {
     }
 }
 
-impl std::str::FromStr for View {
-    type Err = crate::Error;
-    fn from_str(s: &str) -> Result<Self> {
-        crate::error::by_name("view", s, View::ALL.map(|v| (v.name(), v)))
-    }
-}
+named_choice!(View, "view", View::ALL.map(|v| (v.name(), v)));
 
 /// What lights the senders of SSDO's one bounce besides the point lights: the light a surface
 /// sends to its neighbours is its direct light, and under a sky most of that is sky light.
@@ -109,12 +104,7 @@ impl SenderSky {
     }
 }
 
-impl std::str::FromStr for SenderSky {
-    type Err = crate::Error;
-    fn from_str(s: &str) -> Result<Self> {
-        crate::error::by_name("sender sky", s, SenderSky::ALL.map(|v| (v.name(), v)))
-    }
-}
+named_choice!(SenderSky, "sender sky", SenderSky::ALL.map(|v| (v.name(), v)));
 
 /// What the user can change without reloading anything. The renderer follows changes on the
 /// next frame, rebuilding only what the change affects (a mode or blur switch re-plans).

@@ -5,9 +5,7 @@
 //! and the uniforms read it. Adding a variant is a `Variant` and its row here (and, for a new
 //! sampler or estimator, its shader).
 
-use std::fmt;
-use std::str::FromStr;
-
+use crate::error::named_choice;
 use crate::{Error, Result};
 
 /// Which algorithm family the occlusion, blur and composite passes follow.
@@ -256,19 +254,11 @@ impl VariantDecl {
     }
 }
 
-impl fmt::Display for Variant {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Variant {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        let named = VARIANTS.iter().map(|d| (d.name, d.variant)).chain([("default", Variant::default())]);
-        crate::error::by_name("variant", s, named)
-    }
-}
+named_choice!(
+    Variant,
+    "variant",
+    VARIANTS.iter().map(|d| (d.name, d.variant)).chain([("default", Variant::default())])
+);
 
 #[cfg(test)]
 mod tests {

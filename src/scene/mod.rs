@@ -96,24 +96,31 @@ impl Scene {
 /// Loads the model at `path`, or the default scene. When the default file is not there (the
 /// binary run outside the repository) the same scene is built in memory instead.
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
-    match path {
-        Some(p) => model::load(p),
-        None if Path::new(DEFAULT_MODEL).is_file() => model::load(Path::new(DEFAULT_MODEL)),
-        None => {
-            log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
-            builtin::cornell()
-        }
-    }
+    load_or_builtin(path, DEFAULT_MODEL, model::load, || {
+        log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
+        builtin::cornell()
+    })
 }
 
 /// Loads the sky folder at `path`, or the default sky (built in memory if its folder is absent).
 pub fn load_skybox(path: Option<&Path>) -> Result<Skybox> {
+    load_or_builtin(path, DEFAULT_SKYBOX, Skybox::load, || {
+        log::info!("{DEFAULT_SKYBOX} not found; using the built-in daylight sky");
+        Ok(Skybox::from_fn("day", 128, builtin::day_sky))
+    })
+}
+
+/// `load(path)`; without a path, `load(default)` where the default is there and `builtin()`
+/// where it is not.
+fn load_or_builtin<T>(
+    path: Option<&Path>,
+    default: &str,
+    load: impl FnOnce(&Path) -> Result<T>,
+    builtin: impl FnOnce() -> Result<T>,
+) -> Result<T> {
     match path {
-        Some(p) => Skybox::load(p),
-        None if Path::new(DEFAULT_SKYBOX).is_dir() => Skybox::load(Path::new(DEFAULT_SKYBOX)),
-        None => {
-            log::info!("{DEFAULT_SKYBOX} not found; using the built-in daylight sky");
-            Ok(Skybox::from_fn("day", 128, builtin::day_sky))
-        }
+        Some(p) => load(p),
+        None if Path::new(default).exists() => load(Path::new(default)),
+        None => builtin(),
     }
 }

@@ -2,10 +2,7 @@
 //! Adding a mode is a variant of [`Mode`] and its row here; `Plan::new` then gives it the steps
 //! its two flags ask for.
 
-use std::fmt;
-use std::str::FromStr;
-
-use crate::{Error, Result};
+use crate::error::named_choice;
 
 /// The four render modes of the SSDO course project, in key order (1-4). Everything about a mode
 /// is its row of [`MODES`].
@@ -117,18 +114,7 @@ impl Mode {
     }
 }
 
-impl fmt::Display for Mode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Mode {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        crate::error::by_name("mode", s, MODES.iter().map(|d| (d.name, d.mode)))
-    }
-}
+named_choice!(Mode, "mode", MODES.iter().map(|d| (d.name, d.mode)));
 
 impl ModeDecl {
     /// Whether the mode runs the sampling pass at all.

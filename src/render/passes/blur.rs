@@ -3,7 +3,7 @@
 
 use super::super::variant::Blur;
 use super::occlusion::Outputs;
-use super::state::{flag, PassState, PipelineSpec};
+use super::state::{flag, state_pass, PassState, PipelineSpec};
 use super::{color_attachment, filter_entries, filter_layout};
 use super::{Pass, PassContext, Preparation, Recording};
 use crate::Result;
@@ -14,25 +14,13 @@ struct Key {
     bilateral: bool,
 }
 
-pub struct BlurPass {
-    state: PassState<Key>,
-}
-
-impl BlurPass {
-    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let layout = filter_layout(cx, "blur_layout");
-        Ok(Self { state: PassState::new(cx, "blur", "blur.wgsl", false, layout)? })
-    }
-}
+state_pass!(BlurPass, Key, "blur", "blur.wgsl", sky: false, filter_layout);
 
 impl Pass for BlurPass {
     /// Builds what the plan needs (nothing when it does not blur).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, variant, data, .. } = *p;
-        let Some(input) = targets.raw.output().filter(|_| plan.blur) else {
-            self.state.clear();
-            return;
-        };
+        let Some(input) = self.state.input(targets.raw.output().filter(|_| plan.blur)) else { return };
         let key = Key { outputs: Outputs::of(plan), bilateral: variant.decl().blur == Blur::Bilateral };
         self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
             entry: "fs_main",

@@ -42,8 +42,7 @@ impl LightingPass {
 impl Pass for LightingPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, unused, .. } = *p;
-        if !plan.has(Step::Lighting) {
-            self.state.clear();
+        if !self.state.runs(plan.has(Step::Lighting)) {
             return;
         }
         let views =

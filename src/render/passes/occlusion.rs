@@ -87,8 +87,7 @@ impl Pass for OcclusionPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, variant, unused, .. } = *p;
-        if !plan.decl.runs_sampling() {
-            self.state.clear();
+        if !self.state.runs(plan.decl.runs_sampling()) {
             return;
         }
         let key = Key {

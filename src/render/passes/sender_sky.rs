@@ -7,26 +7,16 @@ use super::super::modes::Step;
 use super::super::targets::DO_FORMAT;
 use super::color_attachment;
 use super::occlusion::{sampling_entries, sampling_layout};
-use super::state::{flag, PassState, PipelineSpec};
+use super::state::{flag, state_pass, PassState, PipelineSpec};
 use super::{Pass, PassContext, Preparation, Recording};
 use crate::Result;
 
-pub struct SenderSkyPass {
-    /// Keyed by whether the far steps read the depth pyramid.
-    state: PassState<bool>,
-}
-
-impl SenderSkyPass {
-    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let layout = sampling_layout(cx, "sender_sky_layout");
-        Ok(Self { state: PassState::new(cx, "sender_sky", "march.wgsl", true, layout)? })
-    }
-}
+// Keyed by whether the far steps read the depth pyramid.
+state_pass!(SenderSkyPass, bool, "sender_sky", "march.wgsl", sky: true, sampling_layout);
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        if !p.plan.has(Step::SenderSky) {
-            self.state.clear();
+        if !self.state.runs(p.plan.has(Step::SenderSky)) {
             return;
         }
         self.state.ensure_fullscreen(device, p.plan.has(Step::DepthPyramid), |pyramid| PipelineSpec {

@@ -14,6 +14,25 @@ pub struct PipelineSpec {
     pub constants: Vec<(&'static str, f64)>,
 }
 
+/// Declares a pass that keeps only its [`PassState`], keyed by `$key`, and its `new`: it loads
+/// `shaders/$shader` and builds group 1 with `$layout(cx, "<name>_layout")`; `sky` says whether
+/// group 2 (the sky) follows. The invoking module imports `PassState`, `PassContext` and `Result`.
+macro_rules! state_pass {
+    ($pass:ident, $key:ty, $name:literal, $shader:literal, sky: $sky:literal, $layout:path) => {
+        pub struct $pass {
+            state: PassState<$key>,
+        }
+
+        impl $pass {
+            pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+                let layout = $layout(cx, concat!($name, "_layout"));
+                Ok(Self { state: PassState::new(cx, $name, $shader, $sky, layout)? })
+            }
+        }
+    };
+}
+pub(super) use state_pass;
+
 /// An override constant's value for a flag.
 pub fn flag(b: bool) -> f64 {
     b as u8 as f64
@@ -118,6 +137,21 @@ impl<K: PartialEq + Copy> PassState<K> {
     pub fn clear(&mut self) {
         self.pipeline.clear();
         self.bind_group = None;
+    }
+
+    /// Whether the plan runs the pass: `runs`, with the pipeline and bind group dropped first
+    /// where it does not. A pass's `prepare` starts `if !self.state.runs(...) { return; }`.
+    pub fn runs(&mut self, runs: bool) -> bool {
+        if !runs {
+            self.clear();
+        }
+        runs
+    }
+
+    /// [`PassState::runs`] for a pass whose input exists only where the plan runs it: the input.
+    pub fn input<T>(&mut self, input: Option<T>) -> Option<T> {
+        self.runs(input.is_some());
+        input
     }
 
     /// Records the pass (a full-screen triangle) into `attachments`, with `frame` as group 0,

@@ -5,29 +5,18 @@
 
 use super::super::modes::Step;
 use super::occlusion::Outputs;
-use super::state::{flag, PassState, PipelineSpec};
+use super::state::{flag, state_pass, PassState, PipelineSpec};
 use super::{color_attachment, filter_entries, filter_layout};
 use super::{Pass, PassContext, Preparation, Recording};
 use crate::Result;
 
-pub struct UpsamplePass {
-    state: PassState<Outputs>,
-}
-
-impl UpsamplePass {
-    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let layout = filter_layout(cx, "upsample_layout");
-        Ok(Self { state: PassState::new(cx, "upsample", "upsample.wgsl", false, layout)? })
-    }
-}
+state_pass!(UpsamplePass, Outputs, "upsample", "upsample.wgsl", sky: false, filter_layout);
 
 impl Pass for UpsamplePass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { targets, plan, data, .. } = *p;
-        let Some(input) = targets.half.as_ref().and_then(|h| h.output()).filter(|_| plan.has(Step::Upsample)) else {
-            self.state.clear();
-            return;
-        };
+        let input = targets.half.as_ref().and_then(|h| h.output()).filter(|_| plan.has(Step::Upsample));
+        let Some(input) = self.state.input(input) else { return };
         self.state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(outputs.format().into())],
