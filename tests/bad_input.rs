@@ -276,7 +276,7 @@ fn every_assimp_test_gltf_loads_or_fails_cleanly() {
     assert!(files.len() >= 40, "expected the assimp glTF files, found {}", files.len());
     let (mut loaded, mut refused) = (0, 0);
     for file in &files {
-        match ssdo::scene::model::load(file) {
+        match ssdo::scene::load_model_file(file) {
             Ok(model) => {
                 assert!(model.triangle_count() > 0 && model.bounds.min.is_finite(), "{}", file.display());
                 loaded += 1;
@@ -291,7 +291,7 @@ fn every_assimp_test_gltf_loads_or_fails_cleanly() {
     }
     println!("assimp glTF files: {loaded} loaded, {refused} refused with one line");
     assert!(loaded >= 20, "the valid samples load: {loaded} of {}", files.len());
-    let message = |name: &str| ssdo::scene::model::load(&root.join(name)).unwrap_err().to_string();
+    let message = |name: &str| ssdo::scene::load_model_file(&root.join(name)).unwrap_err().to_string();
     assert!(message("MissingBin/BoxTextured.gltf").contains("BoxTextured0.bin"));
     assert!(message("draco/2CylinderEngine.gltf").contains("KHR_draco_mesh_compression"));
 }

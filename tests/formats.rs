@@ -9,7 +9,8 @@ use base64::Engine;
 use glam::Vec3;
 use serde_json::json;
 use ssdo::scene::builtin;
-use ssdo::scene::model::{self, Model};
+use ssdo::scene::load_model_file;
+use ssdo::scene::model::Model;
 use ssdo::scene::panorama::Panorama;
 use ssdo::scene::skybox::direction_to_face;
 use ssdo::scene::Skybox;
@@ -245,7 +246,7 @@ fn gltf_with_external_embedded_or_binary_buffers_loads_the_same_quad() {
     let glb = dir.path().join("binary.GLB");
     write_glb(&glb, &quad_gltf(json!({ "byteLength": 144 }), one_node(), plain_material()), &bin);
 
-    let models: Vec<Model> = [&external, &embedded, &glb].iter().map(|p| model::load(p).unwrap()).collect();
+    let models: Vec<Model> = [&external, &embedded, &glb].iter().map(|p| load_model_file(p).unwrap()).collect();
     for (m, path) in models.iter().zip([&external, &embedded, &glb]) {
         assert_eq!(m.triangle_count(), 2, "{}", path.display());
         assert!(m.warnings.is_empty(), "{}: {:?}", path.display(), m.warnings);
@@ -279,7 +280,7 @@ fn gltf_node_transforms_compose_and_a_mirror_keeps_the_outside_out() {
         quad_gltf(json!({ "uri": "quad.bin", "byteLength": 144 }), nodes, plain_material()).to_string(),
     )
     .unwrap();
-    let m = model::load(&path).unwrap();
+    let m = load_model_file(&path).unwrap();
     assert_eq!(m.triangle_count(), 4);
     let xs: Vec<f32> = m.vertices.iter().map(|v| v.position[0]).collect();
     assert!(xs.iter().filter(|&&x| x >= 5.0).count() == 6 && xs.iter().any(|&x| (x - 7.0).abs() < 1e-6), "{xs:?}");
@@ -316,7 +317,7 @@ fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
     };
     let path = dir.path().join("textured.gltf");
     std::fs::write(&path, textured("red.png", 1.0).to_string()).unwrap();
-    let m = model::load(&path).unwrap();
+    let m = load_model_file(&path).unwrap();
     let map = m.materials[0].diffuse_map.as_ref().expect("the base colour texture");
     assert_eq!((map.width, map.height, &map.rgba[..4]), (4, 2, &[255u8, 0, 0, 255][..]));
     // Metallic 1: no diffuse, and the base colour's mean as the specular strength.
@@ -328,7 +329,7 @@ fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
 
     let missing = dir.path().join("missing.gltf");
     std::fs::write(&missing, textured("nowhere.png", 0.0).to_string()).unwrap();
-    let m = model::load(&missing).unwrap();
+    let m = load_model_file(&missing).unwrap();
     let checker = ssdo::scene::model::TextureImage::checker();
     assert_eq!(m.materials[0].diffuse_map.as_ref().unwrap().rgba, checker.rgba);
     assert!(m.warnings.iter().any(|w| w.contains("nowhere.png") && w.contains("checker")), "{:?}", m.warnings);
@@ -365,7 +366,7 @@ fn broken_gltf_files_are_one_line_naming_the_file() {
         (write("zeros.glb", &[0u8; 64]), "zeros.glb: malformed glTF"),
     ];
     for (path, needle) in cases {
-        let message = model::load(&path).unwrap_err().to_string();
+        let message = load_model_file(&path).unwrap_err().to_string();
         assert!(message.contains(needle) && !message.contains('\n'), "{}: {message}", path.display());
     }
 }
@@ -426,7 +427,7 @@ fn gltf_strips_and_fans_are_triangles_and_unread_extensions_are_named() {
         document["accessors"][3]["count"] = json!(4);
         let path = dir.path().join(format!("mode{mode}.glb"));
         write_glb(&path, &document, &bin);
-        let m = model::load(&path).unwrap();
+        let m = load_model_file(&path).unwrap();
         assert_eq!(m.triangle_count(), 2, "mode {mode}");
         for t in 0..2 {
             let [a, b, c] = m.triangle(t);
@@ -438,6 +439,6 @@ fn gltf_strips_and_fans_are_triangles_and_unread_extensions_are_named() {
     document["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
     let path = dir.path().join("draco.glb");
     write_glb(&path, &document, &quad_buffer());
-    let message = model::load(&path).unwrap_err().to_string();
+    let message = load_model_file(&path).unwrap_err().to_string();
     assert!(message.contains("draco.glb: needs the glTF extension(s) KHR_draco_mesh_compression"), "{message}");
 }

@@ -9,7 +9,7 @@ use std::sync::Once;
 
 use proptest::prelude::*;
 use serde_json::json;
-use ssdo::scene::{model::load_obj, Skybox};
+use ssdo::scene::{obj_model::load_obj, Skybox};
 
 thread_local! {
     /// Panics on this thread (the hook runs on the panicking thread; tests run in parallel).
@@ -172,7 +172,7 @@ proptest! {
         let path = dir.path().join(if glb { "fuzz.glb" } else { "fuzz.gltf" });
         std::fs::write(&path, document.to_string()).unwrap();
         let before = panics();
-        if let Ok(model) = ssdo::scene::model::load(&path) {
+        if let Ok(model) = ssdo::scene::load_model_file(&path) {
             prop_assert!(model.vertices.iter().all(|v| v.position.iter().chain(&v.normal).chain(&v.uv).all(|c| c.is_finite())));
             prop_assert!(model.indices.iter().all(|&i| (i as usize) < model.vertices.len()));
         }

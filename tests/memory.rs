@@ -64,7 +64,7 @@ fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
     assert!(std::fs::metadata(dir.path().join("bomb.png")).unwrap().len() < MIB as u64);
     let quad = write_quad(dir.path(), "bomb.png");
 
-    let (model, peak) = peak_during(|| ssdo::scene::model::load_obj_with_budget(&quad, 16 << 20).unwrap());
+    let (model, peak) = peak_during(|| ssdo::scene::obj_model::load_obj_with_budget(&quad, 16 << 20).unwrap());
     let map = model.materials[0].diffuse_map.as_ref().unwrap();
     assert_eq!((map.width, map.height), (2048, 2048), "halved until 16 MiB of RGBA8 holds it");
     assert!(
@@ -95,7 +95,7 @@ fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
     }
     std::fs::write(d.join("m.mtl"), mtl).unwrap();
     std::fs::write(d.join("m.obj"), obj).unwrap();
-    let model = ssdo::scene::model::load_obj_with_budget(&d.join("m.obj"), 2 << 20).unwrap();
+    let model = ssdo::scene::obj_model::load_obj_with_budget(&d.join("m.obj"), 2 << 20).unwrap();
     let sizes: Vec<(u32, u32)> =
         model.materials.iter().filter_map(|m| m.diffuse_map.as_ref()).map(|t| (t.width, t.height)).collect();
     assert_eq!(sizes.len(), 8);
@@ -107,7 +107,7 @@ fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
     big.save(d.join("deep.png")).unwrap();
     drop(big);
     let quad = write_quad(d, "deep.png");
-    let (model, peak) = peak_during(|| ssdo::scene::model::load_obj_with_budget(&quad, 3 << 20).unwrap());
+    let (model, peak) = peak_during(|| ssdo::scene::obj_model::load_obj_with_budget(&quad, 3 << 20).unwrap());
     let map = model.materials[0].diffuse_map.as_ref().unwrap();
     assert_eq!((map.width, map.height), (8, 8), "the checker");
     assert!(
@@ -129,7 +129,7 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     let corners: Vec<String> = (0..1_000_000).map(|i| (i % 9 + 1).to_string()).collect();
     let vertices: String = (0..9).map(|i| format!("v {} 0 {}\n", (i as f32).cos(), (i as f32).sin())).collect();
     std::fs::write(&path, format!("{vertices}f {}\n", corners.join(" "))).unwrap();
-    let (result, peak) = peak_during(|| ssdo::scene::model::load_obj(&path));
+    let (result, peak) = peak_during(|| ssdo::scene::obj_model::load_obj(&path));
     let message = result.unwrap_err().to_string();
     assert!(message.contains("polygon.obj") && message.contains("999998 triangles would need"), "{message}");
     assert!(message.contains("memory budget for geometry") && message.contains("--memory-budget"), "{message}");
@@ -139,7 +139,7 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     // from the same stream, never read whole.
     let zeros = dir.path().join("zeros.obj");
     std::fs::File::create(&zeros).unwrap().set_len(64 << 20).unwrap();
-    let (result, peak) = peak_during(|| ssdo::scene::model::load_obj(&zeros));
+    let (result, peak) = peak_during(|| ssdo::scene::obj_model::load_obj(&zeros));
     let message = result.unwrap_err().to_string();
     assert!(message.contains("zeros.obj") && message.contains("holds only zero bytes"), "{message}");
     assert!(peak < MIB, "a file of zeros was held: {} KiB", peak >> 10);

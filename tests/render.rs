@@ -175,7 +175,7 @@ fn textured_model_renders_its_texture() {
         "mtllib m.mtl\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\nusemtl t\nf 1/1/1 2/2/1 3/3/1 4/4/1\n",
     )
     .unwrap();
-    let model = ssdo::scene::model::load_obj(&dir.path().join("m.obj")).unwrap();
+    let model = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj")).unwrap();
     let scene = Scene::new(model, 0, 1);
     let mut r = renderer(
         &gpu,

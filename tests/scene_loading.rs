@@ -5,7 +5,8 @@ use std::path::Path;
 
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::scene::camera::reverse_z_perspective;
-use ssdo::scene::model::{load_obj, texture_file_name};
+use ssdo::scene::model::texture_file_name;
+use ssdo::scene::obj_model::load_obj;
 use ssdo::scene::skybox::{direction_to_face, face_direction};
 use ssdo::scene::{builtin, lights, Bounds, OrbitCamera, Scene, Skybox};
 use ssdo::Error;
@@ -295,7 +296,7 @@ fn textures_are_shared_by_path_link_and_content_and_kept_within_the_budget() {
     std::fs::write(d.join("m.obj"), obj).unwrap();
 
     // A budget of one 64x64 texture and a half: a.png fits, b.png is halved to fit.
-    let model = ssdo::scene::model::load_obj_with_budget(&d.join("m.obj"), 64 * 64 * 4 * 3 / 2).unwrap();
+    let model = ssdo::scene::obj_model::load_obj_with_budget(&d.join("m.obj"), 64 * 64 * 4 * 3 / 2).unwrap();
     let maps: Vec<_> = model.materials.iter().filter_map(|m| m.diffuse_map.as_ref()).collect();
     assert_eq!(maps.len(), 33);
     let first = &maps[0].rgba;

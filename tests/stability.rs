@@ -11,7 +11,7 @@ use ssdo::gpu::Gpu;
 use ssdo::headless::capture::CAPTURE_FORMAT;
 use ssdo::headless::stats::frame_stats;
 use ssdo::render::{Mode, Renderer, Settings, Variant};
-use ssdo::scene::{builtin, model::load_obj, OrbitCamera, PointLight, Scene, Skybox};
+use ssdo::scene::{builtin, obj_model::load_obj, OrbitCamera, PointLight, Scene, Skybox};
 
 const SIZE: (u32, u32) = (48, 36);
 

@@ -10,7 +10,8 @@ use ssdo::gpu::Gpu;
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
-use ssdo::scene::model::{load_obj, Vertex};
+use ssdo::scene::model::Vertex;
+use ssdo::scene::obj_model::load_obj;
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 
 const W: u32 = 160;

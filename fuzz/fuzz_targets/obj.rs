@@ -15,5 +15,5 @@ fuzz_target!(|data: &[u8]| {
     std::fs::write(dir.path().join("m.obj"), text).unwrap();
     // Errors are fine; panics are what the fuzzer looks for (the loader's catch_unwind aside,
     // run with -Cpanic=abort semantics through libFuzzer's hook).
-    let _ = ssdo::scene::model::load_obj(&dir.path().join("m.obj"));
+    let _ = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj"));
 });

@@ -176,7 +176,7 @@ impl super::Viewer {
     pub(super) fn drop_file(&mut self, path: PathBuf) {
         if path.is_dir() || crate::scene::panorama::is_image(&path) {
             self.act(Action::LoadSky(path));
-        } else if crate::scene::model::is_model(&path) {
+        } else if crate::scene::is_model(&path) {
             self.act(Action::LoadModel(path));
         } else {
             self.panel.say(

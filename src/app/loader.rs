@@ -46,23 +46,29 @@ impl Loader {
         self.next
     }
 
-    pub fn sky(&mut self, path: PathBuf) {
+    /// Runs `load` on a thread of its own; its result arrives with the returned ticket.
+    fn start(&mut self, what: String, load: impl FnOnce() -> Loaded + Send + 'static) -> u64 {
         let (sender, id) = (self.sender.clone(), self.ticket());
-        self.current = Some((format!("sky {}", path.display()), std::time::Instant::now()));
-        self.requested.0 = id;
+        self.current = Some((what, std::time::Instant::now()));
         std::thread::spawn(move || {
+            let _ = sender.send((id, load()));
+        });
+        id
+    }
+
+    pub fn sky(&mut self, path: PathBuf) {
+        let what = format!("sky {}", path.display());
+        self.requested.0 = self.start(what, move || {
             let result = Skybox::load(&path);
-            let _ = sender.send((id, Loaded::Sky(path, result)));
+            Loaded::Sky(path, result)
         });
     }
 
     pub fn model(&mut self, path: PathBuf) {
-        let (sender, id) = (self.sender.clone(), self.ticket());
-        self.current = Some((format!("model {}", path.display()), std::time::Instant::now()));
-        self.requested.1 = id;
-        std::thread::spawn(move || {
-            let result = scene::model::load(&path);
-            let _ = sender.send((id, Loaded::Model(path, result)));
+        let what = format!("model {}", path.display());
+        self.requested.1 = self.start(what, move || {
+            let result = scene::load_model_file(&path);
+            Loaded::Model(path, result)
         });
     }
 

@@ -173,7 +173,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let features = crate::render::SceneFeatures { lights: options.lights };
     Renderer::check_memory(options.size, &Settings::default(), features, true, &Mode::ALL)?;
     let (model, scene_sky) = match &options.model {
-        Some(path) => (scene::model::load(path)?, None),
+        Some(path) => (scene::load_model_file(path)?, None),
         None => scenes::by_name(&options.scene)?,
     };
     let sky_path = options.skybox.clone().or(scene_sky);

@@ -24,8 +24,9 @@ use super::files::read_bounded;
 use super::gltf_data::{
     accessor_fits, image_bytes, read_buffers, Kind, Picture, INDEX_KINDS, MAX_GLTF_BYTES, UV_KINDS, VEC3_KINDS,
 };
-use super::model::{finish, push_triangle, Material, Model, Triangle, Vertex};
+use super::model::{finish, Material, Model, Vertex};
 use super::texture::{TextureCache, TextureImage};
+use super::triangle::{push_triangle, Triangle};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
 

@@ -8,9 +8,11 @@ mod gltf_data;
 pub mod gltf_model;
 pub mod lights;
 pub mod model;
+pub mod obj_model;
 pub mod obj_text;
 pub mod panorama;
 pub mod room;
+mod sky_files;
 pub mod skybox;
 pub mod texture;
 mod triangle;
@@ -93,10 +95,25 @@ impl Scene {
     }
 }
 
+/// Whether `path` names a model file this program loads: `.obj`, `.gltf` or `.glb`.
+pub fn is_model(path: &Path) -> bool {
+    path.extension().is_some_and(|e| ["obj", "gltf", "glb"].iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
+/// Loads a model file by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with
+/// its materials and textures, within the run's memory budget.
+pub fn load_model_file(path: &Path) -> Result<Model> {
+    if gltf_model::is_gltf(path) {
+        gltf_model::load(path, crate::budget::texture_room())
+    } else {
+        obj_model::load_obj(path)
+    }
+}
+
 /// Loads the model at `path`, or the default scene. When the default file is not there (the
 /// binary run outside the repository) the same scene is built in memory instead.
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
-    load_or_builtin(path, DEFAULT_MODEL, model::load, || {
+    load_or_builtin(path, DEFAULT_MODEL, load_model_file, || {
         log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
         builtin::cornell()
     })

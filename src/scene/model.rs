@@ -1,26 +1,13 @@
-//! Models, and Wavefront OBJ + MTL loading through `tobj`, hardened for the files people actually
-//! have (glTF 2.0 is in [`super::gltf`]; both build their triangles with [`push_triangle`]).
-//!
-//! tobj does the parsing; around it we decode Latin-1 and UTF-16 text, pad single-value colour
-//! lines in MTL files (tobj 4.0.5 panics on `Kd 0.5`, which the format allows), check every
-//! attribute array against the vertex count (tobj reports success with arrays of the wrong length
-//! for some malformed faces), drop triangles with out-of-range indices or non-finite positions,
-//! compute normals where they are missing, and resolve texture paths as exporters write them
-//! (Windows backslashes, options before the name, wrong letter case). Anything recoverable is a
-//! warning with a fallback; anything else is one error naming the file and the problem.
+//! Models: triangles grouped by material, as the G-buffer pass draws them, and the end every
+//! loader shares ([`finish`]). The loaders are [`super::obj_model`] (Wavefront OBJ + MTL) and
+//! [`super::gltf_model`] (glTF 2.0); both build their triangles with `triangle::push_triangle`.
 
-use std::cell::RefCell;
 use std::path::Path;
 
 use glam::Vec3;
 
-use super::files::{check_file, other_model_kind, read_bounded};
-use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
-use super::texture::{load_texture, TextureCache};
 pub use super::texture::{texture_file_name, TextureImage};
-pub(super) use super::triangle::{push_triangle, Triangle};
 use super::Bounds;
-use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 /// One vertex as the G-buffer pass reads it.
@@ -185,26 +172,6 @@ impl Model {
     }
 }
 
-/// Whether `path` names a model file this program loads: `.obj`, `.gltf` or `.glb`.
-pub fn is_model(path: &Path) -> bool {
-    path.extension().is_some_and(|e| ["obj", "gltf", "glb"].iter().any(|x| e.eq_ignore_ascii_case(x)))
-}
-
-/// Loads a model by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with its
-/// materials and textures, within the run's memory budget.
-pub fn load(path: &Path) -> Result<Model> {
-    load_with_budget(path, budget::texture_room())
-}
-
-/// [`load`] with another room for textures (decoded RGBA8 bytes for all of them together).
-pub fn load_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
-    if super::gltf_model::is_gltf(path) {
-        super::gltf_model::load(path, texture_room)
-    } else {
-        load_obj_with_budget(path, texture_room)
-    }
-}
-
 /// The end of every loader: the model named after its file from triangles grouped by material
 /// (an error when there are none), brought into f32's range, with the loader's warnings logged
 /// and kept on it.
@@ -228,169 +195,4 @@ pub(super) fn finish(
     Ok(model)
 }
 
-fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
-    match v {
-        Some(c) if c.iter().all(|x| x.is_finite()) => c.map(|x| x.clamp(0.0, 1.0)),
-        _ => default,
-    }
-}
-
-fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, warnings: &mut Vec<String>) -> Material {
-    Material {
-        name: m.name.clone(),
-        diffuse: finite3(m.diffuse, [0.8; 3]),
-        specular: finite3(m.specular, [0.0; 3]),
-        shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
-        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
-        specular_map: m.specular_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
-    }
-}
-
-const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";
-
-/// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
-pub const MAX_OBJ_BYTES: u64 = 1 << 30;
-pub const MAX_MTL_BYTES: u64 = 64 << 20;
-
-/// Loads an OBJ file, its materials and textures within the run's memory budget.
-pub fn load_obj(path: &Path) -> Result<Model> {
-    load_obj_with_budget(path, budget::texture_room())
-}
-
-/// [`load_obj`] with another room for textures (decoded RGBA8 bytes for all of them together).
-pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
-    if let Some(kind) = other_model_kind(path) {
-        return Err(Error::input(
-            path,
-            format!("a {kind} file; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)"),
-        ));
-    }
-    // Sized before it is read: the triangles the faces make, against the geometry's share.
-    check_file(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
-    let counts = count_obj(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
-    if !counts.has_content {
-        let nothing = if counts.zero_bytes > 0 { "holds only zero bytes, no text" } else { "the file is empty" };
-        return Err(Error::input(path, nothing));
-    }
-    if counts.triangles == 0 {
-        return Err(Error::input(path, NO_TRIANGLES));
-    }
-    let file_bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
-    // The file is held three times while it is parsed: as read, as text, and cleaned.
-    let needed = counts.triangles.saturating_mul(budget::BYTES_PER_TRIANGLE).saturating_add(3 * file_bytes);
-    budget::check(Share::Geometry, needed, || format!("{} triangles", counts.triangles))
-        .map_err(|problem| Error::input(path, problem))?;
-    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
-    let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let warnings = RefCell::new(Vec::new());
-
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
-    let material_loader = |mtl: &Path| {
-        let mtl_path = dir.join(mtl.to_string_lossy().replace('\\', "/"));
-        match read_bounded(&mtl_path, MAX_MTL_BYTES) {
-            Ok(bytes) => {
-                let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
-                if dropped > 0 {
-                    warnings.borrow_mut().push(format!(
-                        "{}: ignored {dropped} colour line(s) without one or three numbers",
-                        mtl_path.display()
-                    ));
-                }
-                tobj::load_mtl_buf(&mut text.as_bytes())
-            }
-            Err(e) => {
-                warnings
-                    .borrow_mut()
-                    .push(format!("{}: cannot read material file ({e}); using a default material", mtl_path.display()));
-                Err(tobj::LoadError::OpenFileFailed)
-            }
-        }
-    };
-    // A panic inside the parser is still a bad file, not a crash (the known ones are avoided by
-    // `sanitize_obj`; this is the net under it).
-    let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
-    }))
-    .map_err(|_| Error::input(path, "malformed OBJ (the parser gave up on it)"))?;
-    let (models, materials) = parsed.map_err(|e| Error::input(path, format!("malformed OBJ: {e}")))?;
-
-    let mut warnings = warnings.into_inner();
-    if bad_faces > 0 {
-        warnings.push(format!(
-            "dropped {bad_faces} face(s) with a vertex reference of 0, out of range, or in mixed formats"
-        ));
-    }
-    let tobj_materials = materials.unwrap_or_else(|e| {
-        if e != tobj::LoadError::OpenFileFailed {
-            warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));
-        }
-        Vec::new()
-    });
-    let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
-    let mut cache = TextureCache::plan(&dir, maps.flatten(), texture_room);
-    let mut materials: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &dir, &mut cache, &mut warnings)).collect();
-    let default_material = materials.len();
-    materials.push(Material::plain("default", [0.8; 3]));
-
-    let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); materials.len()];
-    let mut dropped = 0usize;
-    let mut flipped = 0usize;
-    for model in &models {
-        let mesh = &model.mesh;
-        let count = mesh.positions.len() / 3;
-        let has_normals = mesh.normals.len() == 3 * count;
-        let has_uvs = mesh.texcoords.len() == 2 * count;
-        if !mesh.normals.is_empty() && !has_normals {
-            warnings.push(format!("object '{}': normal count does not match vertices; computing normals", model.name));
-        }
-        if !mesh.texcoords.is_empty() && !has_uvs {
-            warnings.push(format!(
-                "object '{}': texture coordinate count does not match vertices; ignoring them",
-                model.name
-            ));
-        }
-        let material = match mesh.material_id {
-            Some(id) if id < default_material => id,
-            Some(id) => {
-                warnings
-                    .push(format!("object '{}': material #{id} is not defined; using a default material", model.name));
-                default_material
-            }
-            None => default_material,
-        };
-        for tri in mesh.indices.chunks_exact(3) {
-            let idx = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
-            if idx.iter().any(|&i| i >= count) {
-                dropped += 1;
-                continue;
-            }
-            let pos = idx.map(|i| Vec3::from_slice(&mesh.positions[3 * i..3 * i + 3]));
-            let normals = has_normals.then(|| idx.map(|i| Vec3::from_slice(&mesh.normals[3 * i..3 * i + 3])));
-            // OBJ puts v = 0 at the bottom of the image; textures start at the top row.
-            let uvs =
-                idx.map(|i| if has_uvs { [mesh.texcoords[2 * i], 1.0 - mesh.texcoords[2 * i + 1]] } else { [0.0; 2] });
-            match push_triangle(pos, normals, uvs, &mut groups[material]) {
-                Triangle::Kept => {}
-                Triangle::Flipped => flipped += 1,
-                Triangle::Dropped => dropped += 1,
-            }
-        }
-    }
-    if dropped > 0 {
-        warnings.push(format!(
-            "dropped {dropped} triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12"
-        ));
-    }
-    if flipped > 0 {
-        warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));
-    }
-    finish(path, materials, groups, warnings)
-}
+pub(super) const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";

@@ -1,5 +1,6 @@
-//! Skyboxes: six square faces of equal size in a folder, or one equirectangular panorama
-//! ([`super::panorama`]), read into linear RGB.
+//! Skyboxes: six square faces of linear RGB texels, with their mips and SH irradiance. They are
+//! read from six images in a folder or one equirectangular panorama (`sky_files.rs`,
+//! [`super::panorama`]).
 //!
 //! Faces are named `right left top bottom front back` (or `px nx py ny pz nz`) for +X, -X, +Y,
 //! -Y, +Z, -Z, with the orientation of the GL/Vulkan cube-map convention (the one most skybox
@@ -7,12 +8,7 @@
 //! and `.exr` are linear already. Non-finite and negative texels are replaced by 0, with a
 //! warning, so the renderer never sees them.
 
-use std::path::Path;
-
 use glam::Vec3;
-
-use super::texture::read_image;
-use crate::{Error, Result};
 
 /// Face names in cube-layer order (+X, -X, +Y, -Y, +Z, -Z): the long name and the short one.
 pub const FACE_NAMES: [(&str, &str); 6] =
@@ -89,7 +85,7 @@ fn srgb_to_linear(c: f32) -> f32 {
 }
 
 /// Whether a decoded image holds linear HDR values (`.hdr`, `.exr`) rather than sRGB ones.
-fn is_hdr(image: &image::DynamicImage) -> bool {
+pub(super) fn is_hdr(image: &image::DynamicImage) -> bool {
     matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_))
 }
 
@@ -116,115 +112,7 @@ pub(super) fn linear_texels(image: image::DynamicImage) -> (Vec<[f32; 3]>, usize
     (texels, bad)
 }
 
-/// The one file for a face, under either of its names and any image extension. Two candidates
-/// (`right.png` and `px.png`, or `right.png` and `right.jpg`) are an error, not a silent choice;
-/// so is a candidate that is not a readable regular file (a folder, a FIFO, a broken link).
-fn find_face(dir: &Path, names: (&str, &str)) -> Result<std::path::PathBuf> {
-    let entries =
-        std::fs::read_dir(dir).map_err(|e| Error::input(dir, format!("cannot read the skybox folder: {e}")))?;
-    let candidates: Vec<std::path::PathBuf> = entries
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            let stem = p.file_stem().map(|s| s.to_string_lossy().to_lowercase());
-            let ext = p.extension().map(|s| s.to_string_lossy().to_lowercase());
-            [names.0, names.1].contains(&stem.as_deref().unwrap_or(""))
-                && EXTENSIONS.contains(&ext.as_deref().unwrap_or(""))
-        })
-        .collect();
-    match candidates.as_slice() {
-        [] => Err(Error::input(
-            dir,
-            format!(
-                "skybox face '{}' is missing (looked for {}.* and {}.* with .png .jpg .hdr .exr)",
-                names.0, names.0, names.1
-            ),
-        )),
-        [one] => match std::fs::metadata(one) {
-            Ok(m) if m.is_file() => Ok(one.clone()),
-            Ok(_) => Err(Error::input(one, format!("skybox face '{}' is not a regular file", names.0))),
-            Err(e) => Err(Error::input(one, format!("skybox face '{}' cannot be read: {e}", names.0))),
-        },
-        several => {
-            let mut list: Vec<String> =
-                several.iter().map(|p| p.file_name().unwrap_or_default().to_string_lossy().into_owned()).collect();
-            list.sort();
-            Err(Error::input(dir, format!("skybox face '{}' is given twice: {}", names.0, list.join(" and "))))
-        }
-    }
-}
-
 impl Skybox {
-    /// Loads a sky: the six faces of folder `path`, the panorama file `path`, or the one panorama in
-    /// folder `path`. An incomplete or inconsistent folder, or a panorama that is not 2:1, is an
-    /// error naming the folder or the file.
-    pub fn load(path: &Path) -> Result<Self> {
-        let dir = path;
-        if dir.is_file() {
-            return super::panorama::load(dir);
-        }
-        if !dir.is_dir() {
-            return Err(Error::input(dir, "skybox not found (a folder of six faces or a panorama image)"));
-        }
-        if let Some(panorama) = super::panorama::in_folder(dir) {
-            return super::panorama::load(&panorama);
-        }
-        let mut faces = Vec::with_capacity(6);
-        let mut warnings = Vec::new();
-        let mut size = 0;
-        let mut kinds = Vec::new();
-        let mut first_face = String::new();
-        for (index, names) in FACE_NAMES.iter().enumerate() {
-            let path = find_face(dir, *names)?;
-            let mut image = read_image(&path, MAX_FACE_SIDE)?;
-            let (w, h) = (image.width(), image.height());
-            if w != h {
-                return Err(Error::input(&path, format!("skybox face is {w}x{h}; faces must be square")));
-            }
-            if index == 0 {
-                size = w;
-                first_face = path.display().to_string();
-            } else if w != size {
-                return Err(Error::input(
-                    &path,
-                    format!(
-                        "skybox face is {w}x{w} but {first_face} is {size}x{size}; all faces must be the same size"
-                    ),
-                ));
-            }
-            // Kept at most STORED_FACE_SIDE² per face, one face at a time, so an 8192² sky takes
-            // what a 2048² one does once loaded (0.3 GB, not 4.8 GB) and fits any adapter.
-            if w > STORED_FACE_SIDE {
-                image = image.resize_exact(STORED_FACE_SIDE, STORED_FACE_SIDE, image::imageops::FilterType::Triangle);
-                if index == 0 {
-                    warnings.push(format!(
-                        "{}: faces of {w}x{w} downscaled to {STORED_FACE_SIDE}x{STORED_FACE_SIDE} (the sky's memory budget)",
-                        dir.display()
-                    ));
-                }
-            }
-            kinds.push(is_hdr(&image));
-            let (texels, bad) = linear_texels(image);
-            if bad > 0 {
-                warnings.push(format!("{}: {bad} non-finite or negative value(s) replaced by 0", path.display()));
-            }
-            faces.push(texels);
-        }
-        if kinds.iter().any(|&k| k != kinds[0]) {
-            let hdr: Vec<&str> = FACE_NAMES.iter().zip(&kinds).filter(|(_, &k)| k).map(|(n, _)| n.0).collect();
-            return Err(Error::input(
-                dir,
-                format!("faces mix HDR ({}) and LDR images; use one kind for all six", hdr.join(", ")),
-            ));
-        }
-        for w in &warnings {
-            log::warn!("{w}");
-        }
-        let name =
-            dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| dir.display().to_string());
-        Ok(Self::from_faces(name, size.min(STORED_FACE_SIDE), faces, warnings))
-    }
-
     /// A sky of six faces of `size`² linear texels, in cube-layer order.
     pub fn from_faces(name: String, size: u32, faces: Vec<Vec<[f32; 3]>>, warnings: Vec<String>) -> Self {
         Self { name, size, faces, warnings, irradiance: [Vec3::ZERO; 9] }.with_irradiance()
