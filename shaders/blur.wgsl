@@ -17,8 +17,8 @@
 @group(1) @binding(4) var input: texture_2d<f32>;
 
 override BILATERAL: bool = true;
-// The input is the one-channel AO target (SSAO) rather than DO + AO.
-override AO_ONLY: bool = false;
+// The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
+override HAS_DO: bool = true;
 
 fn finite4(v: vec4<f32>) -> bool {
     return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
@@ -66,7 +66,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     let depth = load_depth(pixel);
     if depth <= 0.0 {
         // A sky pixel: no occlusion, no DO.
-        return select(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(1.0, 0.0, 0.0, 1.0), AO_ONLY);
+        return select(vec4<f32>(1.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), HAS_DO);
     }
     if !BILATERAL {
         return box_blur(pixel);

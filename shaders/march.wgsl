@@ -34,8 +34,9 @@
 @group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
 #include "common/sky.wgsl"
 
-override COMPUTE_AO: bool = true;
-override COMPUTE_DO: bool = true;
+// What the mode computes: AO, DO, or both (the composite and the tone mapper have the same two).
+override HAS_AO: bool = true;
+override HAS_DO: bool = true;
 // The scene has point lights, so there is a bounce buffer to read.
 override INDIRECT: bool = true;
 // The far steps read the depth pyramid (the plan built one) rather than the depth buffer.
@@ -125,7 +126,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     let near_steps = max(steps / 2u, 1u);
     let far_steps = steps - near_steps;
     // AO alone counts occluders within R only: the far steps would change nothing.
-    let last_step = select(near_steps, steps, COMPUTE_DO);
+    let last_step = select(near_steps, steps, HAS_DO);
     // The tile's slice and step offsets, moved on by this frame's entry of the schedule.
     let tile_noise = occ.rotations[u32(tile.x & 3) + 4u * u32(tile.y & 3)];
     let noise = vec4<f32>(tile_noise.xy, fract(tile_noise.zw + occ.schedule.xy));
@@ -252,10 +253,10 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 mask |= bits;
                 // AO counts the near steps only (within R of the receiver), so AO alone (which
                 // skips the far steps) and AO beside DO are the same.
-                if COMPUTE_AO && i < near_steps && dot(front, front) < radius * radius {
+                if HAS_AO && i < near_steps && dot(front, front) < radius * radius {
                     near_mask |= bits;
                 }
-                if COMPUTE_DO && INDIRECT && fresh != 0u {
+                if HAS_DO && INDIRECT && fresh != 0u {
                     let n_s = load_normal(texel);
                     // Only a sender facing the receiver sends its light this way.
                     if dot(n_s, -front) > 0.0 {
@@ -277,10 +278,10 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             let w = weights[g];
             let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
             total += w;
-            if COMPUTE_AO {
+            if HAS_AO {
                 occluded_near += w * f32(countOneBits(near_mask & group_bits)) / f32(PER_GROUP);
             }
-            if COMPUTE_DO {
+            if HAS_DO {
                 let visible = f32(countOneBits(~mask & group_bits)) / f32(PER_GROUP);
                 open += w * visible;
                 if visible > 0.0 {
@@ -317,10 +318,10 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate_pixel(in.position.xy);
-    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, COMPUTE_AO));
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, HAS_AO));
 }
 
-// The sender-sky pass (built with COMPUTE_DO on, COMPUTE_AO and INDIRECT off): at half
+// The sender-sky pass (built with HAS_DO on, HAS_AO and INDIRECT off): at half
 // resolution, the sky the full-resolution pixel (2x, 2y) sees through one slice — rgb the visible
 // sky light (E/π, pre-exposed), a the open share — which the lighting pass turns into the light
 // that surface sends in the bounce. One slice is noisy per sender; the gather averages many.

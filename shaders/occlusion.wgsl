@@ -38,8 +38,9 @@
 // the level already matches a sample's solid angle, and bilinear costs half of trilinear.
 #include "common/sky.wgsl"
 
-override COMPUTE_AO: bool = true;
-override COMPUTE_DO: bool = true;
+// What the mode computes: AO, DO, or both (the composite and the tone mapper have the same two).
+override HAS_AO: bool = true;
+override HAS_DO: bool = true;
 // The scene has point lights, so there is a bounce buffer to read.
 override INDIRECT: bool = true;
 override CLASSIC: bool = false;
@@ -125,7 +126,7 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
         if CLASSIC {
             let behind_ao = select(0.0, 1.0, has_surface && s.z >= q.z + bias);
             occluded += behind_ao * range;
-            if COMPUTE_DO {
+            if HAS_DO {
                 if has_surface && s.z >= q.z {
                     if INDIRECT {
                         let n_s = load_normal(texel);
@@ -141,7 +142,7 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
             let o = select(0.0, range, has_surface && s.z > q.z + bias);
             occluded += o * cos_r;
             weight += cos_r;
-            if COMPUTE_DO {
+            if HAS_DO {
                 let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
                 direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
                 if INDIRECT && o > 0.0 {
@@ -177,9 +178,9 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
     return vec4<f32>(evaluate(sampled_position(in.position.xy), vec2<i32>(in.position.xy)).ao, 0.0, 0.0, 1.0);
 }
 
-// SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when COMPUTE_AO is off).
+// SSDO and SSAO+SSDO: DO in rgb, AO in a (1 when HAS_AO is off).
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate(sampled_position(in.position.xy), vec2<i32>(in.position.xy));
-    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, COMPUTE_AO));
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, HAS_AO));
 }

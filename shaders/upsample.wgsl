@@ -16,13 +16,13 @@
 // The sampling pass's half-resolution output: AO (r) or DO + AO (rgb + a).
 @group(1) @binding(4) var half_input: texture_2d<f32>;
 
-// The input is the one-channel AO target (SSAO) rather than DO + AO.
-override AO_ONLY: bool = false;
+// The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
+override HAS_DO: bool = true;
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     let pixel = vec2<i32>(in.position.xy);
-    let unoccluded = select(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(1.0, 0.0, 0.0, 1.0), AO_ONLY);
+    let unoccluded = select(vec4<f32>(1.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), HAS_DO);
     let depth = load_depth(pixel);
     if depth <= 0.0 {
         return unoccluded;

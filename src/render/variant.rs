@@ -212,11 +212,6 @@ impl Variant {
     pub fn name(self) -> &'static str {
         self.decl().name
     }
-
-    /// Whether the sampling pass marches slices × steps rather than taking point samples.
-    pub fn marches(self) -> bool {
-        self.decl().sampler == Sampler::March
-    }
 }
 
 impl VariantDecl {

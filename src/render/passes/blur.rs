@@ -25,7 +25,7 @@ impl Pass for BlurPass {
         self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(key.outputs.format().into())],
-            constants: vec![("BILATERAL", flag(key.bilateral)), ("AO_ONLY", flag(!key.outputs.directional))],
+            constants: vec![("BILATERAL", flag(key.bilateral)), ("HAS_DO", flag(key.outputs.directional))],
         });
         self.state.bind(device, &filter_entries(targets, data, &input.view));
     }

@@ -56,8 +56,8 @@ impl Key {
         let f = |b: bool| b as u8 as f64;
         let o = self.outputs;
         let mut list = vec![
-            ("COMPUTE_AO", f(o.ao)),
-            ("COMPUTE_DO", f(o.directional)),
+            ("HAS_AO", f(o.ao)),
+            ("HAS_DO", f(o.directional)),
             ("INDIRECT", f(o.indirect)),
             ("HALF_RES", f(self.half)),
         ];

@@ -22,12 +22,7 @@ impl Pass for SenderSkyPass {
         self.state.ensure_fullscreen(device, p.plan.has(Step::DepthPyramid), |pyramid| PipelineSpec {
             entry: "fs_sender",
             targets: vec![Some(DO_FORMAT.into())],
-            constants: vec![
-                ("COMPUTE_AO", 0.0),
-                ("COMPUTE_DO", 1.0),
-                ("INDIRECT", 0.0),
-                ("USE_PYRAMID", flag(pyramid)),
-            ],
+            constants: vec![("HAS_AO", 0.0), ("HAS_DO", 1.0), ("INDIRECT", 0.0), ("USE_PYRAMID", flag(pyramid))],
         });
         // The bounce source is what this pass feeds; it reads none.
         self.state.bind(device, &sampling_entries(p, p.unused));

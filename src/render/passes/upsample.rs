@@ -20,7 +20,7 @@ impl Pass for UpsamplePass {
         self.state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(outputs.format().into())],
-            constants: vec![("AO_ONLY", flag(!outputs.directional))],
+            constants: vec![("HAS_DO", flag(outputs.directional))],
         });
         self.state.bind(device, &filter_entries(targets, data, &input.view));
     }
