@@ -71,6 +71,40 @@ fn ssdo() -> Command {
     command
 }
 
+/// Xvfb on a display it picks itself (`-displayfd`: it writes the number once it accepts
+/// connections), so a display left locked by an earlier run is never reused; stopped with SIGTERM
+/// when dropped, so it removes its lock and socket.
+fn start_xvfb() -> (Xvfb, String) {
+    let mut child = Command::new("Xvfb")
+        // -noreset: Xvfb otherwise resets when its last client leaves, and the second viewer
+        // below can meet a server in the middle of that reset ("failed to open connection").
+        .args(["-displayfd", "1", "-screen", "0", "800x600x24", "-nolisten", "tcp", "-noreset"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("Xvfb starts");
+    let mut number = String::new();
+    let stdout = child.stdout.take().expect("Xvfb's standard output");
+    let server = Xvfb(child);
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut number).expect("Xvfb's display number");
+    let number = number.trim();
+    assert!(!number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()), "Xvfb wrote no display number");
+    (server, format!(":{number}"))
+}
+
+/// Xvfb, stopped with SIGTERM (not `Child::kill`'s SIGKILL, which leaves its lock file behind).
+struct Xvfb(Child);
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let stopped = Command::new("kill").arg(self.0.id().to_string()).status().is_ok_and(|s| s.success());
+        if !stopped {
+            let _ = self.0.kill();
+        }
+        let _ = self.0.wait();
+    }
+}
+
 /// Starts the viewer on `display` at the test's window size, and waits for its window.
 fn start_viewer(display: &str, shots: &Path, extra: &[&str]) -> (Guard, String) {
     let size = format!("{}x{}", WINDOW.0, WINDOW.1);
@@ -106,20 +140,7 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
         assert!(std::env::var("CI").map_or(true, |v| v != "true"), "{}", ssdo::gpu::NO_ADAPTER_HELP);
         return;
     }
-    let display = format!(":{}", 70 + std::process::id() % 200);
-    let socket = format!("/tmp/.X11-unix/X{}", &display[1..]);
-    let _xvfb = Guard(
-        Command::new("Xvfb")
-            // -noreset: Xvfb otherwise resets when its last client leaves, and the second viewer
-            // below can meet a server in the middle of that reset ("failed to open connection").
-            .args([display.as_str(), "-screen", "0", "800x600x24", "-nolisten", "tcp", "-noreset"])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("Xvfb starts"),
-    );
-    wait_for("Xvfb", Duration::from_secs(10), || Path::new(&socket).exists());
-
+    let (_xvfb, display) = start_xvfb();
     let shots = tempfile::tempdir().unwrap();
     let (mut viewer, window) = start_viewer(&display, shots.path(), &["--mode", "off"]);
     xdotool(&display, &["windowfocus", "--sync", &window]);
