@@ -82,7 +82,7 @@ fn settings_flags(s: &Settings, flag: &mut impl FnMut(&str, String)) {
         flag("variant", s.sampling.variant.name().into());
     }
     for count in [SAMPLES, SLICES, STEPS] {
-        if s.sampling.count(count.id) != base.sampling.count(count.id) {
+        if s.count(count.id) != base.count(count.id) {
             flag(count.flag, s.count(count.id).to_string());
         }
     }

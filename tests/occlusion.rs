@@ -169,13 +169,8 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let far = project(&camera, Vec3::new(1.8, 0.0, 1.0));
     let ratio = |c: Vec3| c.x / c.y.max(1e-6);
 
-    let mut r = renderer(
-        &gpu,
-        &scene,
-        &sky,
-        (W, H),
-        Settings { sampling: Sampling { samples: 32, ..radius(0.5) }, ..settings(Mode::Ssdo) },
-    );
+    let s = Settings { sampling: Sampling { samples: 32, ..radius(0.5) }, ..settings(Mode::Ssdo) };
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
     let b = render(&gpu, &mut r, &camera, true);
     // The sky is black: DO is the indirect bounce alone.
     let indirect = mean_rgb(&b.directional.unwrap(), near, 1);
@@ -398,13 +393,8 @@ fn blur_does_not_bleed_across_silhouettes() {
     let scene = Scene::new(model, 0, 1);
     let sky = Skybox::constant(Vec3::ONE);
     let camera = looking(v(0.0, 0.5, 0.0), 0.0, 30.0, 4.0);
-    let mut r = renderer(
-        &gpu,
-        &scene,
-        &sky,
-        (W, H),
-        Settings { sampling: Sampling { samples: 32, ..radius(0.3) }, ..settings(Mode::Ssao) },
-    );
+    let s = Settings { sampling: Sampling { samples: 32, ..radius(0.3) }, ..settings(Mode::Ssao) };
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
     let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
     // The top face of the block is open: its AO must stay 1 up to the silhouette edge.
     let top_edge = project(&camera, v(0.0, 1.5, -0.45));

@@ -95,7 +95,6 @@ fn slider(ui: &mut egui::Ui, value: &mut f32, range: std::ops::RangeInclusive<f3
     ui.add(egui::Slider::new(value, range).text(text));
 }
 
-/// Draws the panel; returns what the application has to do.
 /// A path typed into a text field and a "load" button: the path when the button is pressed on a
 /// field that is not blank.
 fn path_field(ui: &mut egui::Ui, text: &mut String, hint: &str) -> Option<PathBuf> {
@@ -107,6 +106,7 @@ fn path_field(ui: &mut egui::Ui, text: &mut String, hint: &str) -> Option<PathBu
     .inner
 }
 
+/// Draws the panel; returns what the application has to do.
 pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::Panel::left("controls").exact_size(PANEL_WIDTH).resizable(false).show(ui, |ui| {

@@ -83,10 +83,9 @@ pub(super) fn image_bytes(image: &::gltf::Image, dir: &Path, buffers: &[Vec<u8>]
             (PathBuf::from(format!("image {}", image.index())), read_uri(uri, dir))
         }
         ::gltf::image::Source::View { view, .. } => {
-            let range = view.offset()..view.offset() + view.length();
-            let bytes = buffers
-                .get(view.buffer().index())
-                .and_then(|b| b.get(range))
+            // The offsets are the file's own numbers: their sum may overflow.
+            let bytes = (view.offset().checked_add(view.length()))
+                .and_then(|end| buffers.get(view.buffer().index())?.get(view.offset()..end))
                 .map(<[u8]>::to_vec)
                 .ok_or_else(|| format!("image {}'s buffer view lies outside its buffer", image.index()));
             (PathBuf::from(format!("image {}", image.index())), bytes)
