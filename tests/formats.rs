@@ -336,6 +336,31 @@ fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
 }
 
 #[test]
+fn an_image_view_past_the_end_of_every_address_is_a_checker_not_a_panic() {
+    // The view's offset and length are the file's numbers: their sum overflows a usize.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.bin"), quad_buffer()).unwrap();
+    let material = json!({ "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } });
+    let mut document = quad_gltf(json!({ "uri": "quad.bin", "byteLength": 144 }), one_node(), material);
+    document["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({ "buffer": 0, "byteOffset": u64::MAX - 7, "byteLength": 16 }));
+    document["images"] = json!([{ "bufferView": 4, "mimeType": "image/png" }]);
+    document["textures"] = json!([{ "source": 0 }]);
+    let path = dir.path().join("overflow.gltf");
+    std::fs::write(&path, document.to_string()).unwrap();
+    match load_model_file(&path) {
+        Ok(m) => {
+            let checker = ssdo::scene::model::TextureImage::checker();
+            assert_eq!(m.materials[0].diffuse_map.as_ref().unwrap().rgba, checker.rgba);
+            assert!(m.warnings.iter().any(|w| w.contains("outside its buffer")), "{:?}", m.warnings);
+        }
+        Err(e) => assert!(e.to_string().contains("overflow.gltf"), "{e}"),
+    }
+}
+
+#[test]
 fn broken_gltf_files_are_one_line_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let bin = quad_buffer();
