@@ -3,8 +3,8 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     default: 600 s each, targets obj skybox
 # Installs cargo-fuzz (from crates.io) and the nightly toolchain (through rustup) where missing.
 # A crash stops its target and leaves the input in fuzz/artifacts/<target>/; make it a
-# regression test (tests/fuzz_loaders.rs) before fixing it. CI runs the bounded property tests in
-# tests/fuzz_loaders.rs instead of this.
+# regression test (tests/it/cpu/fuzz_loaders.rs) before fixing it. CI runs the bounded property tests in
+# tests/it/cpu/fuzz_loaders.rs instead of this.
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
 seconds="${1:-600}"

@@ -57,8 +57,9 @@ export NODEVICE_SELECT="${NODEVICE_SELECT:-1}"
 echo "scripts/test.sh: the whole suite on wgpu's Vulkan backend"
 WGPU_BACKEND=vulkan cargo test --locked "$@"
 # ...and every test that renders once more on GL (llvmpipe without a GPU), with the same
-# assertions, so a shader or a binding that breaks one backend cannot land.
+# assertions, so a shader or a binding that breaks one backend cannot land. The rendering tests
+# are the `gpu` and `cli` modules of the one test crate, and the two tests with a process of
+# their own: a new rendering test runs on both backends by where it lives.
 echo "scripts/test.sh: the rendering tests again on wgpu's GL backend"
-WGPU_BACKEND=gl cargo test --locked --test render --test occlusion --test winding --test reference --test formats \
-    --test stability --test cli --test resources --test display --test viewer --test sky_bounce --test hardening \
-    --test temporal "$@"
+WGPU_BACKEND=gl cargo test --locked --test it "$@" -- gpu:: cli::
+WGPU_BACKEND=gl cargo test --locked --test memory --test resources "$@"

@@ -2,6 +2,7 @@
 //! out, so the peak of a load is a figure the test checks (the GPU driver's own memory is not
 //! counted; `tests/resources.rs` watches that). One test at a time: the counter is the process's.
 
+#[path = "it/common.rs"]
 mod common;
 
 use std::alloc::{GlobalAlloc, Layout, System};

@@ -3,6 +3,7 @@
 //! and the process's resident memory must stay flat (within ±5% of what it was after a warm-up
 //! round of the same work).
 
+#[path = "it/common.rs"]
 mod common;
 
 use glam::Vec3;

@@ -2,7 +2,7 @@
 //! `shaders/common/uniforms.wgsl`, `shaders/common/occlusion_params.wgsl` and
 //! `shaders/gbuffer.wgsl`. Fields are 4-byte scalars, vec3s followed by a scalar, and 16-byte
 //! arrays, padded by hand where WGSL would align, so there is no hidden padding on either side;
-//! `tests/shaders.rs` checks every member's offset against naga's layout of the WGSL.
+//! `tests/it/cpu/shaders.rs` checks every member's offset against naga's layout of the WGSL.
 
 use glam::Mat4;
 

@@ -3,7 +3,7 @@
 //! image, or fails with exit code 3 and one line naming the file and the problem — never a panic
 //! (exit 101), never a half-written output file.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -2,21 +2,14 @@
 //! radius (the sky fraction next to a tall wall, the bounce from a wall beyond R), and its
 //! thickness keeps a thin pole from shadowing the floor behind it.
 
-mod common;
+use crate::common;
 
-use common::{gpu, looking, renderer, shoot};
+use common::{gpu, looking, project, renderer, shoot, H, W};
 use glam::Vec3;
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, Sampling, Settings, Variant, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, Scene, Skybox};
-
-const W: u32 = 160;
-const H: u32 = 120;
-
-fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
-    common::project_to(camera, (W, H), p)
-}
 
 /// Mean DO (rgb) over a 3x3 window.
 fn directional(

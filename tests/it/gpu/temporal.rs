@@ -5,9 +5,9 @@
 //! moving camera never leaves [0, 1] or produces a non-finite value; the history lives exactly as
 //! long as its plan, size and settings; and half-resolution sampling leaves no halo.
 
-mod common;
+use crate::common;
 
-use common::{gpu, looking, renderer, shoot};
+use common::{gpu, looking, renderer, shoot, Furnace, H, W};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::gpu::Gpu;
 use ssdo::headless::capture::{capture_converged, render_frames};
@@ -15,9 +15,6 @@ use ssdo::headless::readback::{read_occlusion, read_rgba16f, read_texture};
 use ssdo::render::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY};
 use ssdo::render::{Mode, Renderer, Sampling, Settings, Step, Variant};
 use ssdo::scene::{self, builtin, OrbitCamera, Scene, Skybox};
-
-const W: u32 = 160;
-const H: u32 = 120;
 
 fn settings(mode: Mode, accumulate: usize) -> Settings {
     Settings { mode, accumulate, ambient: 0.0, ..Settings::default() }
@@ -68,11 +65,8 @@ fn rmse(a: &[f32], b: &[f32], valid: &[bool]) -> f64 {
 #[test]
 fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
     let Some(gpu) = gpu() else { return };
-    let sky_radiance = Vec3::new(0.3, 0.6, 0.9);
-    let albedo = 0.5;
-    let scene = Scene::new(builtin::plane(100.0, [albedo; 3]).unwrap(), 0, 1);
-    let sky = Skybox::constant(sky_radiance);
-    let camera = looking(Vec3::ZERO, 10.0, 40.0, 3.0);
+    let Furnace { scene, sky, radiance: sky_radiance, camera } = Furnace::new();
+    let albedo = Furnace::ALBEDO;
     for variant in [Variant::March, Variant::Points] {
         for blur in [true, false] {
             let sampling = Sampling { variant, slices: 1, samples: 8, radius: Some(0.5), ..Default::default() };
@@ -88,7 +82,7 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
                 assert_eq!(r.frames_accumulated(), frames);
                 let (d, a) = (directional(&gpu, &r), ao(&gpu, &r));
                 let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
-                for (x, y) in [(80, 60), (20, 100), (140, 100)] {
+                for (x, y) in Furnace::PIXELS {
                     let i = y * W as usize + x;
                     let got = d[i];
                     let what = format!("{variant}, blur {blur}, {frames} frames at ({x}, {y})");

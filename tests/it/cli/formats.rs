@@ -1,7 +1,7 @@
 //! The skies and models people have: equirectangular panoramas and glTF 2.0 files, written by
 //! the tests themselves.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

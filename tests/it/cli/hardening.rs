@@ -2,7 +2,7 @@
 //! counts with no sensible upper limit, values that look like flags, models of other kinds or
 //! of scales and offsets 32-bit floats cannot shade, and concurrent runs into one folder.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

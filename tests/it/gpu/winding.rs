@@ -2,9 +2,9 @@
 //! loader turns each triangle to agree with them, and the G-buffer turns every normal to the side
 //! the camera sees, so a mesh renders the same whichever way its faces are wound.
 
-mod common;
+use crate::common;
 
-use common::{gpu, looking, renderer, shoot};
+use common::{gpu, looking, renderer, shoot, H, W};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::read_rgba16f;
@@ -13,9 +13,6 @@ use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::model::Vertex;
 use ssdo::scene::obj_model::load_obj;
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
-
-const W: u32 = 160;
-const H: u32 = 120;
 
 /// How each triangle of the sphere is wound, seen from outside.
 #[derive(Clone, Copy, Debug)]

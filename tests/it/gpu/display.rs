@@ -3,7 +3,7 @@
 //! cubes test depth in their shader. The image must be the one the HDR path makes, and it must
 //! land at the origin it is given in a larger output (the viewer's window beside its panel).
 
-mod common;
+use crate::common;
 
 use common::{gpu, renderer, shoot};
 use ssdo::headless::capture::{output_texture, CAPTURE_FORMAT};
@@ -11,7 +11,7 @@ use ssdo::headless::readback::read_texture;
 use ssdo::render::{Mode, Sampling, Settings, Step, Variant};
 use ssdo::scene::{self, OrbitCamera, Scene};
 
-const SIZE: (u32, u32) = (160, 120);
+const SIZE: (u32, u32) = (common::W, common::H);
 
 fn default_scene() -> (Scene, scene::Skybox, OrbitCamera) {
     let scene = Scene::new(scene::load_model(None).unwrap(), 8, 1);

@@ -1,7 +1,7 @@
 //! The `ssdo` binary as a user runs it: files written atomically, one-line errors with
 //! documented exit codes, never a panic (exit 101).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

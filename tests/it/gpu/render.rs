@@ -2,9 +2,9 @@
 //! were wrong: the G-buffer's normals and depth, the point lights, the sky, the light cubes,
 //! tone mapping and the padded readback.
 
-mod common;
+use crate::common;
 
-use common::{displayed, gpu, looking, mean_rgb, renderer, shoot};
+use common::{displayed, gpu, looking, mean_rgb, renderer, shoot, H, W};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
 use ssdo::render::{Settings, Step};
@@ -19,7 +19,7 @@ fn plane_normal_and_depth_come_out_as_expected() {
     let Some(gpu) = gpu() else { return };
     let scene = Scene::new(builtin::plane(10.0, builtin::WHITE).unwrap(), 0, 1);
     let sky = Skybox::constant(Vec3::splat(0.5));
-    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
     let camera = looking(Vec3::ZERO, 20.0, 30.0, 4.0);
     shoot(&gpu, &mut r, &camera);
     let normals = read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
@@ -70,7 +70,7 @@ fn background_shows_the_sky_through_tone_mapping() {
     let radiance = Vec3::new(0.1, 0.3, 0.9);
     let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
     let sky = Skybox::constant(radiance);
-    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
     // Looking up: only sky in view.
     let image = shoot(&gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0));
     let got = mean_rgb(&image, 10, 10, 140, 100);
@@ -89,7 +89,7 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     let intensity = 1.0;
     scene.lights = vec![PointLight { position: Vec3::new(-1.0, 0.3, 0.0), color: Vec3::new(1.0, 0.0, 0.0), intensity }];
     let sky = Skybox::constant(Vec3::ZERO);
-    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings { ambient: 0.2, ..Settings::default() });
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { ambient: 0.2, ..Settings::default() });
     assert!(r.plan().has(Step::LightCubes));
     // Straight down on the plane: x maps to columns, the light sits left of centre.
     let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
@@ -124,7 +124,7 @@ fn light_cubes_show_their_colour_and_leave_with_the_lights() {
     scene.lights =
         vec![PointLight { position: Vec3::new(0.0, 1.0, 0.0), color: Vec3::new(0.0, 1.0, 0.0), intensity: 0.01 }];
     let sky = Skybox::constant(Vec3::ZERO);
-    let mut r = renderer(&gpu, &scene, &sky, (160, 120), no_ambient());
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), no_ambient());
     let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
     let image = shoot(&gpu, &mut r, &camera);
     let centre = mean_rgb(&image, 78, 58, 4, 4);
@@ -142,7 +142,7 @@ fn default_scene_renders_finite_with_every_part_visible() {
     let model = ssdo::scene::load_model(None).unwrap();
     let scene = Scene::new(model, 8, 1);
     let sky = ssdo::scene::load_skybox(None).unwrap();
-    let mut r = renderer(&gpu, &scene, &sky, (160, 120), Settings::default());
+    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
     let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
     let image = shoot(&gpu, &mut r, &camera);
     let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
@@ -177,13 +177,8 @@ fn textured_model_renders_its_texture() {
     .unwrap();
     let model = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj")).unwrap();
     let scene = Scene::new(model, 0, 1);
-    let mut r = renderer(
-        &gpu,
-        &scene,
-        &Skybox::constant(Vec3::ZERO),
-        (160, 120),
-        Settings { ambient: 1.0, ..Settings::default() },
-    );
+    let mut r =
+        renderer(&gpu, &scene, &Skybox::constant(Vec3::ZERO), (W, H), Settings { ambient: 1.0, ..Settings::default() });
     // Looking down with -Z up on screen: texel centres (u, v = 0.25, 0.75) land 24 px from the
     // middle of the 160x120 view.
     let image = shoot(&gpu, &mut r, &looking(Vec3::ZERO, 0.0, 89.9, 3.0));

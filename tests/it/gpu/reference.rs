@@ -1,6 +1,6 @@
 //! The CPU reference against answers known in closed form, and the GPU against the reference.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};

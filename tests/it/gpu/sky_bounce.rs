@@ -3,9 +3,9 @@
 //! sends the closed-form bounce, on the GPU and in the ray-traced truth; the point lights' part
 //! is what it was.
 
-mod common;
+use crate::common;
 
-use common::{gpu, looking, red_wall_scene, renderer, shoot};
+use common::{gpu, looking, project, red_wall_scene, renderer, shoot, H, W};
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::gpu::Gpu;
@@ -14,13 +14,6 @@ use ssdo::reference::{ReferenceScene, TraceSettings};
 use ssdo::render::{Mode, Sampling, SenderSky, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{LightRig, Material, OrbitCamera, Scene, Skybox};
-
-const W: u32 = 160;
-const H: u32 = 120;
-
-fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
-    common::project_to(camera, (W, H), p)
-}
 
 /// Mean rgb over a (2r+1)² window of a row-major buffer.
 fn window(buffer: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {

@@ -4,7 +4,7 @@
 //! (the `cli` column). Every case renders the frames it averages (16 by default) before it is
 //! read; accumulation also runs at 1x1 and odd sizes, turning the camera and resizing mid-average.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use ssdo::gpu::Gpu;

@@ -9,15 +9,59 @@ use ssdo::render::{Renderer, Settings};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};
 
-/// A headless device, or `None` (test skipped) when there is no adapter outside CI. Under
-/// `CI=true` a missing adapter fails the test with the install hint.
-pub fn gpu() -> Option<Gpu> {
-    match Gpu::headless() {
+/// The process's headless device, or `None` (test skipped) when there is no adapter outside CI.
+/// Under `CI=true` a missing adapter fails the test with the install hint.
+///
+/// One device serves every test of the process: the adapter is probed once, and lavapipe is
+/// never asked to open devices from several threads at once. Sharing is safe with the error
+/// checks because no test provokes a GPU error on purpose (sizes beyond the adapter are refused
+/// before anything reaches wgpu): any error in the shared log is a failure, though
+/// [`Gpu::check`] may report it from the test that looks next rather than the one that caused
+/// it. Two tests keep the old isolation by living in their own processes (tests/memory.rs and
+/// tests/resources.rs).
+pub fn gpu() -> Option<&'static Gpu> {
+    static GPU: std::sync::OnceLock<Option<Gpu>> = std::sync::OnceLock::new();
+    GPU.get_or_init(|| match Gpu::headless() {
         Ok(gpu) => Some(gpu),
         Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => panic!("{e}\n{NO_ADAPTER_HELP}"),
         Err(e) => {
             eprintln!("skipping: {e}");
             None
+        }
+    })
+    .as_ref()
+}
+
+/// The size the rendering tests draw at: small enough for a CPU rasteriser.
+pub const W: u32 = 160;
+pub const H: u32 = 120;
+
+/// Pixel coordinates of world point `p` in a test-sized image from `camera`.
+pub fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
+    project_to(camera, (W, H), p)
+}
+
+/// The white-furnace set-up: an open plane of albedo `ALBEDO` under a constant sky of
+/// `radiance`, seen from above; every receiver should return albedo × sky.
+pub struct Furnace {
+    pub scene: Scene,
+    pub sky: Skybox,
+    pub radiance: Vec3,
+    pub camera: OrbitCamera,
+}
+
+impl Furnace {
+    pub const ALBEDO: f32 = 0.5;
+    /// Pixels of a test-sized image that see the plane: the centre and two lower corners.
+    pub const PIXELS: [(usize, usize); 3] = [(80, 60), (20, 100), (140, 100)];
+
+    pub fn new() -> Self {
+        let radiance = Vec3::new(0.3, 0.6, 0.9);
+        Self {
+            scene: Scene::new(ssdo::scene::builtin::plane(100.0, [Self::ALBEDO; 3]).unwrap(), 0, 1),
+            sky: Skybox::constant(radiance),
+            radiance,
+            camera: looking(Vec3::ZERO, 10.0, 40.0, 3.0),
         }
     }
 }
@@ -111,12 +155,8 @@ pub fn refused(args: &[&str], code: i32, needle: &str) -> String {
     line
 }
 
-/// Whether there is an adapter to render on; under `CI=true` a missing one fails the test with
-/// the install hint.
+/// Whether there is an adapter to render on (the binary opens its own); under `CI=true` a
+/// missing one fails the test with the install hint.
 pub fn has_adapter() -> bool {
-    let ok = ssdo::gpu::Gpu::headless().is_ok();
-    if !ok && std::env::var("CI").is_ok_and(|v| v == "true") {
-        panic!("{}", NO_ADAPTER_HELP);
-    }
-    ok
+    gpu().is_some()
 }

@@ -2,18 +2,15 @@
 //! furnace, AO of an open plane and of a corner, colour bleeding, directional sky light, one
 //! pass for Both, the plan of each mode, and finite buffers everywhere.
 
-mod common;
+use crate::common;
 
-use common::{gpu, looking, red_wall_scene, renderer, shoot};
+use common::{gpu, looking, project, red_wall_scene, renderer, shoot, Furnace, H, W};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, OcclusionValues};
 use ssdo::render::{Mode, Renderer, Sampling, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
-
-const W: u32 = 160;
-const H: u32 = 120;
 
 /// Full resolution: these tests check the estimators at each pixel (tests/temporal.rs checks the
 /// half-resolution upsample, and the white furnace with it).
@@ -27,10 +24,6 @@ fn radius(r: f32) -> Sampling {
 }
 
 /// Pixel coordinates of world point `p`.
-fn project(camera: &OrbitCamera, p: Vec3) -> (usize, usize) {
-    common::project_to(camera, (W, H), p)
-}
-
 fn at<T: Copy>(buffer: &[T], (x, y): (usize, usize)) -> T {
     buffer[y * W as usize + x]
 }
@@ -74,11 +67,8 @@ fn open_plane(albedo: f32) -> Scene {
 #[test]
 fn white_furnace_open_plane_returns_albedo_times_sky() {
     let Some(gpu) = gpu() else { return };
-    let sky_radiance = Vec3::new(0.3, 0.6, 0.9);
-    let albedo = 0.5;
-    let scene = open_plane(albedo);
-    let sky = Skybox::constant(sky_radiance);
-    let camera = looking(Vec3::ZERO, 10.0, 40.0, 3.0);
+    let Furnace { scene, sky, radiance: sky_radiance, camera } = Furnace::new();
+    let albedo = Furnace::ALBEDO;
     for (variant, blur, samples) in [false, true].into_iter().flat_map(|blur| {
         [(Variant::Points, 4), (Variant::Points, 16), (Variant::Points, 64), (Variant::March, 1), (Variant::March, 4)]
             .map(|(v, n)| (v, blur, n))
@@ -90,7 +80,7 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             let b = render(&gpu, &mut r, &camera, true);
             let direct = b.directional.unwrap();
-            for p in [(80, 60), (20, 100), (140, 100)] {
+            for p in Furnace::PIXELS {
                 let got = rgb(at(&direct, p));
                 assert!(
                     (got / sky_radiance - 1.0).abs().max_element() < 0.01,
@@ -110,7 +100,7 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             let hdr = render(&gpu, &mut r, &camera, true).hdr;
             let want = albedo * (sky_radiance + Vec3::splat(ambient));
-            for p in [(80, 60), (20, 100), (140, 100)] {
+            for p in Furnace::PIXELS {
                 let got = rgb(at(&hdr, p));
                 assert!((got / want - 1.0).abs().max_element() < 0.01, "{mode}, A {ambient}: {got} vs ρ·(L+A) {want}");
             }

@@ -1,7 +1,7 @@
 //! The same frames on wgpu's Vulkan and OpenGL backends (lavapipe and llvmpipe without a GPU):
 //! a machine without a Vulkan driver renders through GL, and must see the same image.
 
-mod common;
+use crate::common;
 
 use ssdo::gpu::Gpu;
 use ssdo::headless::capture::capture;
