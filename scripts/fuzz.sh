@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of the loaders with cargo-fuzz (libFuzzer), on the nightly toolchain.
-#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     default: 600 s each, targets obj skybox
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     default: 600 s each, every target:
+#   obj (OBJ + MTL), skybox (six faces), gltf (.gltf + a buffer + an image), glb, panorama
 # Installs cargo-fuzz (from crates.io) and the nightly toolchain (through rustup) where missing.
 # A crash stops its target and leaves the input in fuzz/artifacts/<target>/; make it a
 # regression test (tests/it/cpu/fuzz_loaders.rs) before fixing it. CI runs the bounded property tests in
@@ -10,7 +11,7 @@ cd "$(dirname "$0")/../fuzz"
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj skybox)
+[ ${#targets[@]} -gt 0 ] || targets=(obj skybox gltf glb panorama)
 
 if ! rustup toolchain list | grep -q '^nightly'; then
     echo "scripts/fuzz.sh: installing the nightly toolchain"
@@ -26,7 +27,10 @@ for target in "${targets[@]}"; do
     mkdir -p "corpus/$target" "artifacts/$target"
     echo "scripts/fuzz.sh: $target for ${seconds} s"
     # -rss_limit_mb: a loader that allocates without bound is a finding too.
-    if ! cargo +nightly fuzz run "$target" "corpus/$target" -- \
+    # fuzz/seeds/<target> holds valid inputs to start from (read, never written).
+    seeds=()
+    [ -d "seeds/$target" ] && seeds=("seeds/$target")
+    if ! cargo +nightly fuzz run "$target" "corpus/$target" "${seeds[@]}" -- \
         -max_total_time="$seconds" -rss_limit_mb=4096 -print_final_stats=1 2>&1 | tee "artifacts/$target/last_run.log" \
         | grep -E "^(#[0-9]+.*(DONE|pulse|NEW)|stat::|==.*ERROR|SUMMARY|artifact_prefix|Test unit written)" | tail -n 40; then
         status=1

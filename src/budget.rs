@@ -27,20 +27,24 @@ pub const BYTES_PER_TRIANGLE: u64 = 640;
 /// The parts of the budget, each a fraction of the whole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Share {
-    /// The model: parsed text, triangles and vertex buffers (a half).
+    /// The model: parsed text, triangles and vertex buffers (three eighths).
     Geometry,
     /// Screen-sized render targets and readback buffers (five sixteenths).
     Targets,
     /// Material maps, decoded and on the GPU (an eighth; see [`texture_room`]).
     Textures,
+    /// The sky: its files decoded, its faces and their mips (three sixteenths: one 16384x8192
+    /// HDR panorama is 2.1 GiB while it loads).
+    Sky,
 }
 
 impl Share {
     fn fraction(self) -> (u64, u64) {
         match self {
-            Share::Geometry => (1, 2),
+            Share::Geometry => (3, 8),
             Share::Targets => (5, 16),
             Share::Textures => (1, 8),
+            Share::Sky => (3, 16),
         }
     }
 
@@ -49,6 +53,7 @@ impl Share {
             Share::Geometry => "geometry",
             Share::Targets => "render targets",
             Share::Textures => "textures",
+            Share::Sky => "the sky",
         }
     }
 }
@@ -86,10 +91,33 @@ pub fn texture_room() -> u64 {
     share(Share::Textures) / 7 * 3
 }
 
+/// The smallest room a transient decode is allowed whatever the shares (a 4096² RGBA8 picture):
+/// a small budget still loads an ordinary texture or sky, then keeps less of it.
+pub const MIN_TRANSIENT: u64 = 64 << 20;
+
+/// The bytes a share may hold for a moment while its files are read and decoded: the share,
+/// or [`MIN_TRANSIENT`] where that is more.
+pub fn transient_room(share_of: Share) -> u64 {
+    share(share_of).max(MIN_TRANSIENT)
+}
+
 /// The problem, in one line, when `bytes` of `what` would not fit in its share (the caller
 /// names the file or setting it comes from).
 pub fn check(share_of: Share, bytes: u64, what: impl FnOnce() -> String) -> std::result::Result<(), String> {
-    let room = share(share_of);
+    check_within(share(share_of), share_of, bytes, what)
+}
+
+/// [`check`] against the share's [`transient_room`]: for what is held only while it is decoded.
+pub fn check_transient(share_of: Share, bytes: u64, what: impl FnOnce() -> String) -> std::result::Result<(), String> {
+    check_within(transient_room(share_of), share_of, bytes, what)
+}
+
+fn check_within(
+    room: u64,
+    share_of: Share,
+    bytes: u64,
+    what: impl FnOnce() -> String,
+) -> std::result::Result<(), String> {
     if bytes <= room {
         return Ok(());
     }
@@ -197,7 +225,7 @@ mod tests {
     #[test]
     fn the_machine_has_some_memory_and_shares_add_up_to_at_most_the_whole() {
         assert!(machine_bytes() >= MIN_BUDGET);
-        let parts = [Share::Geometry, Share::Targets, Share::Textures].map(share);
+        let parts = [Share::Geometry, Share::Targets, Share::Textures, Share::Sky].map(share);
         assert!(parts.iter().sum::<u64>() <= total());
     }
 

@@ -16,7 +16,7 @@ pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Option<Command>,
     /// Memory the run may use, such as 4G or 512M [default: half of this machine's memory]
-    #[arg(long, global = true, value_parser = ssdo::budget::parse_size)]
+    #[arg(long, global = true, value_parser = ssdo::budget::parse_size, allow_hyphen_values = true)]
     pub(crate) memory_budget: Option<u64>,
 }
 

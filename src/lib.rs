@@ -9,6 +9,7 @@ pub mod budget;
 pub mod compare;
 pub mod error;
 pub mod gpu;
+pub mod guard;
 pub mod headless;
 pub mod output;
 pub mod reference;

@@ -58,6 +58,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         seed: args.seed,
         out: args.out.clone(),
     };
+    output::check_folder(&args.out)?;
     let gpu = Gpu::headless()?;
     let started = Instant::now();
     let rows = args.size.1 as u64;
@@ -133,6 +134,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     let settings = args.render.settings(modes[0])?;
     let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures { lights: args.scene.lights });
     Renderer::check_memory(size, &settings, features, args.raw || args.stats, &modes)?;
+    output::check_folder(&args.out)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;

@@ -52,17 +52,41 @@ fn process_alive(pid: u32) -> bool {
     !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
 }
 
+/// Whether the process `pid` is a run of this program: alive, and (where /proc says) running the
+/// same executable. A pid the system has given to another program since (pid 1, a shell) owns
+/// no lock of ours.
+fn is_this_program(pid: u32) -> bool {
+    if !process_alive(pid) {
+        return false;
+    }
+    // The executable where the system lets us read it, else the command's name.
+    let exe = |p: &str| std::fs::read_link(format!("/proc/{p}/exe")).ok();
+    let name = |p: &str| std::fs::read_to_string(format!("/proc/{p}/comm")).ok();
+    let pid = pid.to_string();
+    match (exe(&pid), exe("self"), name(&pid), name("self")) {
+        (Some(theirs), Some(ours), _, _) => theirs == ours,
+        (_, _, Some(theirs), Some(ours)) => theirs == ours,
+        // Nothing to tell by (no /proc): it may be ours, so it counts as a run.
+        _ => true,
+    }
+}
+
 /// Holds a folder's commit lock (`.ssdo-tmp.lock`, holding the owner's pid) while a batch renames
 /// its files into place, so batches of concurrent runs land one after the other, each whole.
 struct FolderLock {
     path: PathBuf,
 }
 
+/// How long an empty or garbled lock may be another run's, between its creation and the pid
+/// written into it, before it is taken for a leftover.
+const UNWRITTEN_LOCK: std::time::Duration = std::time::Duration::from_secs(1);
+
 impl FolderLock {
     fn acquire(dir: &Path) -> Result<Self> {
         use std::io::Write;
         let path = dir.join(format!("{TEMPORARY_PREFIX}lock"));
         let started = std::time::Instant::now();
+        let mut said_waiting = false;
         loop {
             match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
                 Ok(mut file) => {
@@ -70,14 +94,35 @@ impl FolderLock {
                     return Ok(Self { path });
                 }
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    // A lock whose owner died (killed mid-commit) is stale: taken over.
-                    let owner = std::fs::read_to_string(&path).ok().and_then(|t| t.trim().parse::<u32>().ok());
-                    if owner.is_some_and(|pid| pid != std::process::id() && !process_alive(pid)) {
+                    let text = std::fs::read_to_string(&path).unwrap_or_default();
+                    let owner = text.trim().parse::<u32>().ok();
+                    let age = std::fs::metadata(&path).and_then(|m| m.modified()).ok().and_then(|t| t.elapsed().ok());
+                    // A lock whose owner died (killed mid-commit), whose pid now belongs to another
+                    // program, or that never got its pid, is a leftover: taken over at once.
+                    let stale = match owner {
+                        Some(pid) => pid != std::process::id() && !is_this_program(pid),
+                        None => age.is_some_and(|a| a > UNWRITTEN_LOCK),
+                    };
+                    if stale {
+                        let whose = owner
+                            .map_or("an empty or garbled lock".into(), |pid| format!("pid {pid} is no run of ssdo"));
+                        log::warn!("{}: took over a stale lock ({whose})", path.display());
                         let _ = std::fs::remove_file(&path);
                         continue;
                     }
+                    if !said_waiting && started.elapsed() > std::time::Duration::from_secs(1) {
+                        said_waiting = true;
+                        log::warn!(
+                            "{}: waiting for another run ({}) to finish writing here",
+                            path.display(),
+                            text.trim()
+                        );
+                    }
                     if started.elapsed() > std::time::Duration::from_secs(60) {
-                        return Err(Error::output(&path, "another run has held this folder's lock for a minute"));
+                        return Err(Error::output(
+                            &path,
+                            format!("another run ({}) has held this folder's lock for a minute", text.trim()),
+                        ));
                     }
                     std::thread::sleep(std::time::Duration::from_millis(5));
                 }
@@ -91,6 +136,27 @@ impl Drop for FolderLock {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.path);
     }
+}
+
+/// Checks, before any work, that `dir` is a folder this run can write into (made if missing):
+/// a dangling link, a file of that name or a folder without write access is refused before
+/// the rendering rather than after it.
+pub fn check_folder(dir: &Path) -> Result<()> {
+    if let Ok(meta) = std::fs::symlink_metadata(dir) {
+        if meta.file_type().is_symlink() && !dir.exists() {
+            let target = std::fs::read_link(dir).map(|t| t.display().to_string()).unwrap_or_default();
+            return Err(Error::output(dir, format!("is a link to {target}, which does not exist")));
+        }
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Error::output(dir, format!("cannot create folder: {e}")))?;
+    if !dir.is_dir() {
+        return Err(Error::output(dir, "is not a folder"));
+    }
+    let (probe, file) =
+        create_temporary(&dir.join("probe")).map_err(|e| Error::output(dir, format!("cannot write: {e}")))?;
+    drop(file);
+    let _ = std::fs::remove_file(probe);
+    Ok(())
 }
 
 /// Files written together or not at all: each is staged under a temporary name, and only

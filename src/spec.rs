@@ -9,6 +9,7 @@ use clap::Args;
 
 use crate::render::sampling::DEFAULT_BIAS;
 use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::scene::camera::{DISTANCE_RADII, REACH_RADII};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
 
@@ -250,7 +251,21 @@ impl SceneArgs {
     }
 
     pub fn camera(&self, scene: &Scene) -> Result<OrbitCamera> {
-        let mut camera = self.layout.camera(&scene.model.bounds);
+        let bounds = &scene.model.bounds;
+        let r = bounds.radius().max(f32::MIN_POSITIVE);
+        // A camera point far from the model leaves 32-bit view maths too few bits for it.
+        let points = [("target", self.target), ("eye", self.eye), ("look-at", self.look_at)];
+        for (flag, p) in points.into_iter().filter_map(|(flag, p)| Some((flag, p?))) {
+            let reach = REACH_RADII * r;
+            if (p - bounds.center()).length() > reach {
+                return Err(Error::Setting(format!(
+                    "--{flag} {}: must lie within {reach:.3e} of the model's centre {} ({REACH_RADII:e} of its bounding radius)",
+                    point(p),
+                    point(bounds.center())
+                )));
+            }
+        }
+        let mut camera = self.layout.camera(bounds);
         if let Some(target) = self.target {
             camera.target = target;
         }
@@ -273,12 +288,13 @@ impl SceneArgs {
         }
         if let Some(distance) = self.distance {
             // From inside the model out to where it is a speck, in the model's own size.
-            let r = scene.model.bounds.radius().max(f32::MIN_POSITIVE);
-            let (lo, hi) = (1e-5 * r, 1e5 * r);
+            let (lo, hi) = (DISTANCE_RADII.0 * r, DISTANCE_RADII.1 * r);
             if !(distance.is_finite() && (lo..=hi).contains(&distance)) {
                 return Err(Error::Setting(format!(
-                    "--distance {}: must be from {lo:.3e} to {hi:.3e} for this model (1e-5 to 1e5 of its bounding radius)",
-                    num(distance)
+                    "--distance {}: must be from {lo:.3e} to {hi:.3e} for this model ({:e} to {:e} of its bounding radius)",
+                    num(distance),
+                    DISTANCE_RADII.0,
+                    DISTANCE_RADII.1
                 )));
             }
             camera.distance = distance;

@@ -125,7 +125,7 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     ssdo::budget::set(256 << 20).unwrap();
     let dir = tempfile::tempdir().unwrap();
     // One polygon of a million corners (a 2 MB file): 999,998 fan triangles, 610 MiB to build,
-    // over the 128 MiB geometry share of a 256 MiB budget.
+    // over the 96 MiB geometry share of a 256 MiB budget.
     let path = dir.path().join("polygon.obj");
     let corners: Vec<String> = (0..1_000_000).map(|i| (i % 9 + 1).to_string()).collect();
     let vertices: String = (0..9).map(|i| format!("v {} 0 {}\n", (i as f32).cos(), (i as f32).sin())).collect();
@@ -151,6 +151,65 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     let error = Renderer::check_memory((8192, 8192), &settings, features, false, &Mode::ALL).unwrap_err();
     assert!(error.to_string().contains("8192x8192 in Off would need"), "{error}");
     Renderer::check_memory((160, 120), &settings, features, true, &Mode::ALL).unwrap();
+    ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
+}
+
+#[test]
+fn every_input_a_gltf_or_a_sky_names_is_sized_before_it_is_read() {
+    use serde_json::json;
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    ssdo::budget::set(64 << 20).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    // Eight images naming one file of 1000 MiB (sparse: nothing to read but its size). Read once
+    // at most, and not at all when it cannot fit: each image is the checker, and the warning
+    // names the budget.
+    let big = dir.path().join("big.png");
+    std::fs::File::create(&big).unwrap().set_len(1000 << 20).unwrap();
+    std::fs::write(dir.path().join("quad.bin"), common::quad_buffer()).unwrap();
+    let textured = json!({ "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } });
+    let buffer = json!({ "uri": "quad.bin", "byteLength": 144 });
+    let mut document = common::quad_gltf(buffer.clone(), common::one_node(), textured.clone());
+    document["materials"] = json!(vec![textured; 8]);
+    document["textures"] = json!((0..8).map(|i| json!({ "source": i })).collect::<Vec<_>>());
+    document["images"] = json!(vec![json!({ "uri": "big.png" }); 8]);
+    let path = dir.path().join("eight.gltf");
+    std::fs::write(&path, document.to_string()).unwrap();
+    let (result, peak) = peak_during(|| ssdo::scene::load_model_file(&path));
+    let model = result.unwrap();
+    assert!(
+        model.warnings.iter().any(|w| w.contains("big.png") && w.contains("memory budget for textures")),
+        "{:?}",
+        model.warnings
+    );
+    assert!(peak < 8 * MIB, "the image file was read: {} MiB held", peak / MIB);
+    // A buffer of 2 GiB (sparse): refused from its declared length before a byte is read.
+    let huge = dir.path().join("huge.bin");
+    std::fs::File::create(&huge).unwrap().set_len(2 << 30).unwrap();
+    let document =
+        common::quad_gltf(json!({ "uri": "huge.bin", "byteLength": 1u64 << 31 }), common::one_node(), json!({}));
+    let path = dir.path().join("huge.gltf");
+    std::fs::write(&path, document.to_string()).unwrap();
+    let (result, peak) = peak_during(|| ssdo::scene::load_model_file(&path));
+    let message = result.unwrap_err().to_string();
+    assert!(
+        message.contains("huge.gltf")
+            && (message.contains("memory budget for geometry") || message.contains("over 1024 MiB")),
+        "{message}"
+    );
+    assert!(peak < 2 * MIB, "{} MiB held", peak / MIB);
+    // A panorama of 16384x8192 (its header, then nothing): refused from the header, within the
+    // sky's share, before its 1.5 GiB decode.
+    let panorama = dir.path().join("big.hdr");
+    std::fs::write(&panorama, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n").unwrap();
+    let (result, peak) = peak_during(|| ssdo::scene::Skybox::load(&panorama));
+    let message = result.unwrap_err().to_string();
+    assert!(message.contains("16384x8192") && message.contains("memory budget for the sky"), "{message}");
+    assert!(peak < 2 * MIB, "{} MiB held", peak / MIB);
+    // The room's built-in figure counts against the same share.
+    let (result, peak) = peak_during(|| ssdo::scene::Layout::Room.load(None, 1.0, Some(10_000_000)));
+    let message = result.unwrap_err().to_string();
+    assert!(message.contains("--triangles 10000000") && message.contains("memory budget for geometry"), "{message}");
+    assert!(peak < MIB, "the figure was built: {} MiB held", peak / MIB);
     ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
 }
 

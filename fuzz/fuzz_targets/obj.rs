@@ -13,7 +13,8 @@ fuzz_target!(|data: &[u8]| {
     text.extend_from_slice(obj);
     std::fs::write(dir.path().join("m.mtl"), mtl).unwrap();
     std::fs::write(dir.path().join("m.obj"), text).unwrap();
-    // Errors are fine; panics are what the fuzzer looks for (the loader's catch_unwind aside,
-    // run with -Cpanic=abort semantics through libFuzzer's hook).
+    // Errors are fine; a panic is a finding, even one the loader's guard catches.
+    let before = ssdo::guard::caught();
     let _ = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj"));
+    assert_eq!(ssdo::guard::caught(), before, "the OBJ loader panicked (caught by its guard)");
 });

@@ -12,5 +12,8 @@ fuzz_target!(|data: &[u8]| {
         let end = ((i + 1) * chunk).min(data.len());
         std::fs::write(dir.path().join(name), &data[start..end]).unwrap();
     }
+    // Errors are fine; a panic is a finding, even one the loader's guard catches.
+    let before = ssdo::guard::caught();
     let _ = ssdo::scene::Skybox::load(dir.path());
+    assert_eq!(ssdo::guard::caught(), before, "the skybox loader panicked (caught by its guard)");
 });

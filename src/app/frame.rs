@@ -190,7 +190,31 @@ impl Viewer {
         input.take()
     }
 
+    /// Presents the pending frame if the GPU has finished it; returns whether none is pending
+    /// now. Never waits: a frame that takes seconds on a software rasteriser leaves the event
+    /// loop free for Escape and the close button.
+    pub(super) fn present_when_done(&mut self) -> bool {
+        if self.pending.is_none() {
+            return true;
+        }
+        let _ = self.gpu.device.poll(wgpu::PollType::Poll);
+        if self.gpu_busy.load(std::sync::atomic::Ordering::Acquire) {
+            return false;
+        }
+        let Some((frame, started)) = self.pending.take() else { return true };
+        self.gpu.queue.present(frame);
+        let elapsed = started.elapsed().as_secs_f64() * 1e3;
+        self.panel.frame_ms =
+            if self.panel.frame_ms == 0.0 { elapsed } else { 0.8 * self.panel.frame_ms + 0.2 * elapsed };
+        true
+    }
+
     pub(super) fn redraw(&mut self) -> Result<()> {
+        // One frame at a time: the next is drawn once the pending one is on screen.
+        if !self.present_when_done() {
+            self.redraw_wanted = true;
+            return Ok(());
+        }
         let started = Instant::now();
         self.apply_loads();
         let size = self.window_size;
@@ -211,6 +235,8 @@ impl Viewer {
 
         // The fly camera's step, then the panel: it may change settings for this frame.
         self.controls.step(&mut self.camera, self.scene.model.bounds.radius(), Instant::now());
+        // Wherever flying, panning and zooming led, within what `capture` takes back.
+        self.camera.keep_in_range(&self.scene.model.bounds);
         self.panel.still_frames = self.renderer.still_frames();
         self.panel.command = self.command();
         let input = self.egui_input();
@@ -253,12 +279,15 @@ impl Viewer {
             });
             self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
         }
+        self.gpu_busy.store(true, std::sync::atomic::Ordering::Release);
         self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
+        let busy = self.gpu_busy.clone();
+        self.gpu.queue.on_submitted_work_done(move || busy.store(false, std::sync::atomic::Ordering::Release));
         self.renderer.timings_submitted();
         for id in textures.free.drain() {
             self.egui_renderer.free_texture(&id);
         }
-        self.gpu.queue.present(frame);
+        self.pending = Some((frame, started));
 
         // Timestamps of a frame or two ago, never waited for.
         if let Some(steps) = self.renderer.poll_timings(&self.gpu)? {
@@ -270,9 +299,6 @@ impl Viewer {
             self.timing_refresh = Some(Instant::now() + TIMING_REFRESH);
         }
         self.refreshing = false;
-        let elapsed = started.elapsed().as_secs_f64() * 1e3;
-        self.panel.frame_ms =
-            if self.panel.frame_ms == 0.0 { elapsed } else { 0.8 * self.panel.frame_ms + 0.2 * elapsed };
         if let Err(e) = self.gpu.check() {
             self.panel.say(e.to_string(), true);
         }

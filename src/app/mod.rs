@@ -56,6 +56,9 @@ pub fn run(options: ViewerOptions) -> Result<()> {
     event_loop.set_control_flow(ControlFlow::Wait);
     let mut app = App { options, start: Some((scene, sky, camera)), viewer: None, failure: None };
     event_loop.run_app(&mut app).map_err(|e| Error::Gpu(format!("window event loop: {e}")))?;
+    // Closing does not wait for a frame still on the GPU (seconds, for a heavy scene on a
+    // software rasteriser): the process is ending, and the system takes back what it held.
+    std::mem::forget(app.viewer.take());
     app.failure.map_or(Ok(()), Err)
 }
 
@@ -82,7 +85,8 @@ impl ApplicationHandler for App {
         // The window was destroyed from outside (its X11 drawable is gone): touch nothing of it
         // again, and quit as if it had been closed.
         if matches!(event, WindowEvent::Destroyed) {
-            self.viewer = None;
+            // As on closing: the frame on the GPU is not waited for.
+            std::mem::forget(self.viewer.take());
             event_loop.exit();
             return;
         }
@@ -142,10 +146,19 @@ struct Viewer {
     window_size: PhysicalSize<u32>,
     /// egui's clock (its input is built here, not by `egui_winit`, which asks the window its size).
     started: Instant,
+    /// The frame submitted and not yet presented, with when it began: it is presented once the
+    /// GPU has finished it (`gpu_busy` false), so the event loop never waits on a slow frame.
+    pending: Option<(wgpu::SurfaceTexture, Instant)>,
+    /// Whether the GPU is still working on the pending frame (cleared by the queue's callback).
+    gpu_busy: Arc<std::sync::atomic::AtomicBool>,
+    /// A frame was asked for while one was pending: drawn once that one is presented.
+    redraw_wanted: bool,
 }
 
 /// How often the viewer looks for finished loads while one runs.
 const LOAD_POLL: Duration = Duration::from_millis(100);
+/// How often the loop looks whether the GPU has finished the pending frame.
+const FRAME_POLL: Duration = Duration::from_millis(4);
 /// How long after the last frame the timings are shown settled.
 const TIMING_REFRESH: Duration = Duration::from_millis(250);
 
@@ -153,6 +166,13 @@ fn timestamp() -> String {
     let now = jiff::Timestamp::now();
     let zoned = now.to_zoned(jiff::tz::TimeZone::UTC);
     format!("{}-{:03}", zoned.strftime("%Y%m%d-%H%M%S"), zoned.millisecond())
+}
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        // Before the surface: it cannot be let go while one of its frames is held.
+        drop(self.pending.take());
+    }
 }
 
 impl Viewer {
@@ -258,6 +278,9 @@ impl Viewer {
             last_progress: Instant::now(),
             window_size,
             started: Instant::now(),
+            pending: None,
+            gpu_busy: Arc::new(std::sync::atomic::AtomicBool::new(false)),
+            redraw_wanted: false,
         })
     }
 
@@ -276,13 +299,25 @@ impl Viewer {
     fn schedule(&mut self) -> ControlFlow {
         let now = Instant::now();
         let mut wake: Option<Instant> = None;
+        // The pending frame is presented when the GPU is done with it; until then the loop
+        // looks again shortly, handling input (Escape, closing) in between.
+        if self.pending.is_some() {
+            if self.present_when_done() {
+                if std::mem::take(&mut self.redraw_wanted) {
+                    self.window.request_redraw();
+                }
+            } else {
+                wake = Some(now + FRAME_POLL);
+            }
+        }
         if self.loader.busy() {
             // A finished load, or once a second the panel's "loading… N s" line.
             if self.apply_loads() || now.duration_since(self.last_progress) >= Duration::from_secs(1) {
                 self.last_progress = now;
                 self.window.request_redraw();
             }
-            wake = Some(now + LOAD_POLL);
+            let poll = now + LOAD_POLL;
+            wake = Some(wake.map_or(poll, |w| w.min(poll)));
         }
         // A still view still averaging its frames draws the next one; so does a flying camera.
         if self.renderer.converging() || self.controls.flying() {
@@ -356,6 +391,10 @@ impl Viewer {
 
     fn resize(&mut self, size: PhysicalSize<u32>) {
         self.window_size = size;
+        // A frame of the old size is dropped unseen: the surface is configured anew.
+        if self.pending.take().is_some() {
+            self.redraw_wanted = true;
+        }
         // A minimised window is 0x0: keep everything as it is until it comes back.
         if size.width == 0 || size.height == 0 {
             return;

@@ -45,7 +45,8 @@ pub struct PanelState {
     pub messages: Vec<Message>,
     /// Smoothed GPU milliseconds per pass, and of the whole frame.
     pub timings: Vec<(&'static str, f64)>,
-    /// Smoothed CPU milliseconds of one frame, from encoding to presenting.
+    /// Smoothed wall milliseconds of one frame, from encoding until the GPU has finished it and
+    /// it is presented.
     pub frame_ms: f64,
     pub timing_source: &'static str,
     /// Facts shown at the top: adapter, model, sky.
@@ -287,9 +288,9 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
                     ui.label(format!("{:.2} ms", state.timings.iter().map(|(_, ms)| ms).sum::<f64>()));
                     ui.end_row();
                 }
-                // Frames are drawn only when something changes, so this is the cost of one
-                // frame on the CPU (encode, submit, present), not a frame rate.
-                ui.label("frame (CPU)");
+                // Frames are drawn only when something changes, so this is how long one frame
+                // takes from encoding to the screen (the GPU's work included), not a frame rate.
+                ui.label("frame (wall)");
                 ui.label(format!("{:.2} ms", state.frame_ms));
                 ui.end_row();
             });

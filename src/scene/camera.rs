@@ -8,6 +8,15 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::Bounds;
 
+/// The camera's distance from its target, in the model's bounding radii: from inside the model
+/// out to where it is a speck.
+pub const DISTANCE_RADII: (f32, f32) = (1e-5, 1e5);
+/// How far from the model's centre a camera point (target, eye, look-at) may lie, in its
+/// bounding radii. The view's 32-bit maths subtracts the eye from every position: at a million
+/// radii the model is a speck and still drawn right; at a hundred million (`--target 3e8` on the
+/// default scene) the sky's horizon bends and the picture is one colour.
+pub const REACH_RADII: f32 = 1e6;
+
 /// Orbits `target` at `distance`; yaw 0 looks down -Z from +Z, pitch is elevation in degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrbitCamera {
@@ -66,6 +75,25 @@ impl OrbitCamera {
     /// The unit direction the camera looks in.
     pub fn forward(&self) -> Vec3 {
         (self.target - self.eye()).normalize_or(Vec3::NEG_Z)
+    }
+
+    /// Brings the camera back within the ranges the command line takes for a model of `bounds`
+    /// ([`DISTANCE_RADII`], [`REACH_RADII`] for both the target and the eye), so that any view
+    /// the viewer reaches by flying, panning or zooming can be captured again from its command.
+    pub fn keep_in_range(&mut self, bounds: &Bounds) {
+        let r = bounds.radius();
+        let (lo, hi) = (DISTANCE_RADII.0 * r, DISTANCE_RADII.1 * r);
+        if !(self.distance >= lo && self.distance <= hi) {
+            let distance = if self.distance.is_finite() { self.distance.clamp(lo, hi) } else { hi };
+            self.near *= distance / self.distance;
+            self.distance = distance;
+        }
+        // The target within the reach less the distance keeps the eye within the reach too.
+        let (center, reach) = (bounds.center(), REACH_RADII * r - self.distance);
+        let offset = self.target - center;
+        if !(offset.length() <= reach) {
+            self.target = center + offset.normalize_or_zero() * reach;
+        }
     }
 
     /// The fly camera's step: the eye and what it looks at move together by `by`.

@@ -17,12 +17,14 @@
 //! them says so once.
 
 use std::path::Path;
+use std::rc::Rc;
 
 use glam::{Mat3, Mat4, Vec3};
 
-use super::files::read_bounded;
+use super::files::{read_bounded, ModelFolder};
 use super::gltf_data::{
-    accessor_fits, image_bytes, read_buffers, Kind, Picture, INDEX_KINDS, MAX_GLTF_BYTES, UV_KINDS, VEC3_KINDS,
+    accessor_fits, check_references, read_images, BufferPlan, Kind, Picture, INDEX_KINDS, MAX_GLTF_BYTES, UV_KINDS,
+    VEC3_KINDS,
 };
 use super::model::{finish, Material, Model, Vertex};
 use super::texture::{TextureCache, TextureImage};
@@ -39,28 +41,50 @@ pub fn is_gltf(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }
 
-/// Loads a glTF 2.0 file with its buffers and base colour textures.
+/// Loads a glTF 2.0 file with its buffers and base colour textures. Everything it names is read
+/// from its own folder, within the memory budget; a panic in the reading (the `gltf` crate's, or
+/// ours) is a bad file, not a crash.
 pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
-    let bytes = read_bounded(path, MAX_GLTF_BYTES).map_err(|problem| Error::input(path, problem))?;
-    let ::gltf::Gltf { document, blob } =
-        ::gltf::Gltf::from_slice(&bytes).map_err(|e| Error::input(path, refusal(&bytes, &e)))?;
-    drop(bytes);
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let buffers = read_buffers(&document, &dir, blob).map_err(|problem| Error::input(path, problem))?;
+    crate::guard::catch(|| load_unguarded(path, texture_room))
+        .unwrap_or_else(|panic| Err(Error::input(path, format!("malformed glTF (reading it failed: {panic})"))))
+}
 
+fn load_unguarded(path: &Path, texture_room: u64) -> Result<Model> {
+    let input = |problem: String| Error::input(path, problem);
+    let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    budget::check(Share::Geometry, size, || "the file".into()).map_err(input)?;
+    let bytes = read_bounded(path, MAX_GLTF_BYTES).map_err(input)?;
+    let (document, blob) = parse(&bytes).map_err(input)?;
+    drop(bytes);
+    let folder = ModelFolder::of(path);
     let mut warnings = Vec::new();
+
+    // Sized before anything is read: the triangles every instance draws, and the buffers.
+    let instances = mesh_instances(&document, &mut warnings);
+    let triangles: u64 =
+        instances.iter().flat_map(|(mesh, _)| mesh.primitives()).map(|p| primitive_triangles(&p)).sum();
+    let plan = BufferPlan::new(&document, &folder, blob.as_ref()).map_err(input)?;
+    let needed = triangles.saturating_mul(budget::BYTES_PER_TRIANGLE).saturating_add(plan.bytes);
+    budget::check(Share::Geometry, needed, || {
+        format!(
+            "{triangles} triangles ({} instances) and {} of buffers",
+            instances.len(),
+            budget::format_bytes(plan.bytes)
+        )
+    })
+    .map_err(|problem| with_notes(input(problem), &warnings))?;
+    let lengths: Vec<usize> = document.buffers().map(|b| b.length()).collect();
+    let buffers = plan.read(&folder, blob, &lengths).map_err(input)?;
+
     // The base colour pictures, read once each and planned together within the texture room.
     let used: std::collections::BTreeSet<usize> = document
         .materials()
         .filter_map(|m| m.pbr_metallic_roughness().base_color_texture())
         .map(|info| info.texture().source().index())
         .collect();
-    let pictures: Vec<Option<Picture>> = document
-        .images()
-        .map(|image| used.contains(&image.index()).then(|| image_bytes(&image, &dir, &buffers)))
-        .collect();
+    let pictures = read_images(&document, &used, &folder, &buffers);
     let mut cache = TextureCache::plan_pictures(
-        pictures.iter().flatten().filter_map(|(_, bytes)| bytes.as_deref().ok()),
+        pictures.iter().flatten().filter_map(|(_, bytes)| bytes.as_deref().ok().map(Vec::as_slice)),
         texture_room,
     );
     let materials = document.materials().map(|m| convert_material(&m, &pictures, &mut cache, &mut warnings));
@@ -68,31 +92,41 @@ pub fn load(path: &Path, texture_room: u64) -> Result<Model> {
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
 
-    let instances = mesh_instances(&document, &mut warnings);
-    let triangles: u64 = instances
-        .iter()
-        .flat_map(|(mesh, _)| mesh.primitives())
-        .map(|p| {
-            let count = p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64);
-            if p.mode() == ::gltf::mesh::Mode::Triangles {
-                count / 3
-            } else {
-                count
-            }
-        })
-        .sum();
-    let needed = triangles.saturating_mul(budget::BYTES_PER_TRIANGLE);
-    budget::check(Share::Geometry, needed, || format!("{triangles} triangles"))
-        .map_err(|problem| Error::input(path, problem))?;
-
-    // The accessors are checked against their buffers as they are read; a panic in the crate on
-    // a file nobody anticipated is still a bad file, not a crash.
-    let built = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        build_groups(&instances, &buffers, default_material, materials.len(), &mut warnings)
-    }))
-    .map_err(|_| Error::input(path, "malformed glTF (reading its meshes failed)"))?;
-    let groups = built.map_err(|problem| Error::input(path, problem))?;
+    let groups = build_groups(&instances, &buffers, default_material, materials.len(), &mut warnings)
+        .map_err(|problem| with_notes(input(problem), &warnings))?;
     finish(path, materials, groups, warnings)
+}
+
+/// The document, its references checked before the crate validates it (its validation indexes
+/// a primitive's position accessor unchecked), and the `.glb`'s binary chunk.
+fn parse(bytes: &[u8]) -> std::result::Result<(::gltf::Document, Option<Vec<u8>>), String> {
+    let ::gltf::Gltf { document, blob } =
+        ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| refusal(bytes, &e))?;
+    let json = document.into_json();
+    check_references(&json)?;
+    let document = ::gltf::Document::from_json(json).map_err(|e| refusal(bytes, &e))?;
+    Ok((document, blob))
+}
+
+/// The triangles a primitive draws, from its accessor counts.
+fn primitive_triangles(p: &::gltf::Primitive) -> u64 {
+    let count = p.indices().or_else(|| p.get(&::gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64);
+    if p.mode() == ::gltf::mesh::Mode::Triangles {
+        count / 3
+    } else {
+        count
+    }
+}
+
+/// An input error with what the walk noted before it (a node graph cut short, say), which is
+/// often its cause.
+fn with_notes(error: Error, notes: &[String]) -> Error {
+    match error {
+        Error::Input { path, problem } if !notes.is_empty() => {
+            Error::Input { path, problem: format!("{problem} (also: {})", notes.join("; ")) }
+        }
+        other => other,
+    }
 }
 
 /// Blinn-Phong shininess for a metallic-roughness roughness (see the module's notes).
@@ -146,6 +180,9 @@ fn convert_material(
 }
 
 /// Every mesh the default scene (or else the first) draws, with its node's world transform.
+/// glTF's nodes form trees: a node reached a second time (a repeated child, a cycle, a node under
+/// two parents) is placed once, so a file of a few nodes cannot multiply into millions of
+/// instances; the walk visits each node at most once.
 fn mesh_instances<'a>(document: &'a ::gltf::Document, warnings: &mut Vec<String>) -> Vec<(::gltf::Mesh<'a>, Mat4)> {
     let roots: Vec<::gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -157,11 +194,16 @@ fn mesh_instances<'a>(document: &'a ::gltf::Document, warnings: &mut Vec<String>
         }
     };
     let mut out = Vec::new();
-    let mut too_deep = false;
+    let (mut too_deep, mut repeated) = (false, 0usize);
+    let mut placed = std::collections::HashSet::new();
     let mut stack: Vec<(::gltf::Node, Mat4, usize)> = roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     while let Some((node, parent, depth)) = stack.pop() {
         if depth > MAX_DEPTH {
             too_deep = true;
+            continue;
+        }
+        if !placed.insert(node.index()) {
+            repeated += 1;
             continue;
         }
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
@@ -172,9 +214,36 @@ fn mesh_instances<'a>(document: &'a ::gltf::Document, warnings: &mut Vec<String>
         stack.extend(node.children().map(|c| (c, world, depth + 1)));
     }
     if too_deep {
-        warnings.push(format!("nodes nested deeper than {MAX_DEPTH} levels (or in a cycle) were left out"));
+        warnings.push(format!("nodes nested deeper than {MAX_DEPTH} levels were left out"));
+    }
+    if repeated > 0 {
+        warnings.push(format!(
+            "{repeated} reference(s) to a node already placed (a repeated child, a cycle, or a node under two \
+             parents) left out: glTF's nodes form trees, and each is drawn once"
+        ));
     }
     out
+}
+
+/// The matrix that carries normals through `world`: its cofactor matrix (the inverse transpose
+/// times the determinant, with the determinant's sign kept so normals stay outward), computed in
+/// f64 from the matrix scaled to a largest element of 1. It survives scales of 1e-20 and 1e20,
+/// where the inverse underflows or overflows in f32, and flattening ones, which have none.
+fn normal_matrix(world: &Mat4) -> Mat3 {
+    let m = glam::DMat3::from_mat4(world.as_dmat4());
+    let largest = m.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Mat3::IDENTITY;
+    }
+    let m = m * (1.0 / largest);
+    let cofactor = glam::DMat3::from_cols(m.y_axis.cross(m.z_axis), m.z_axis.cross(m.x_axis), m.x_axis.cross(m.y_axis));
+    let sign = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+    let biggest = cofactor.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if biggest > 0.0 {
+        (cofactor * (sign / biggest)).as_mat3()
+    } else {
+        Mat3::IDENTITY
+    }
 }
 
 /// A primitive's triangles as index triples: a list as it is, a strip with every other triangle
@@ -214,7 +283,7 @@ fn refusal(bytes: &[u8], error: &::gltf::Error) -> String {
 /// The triangles of every instance's primitives, grouped by material.
 fn build_groups(
     instances: &[(::gltf::Mesh, Mat4)],
-    buffers: &[Vec<u8>],
+    buffers: &[Rc<Vec<u8>>],
     default_material: usize,
     material_count: usize,
     warnings: &mut Vec<String>,
@@ -226,7 +295,7 @@ fn build_groups(
             unreadable += mesh.primitives().len();
             continue;
         }
-        let normal_matrix = Mat3::from_mat4(*world).inverse().transpose();
+        let normal_matrix = normal_matrix(world);
         // A mirroring transform turns the winding around (glTF's rule for negative determinants).
         let mirrored = world.determinant() < 0.0;
         for primitive in mesh.primitives() {
@@ -254,7 +323,7 @@ fn build_groups(
             }
             let has_normals = fits(primitive.get(&::gltf::Semantic::Normals), VEC3_KINDS);
             let has_uvs = fits(primitive.get(&::gltf::Semantic::TexCoords(uv_set)), UV_KINDS);
-            let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+            let reader = primitive.reader(|b| buffers.get(b.index()).map(|data| data.as_slice()));
             let Some(positions) = reader.read_positions() else {
                 unreadable += 1;
                 continue;

@@ -57,9 +57,10 @@ impl Bounds {
         0.5 * (self.min + self.max)
     }
 
-    /// Half the diagonal; never zero, so a single point or a flat model still has a scale.
+    /// Half the diagonal (in f64: squaring the sides of a model 1e-30 across underflows f32);
+    /// never zero, so a single point still has a scale.
     pub fn radius(&self) -> f32 {
-        let r = 0.5 * (self.max - self.min).length();
+        let r = (0.5 * (self.max - self.min).as_dvec3().length()) as f32;
         if r > 0.0 && r.is_finite() {
             r
         } else {
@@ -103,6 +104,12 @@ pub fn is_model(path: &Path) -> bool {
 /// Loads a model file by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with
 /// its materials and textures, within the run's memory budget.
 pub fn load_model_file(path: &Path) -> Result<Model> {
+    if panorama::is_image(path) {
+        return Err(crate::Error::input(
+            path,
+            "an image, not a model: a panorama sky goes to --skybox; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)",
+        ));
+    }
     if gltf_model::is_gltf(path) {
         gltf_model::load(path, crate::budget::texture_room())
     } else {

@@ -50,6 +50,9 @@ pub struct Part {
     pub material: usize,
 }
 
+/// A model smaller than this keeps too few bits of its shape in 32-bit positions (its vertices
+/// sit near the smallest normal float, 1.2e-38): refused rather than scaled up.
+pub const MIN_SHAPE_RADIUS: f32 = 1e-32;
 /// The smallest and largest bounding radius a model keeps as it is; outside, it is scaled to 1.
 pub const MIN_EXTENT: f32 = 1e-6;
 pub const MAX_EXTENT: f32 = 1e9;
@@ -120,7 +123,19 @@ impl Model {
     ///   camera-relative maths on the GPU keeps its precision.
     pub fn fit_to_f32(&mut self) -> std::result::Result<Vec<String>, String> {
         let mut said = Vec::new();
+        if self.bounds.max == self.bounds.min {
+            return Err(format!(
+                "all its vertices lie at one point ({:?}): nothing to draw (a scale of 0?)",
+                self.bounds.min.to_array()
+            ));
+        }
         let (center, radius) = (self.bounds.center(), self.bounds.radius());
+        if radius < MIN_SHAPE_RADIUS {
+            return Err(format!(
+                "it is {:e} across: 32-bit floats cannot hold a shape below {MIN_SHAPE_RADIUS:e} (scale it up in the file)",
+                2.0 * radius
+            ));
+        }
         let distance = center.length();
         if !(radius > 0.0) || distance / radius > MAX_OFFSET_RADII {
             return Err(format!(
@@ -182,7 +197,9 @@ pub(super) fn finish(
     mut warnings: Vec<String>,
 ) -> Result<Model> {
     if groups.iter().all(Vec::is_empty) {
-        return Err(Error::input(path, NO_TRIANGLES));
+        // What the loader noted (nodes left out, faces dropped) is often why.
+        let notes = if warnings.is_empty() { String::new() } else { format!(" (also: {})", warnings.join("; ")) };
+        return Err(Error::input(path, format!("{NO_TRIANGLES}{notes}")));
     }
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
     let mut model = Model::from_groups(&name, materials, groups)

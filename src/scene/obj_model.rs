@@ -13,7 +13,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::files::{check_file, other_model_kind, read_bounded};
+use super::files::{check_file, other_model_kind, read_bounded, ModelFolder};
 use super::model::{finish, Material, Model, Vertex, NO_TRIANGLES};
 use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
 use super::texture::{load_texture, TextureCache};
@@ -28,14 +28,19 @@ fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
     }
 }
 
-fn convert_material(m: &tobj::Material, dir: &Path, cache: &mut TextureCache, warnings: &mut Vec<String>) -> Material {
+fn convert_material(
+    m: &tobj::Material,
+    folder: &ModelFolder,
+    cache: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Material {
     Material {
         name: m.name.clone(),
         diffuse: finite3(m.diffuse, [0.8; 3]),
         specular: finite3(m.specular, [0.0; 3]),
         shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
-        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
-        specular_map: m.specular_texture.as_deref().map(|t| load_texture(dir, t, cache, warnings)),
+        diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
+        specular_map: m.specular_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
     }
 }
 
@@ -73,7 +78,7 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         .map_err(|problem| Error::input(path, problem))?;
     let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
     let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let folder = ModelFolder::of(path);
     let warnings = RefCell::new(Vec::new());
 
     let options = tobj::LoadOptions {
@@ -83,33 +88,27 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         ignore_lines: true,
         ..Default::default()
     };
-    let material_loader = |mtl: &Path| {
-        let mtl_path = dir.join(mtl.to_string_lossy().replace('\\', "/"));
-        match read_bounded(&mtl_path, MAX_MTL_BYTES) {
-            Ok(bytes) => {
-                let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
-                if dropped > 0 {
-                    warnings.borrow_mut().push(format!(
-                        "{}: ignored {dropped} colour line(s) without one or three numbers",
-                        mtl_path.display()
-                    ));
-                }
-                tobj::load_mtl_buf(&mut text.as_bytes())
+    // The MTL comes from the model's folder, as its maps do.
+    let material_loader = |mtl: &Path| match folder.read(&mtl.to_string_lossy(), MAX_MTL_BYTES) {
+        Ok((mtl_path, bytes)) => {
+            let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
+            if dropped > 0 {
+                warnings.borrow_mut().push(format!(
+                    "{}: ignored {dropped} colour line(s) without one or three numbers",
+                    mtl_path.display()
+                ));
             }
-            Err(e) => {
-                warnings
-                    .borrow_mut()
-                    .push(format!("{}: cannot read material file ({e}); using a default material", mtl_path.display()));
-                Err(tobj::LoadError::OpenFileFailed)
-            }
+            tobj::load_mtl_buf(&mut text.as_bytes())
+        }
+        Err(problem) => {
+            warnings.borrow_mut().push(format!("material file {problem}; using a default material"));
+            Err(tobj::LoadError::OpenFileFailed)
         }
     };
     // A panic inside the parser is still a bad file, not a crash (the known ones are avoided by
     // `sanitize_obj`; this is the net under it).
-    let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
-    }))
-    .map_err(|_| Error::input(path, "malformed OBJ (the parser gave up on it)"))?;
+    let parsed = crate::guard::catch(|| tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader))
+        .map_err(|_| Error::input(path, "malformed OBJ (the parser gave up on it)"))?;
     let (models, materials) = parsed.map_err(|e| Error::input(path, format!("malformed OBJ: {e}")))?;
 
     let mut warnings = warnings.into_inner();
@@ -125,9 +124,9 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         Vec::new()
     });
     let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
-    let mut cache = TextureCache::plan(&dir, maps.flatten(), texture_room);
+    let mut cache = TextureCache::plan(&folder, maps.flatten(), texture_room);
     let mut materials: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &dir, &mut cache, &mut warnings)).collect();
+        tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, &mut warnings)).collect();
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
 

@@ -11,8 +11,12 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::skybox::{face_direction, linear_texels, Skybox, EXTENSIONS, FACE_NAMES, MAX_FACE_SIDE, STORED_FACE_SIDE};
-use super::texture::read_image;
+use super::skybox::{
+    conversion_bytes, face_direction, linear_texels, stored_bytes, Skybox, EXTENSIONS, FACE_NAMES, MAX_FACE_SIDE,
+    STORED_FACE_SIDE,
+};
+use super::texture::read_image_checked;
+use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 /// Largest panorama height accepted (twice that wide): the faces' largest side, so a panorama
@@ -99,11 +103,16 @@ impl Panorama {
             .collect()
     }
 
-    /// The face side this panorama resamples to: its width over four (the texel density at the
-    /// horizon), at most [`STORED_FACE_SIDE`].
+    /// The face side this panorama resamples to (see [`face_side`]).
     pub fn face_side(&self) -> u32 {
-        (self.width / 4).clamp(1, STORED_FACE_SIDE)
+        face_side(self.width)
     }
+}
+
+/// The face side a panorama `width` wide resamples to: its width over four (the texel density at
+/// the horizon), at most [`STORED_FACE_SIDE`].
+pub fn face_side(width: u32) -> u32 {
+    (width / 4).clamp(1, STORED_FACE_SIDE)
 }
 
 /// Whether `path` names a file with one of the sky image extensions.
@@ -126,7 +135,56 @@ pub fn in_folder(dir: &Path) -> Option<PathBuf> {
     }
 }
 
-/// Loads an equirectangular panorama file as a sky named after the file.
+/// Whether a panorama of `width` x `height` can be read: at least 2x1, twice as wide as high
+/// (within a texel), at most [`MAX_PANORAMA_HEIGHT`] high; the problem when it cannot.
+fn check_shape(width: u32, height: u32) -> std::result::Result<(), String> {
+    if height == 0 || width < 2 {
+        return Err(format!("panorama is {width}x{height}; at least 2x1 is needed"));
+    }
+    if width.abs_diff(2 * height) > 1 {
+        return Err(format!(
+            "panorama is {width}x{height}; an equirectangular panorama is twice as wide as it is high"
+        ));
+    }
+    if height > MAX_PANORAMA_HEIGHT {
+        return Err(format!(
+            "panorama is {width}x{height}; at most {}x{MAX_PANORAMA_HEIGHT} is accepted",
+            2 * MAX_PANORAMA_HEIGHT
+        ));
+    }
+    Ok(())
+}
+
+/// Why a folder that holds no cube face is no sky, when it holds several panoramas: which one
+/// is meant is the user's to say.
+pub fn several_in_folder(dir: &Path) -> Option<String> {
+    let entries = std::fs::read_dir(dir).ok()?;
+    let mut images: Vec<String> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && is_image(p))
+        .map(|p| p.file_name().unwrap_or_default().to_string_lossy().into_owned())
+        .collect();
+    let is_face = |name: &String| {
+        let stem = Path::new(name).file_stem().map(|s| s.to_string_lossy().to_lowercase()).unwrap_or_default();
+        FACE_NAMES.iter().any(|(long, short)| stem == *long || stem == *short)
+    };
+    if images.len() < 2 || images.iter().any(is_face) {
+        return None;
+    }
+    images.sort();
+    Some(format!(
+        "holds {} images and no cube face ({}): give one of them as the sky, or name six faces right left top \
+         bottom front back",
+        images.len(),
+        images.join(", ")
+    ))
+}
+
+/// Loads an equirectangular panorama file as a sky named after the file. Its size, its shape
+/// and what decoding and resampling it would hold are checked from its header, against the
+/// sky's share of the memory budget, before any texel is decoded; the resampling runs under the
+/// panic guard.
 pub fn load(path: &Path) -> Result<Skybox> {
     if !is_image(path) {
         return Err(Error::input(
@@ -134,28 +192,15 @@ pub fn load(path: &Path) -> Result<Skybox> {
             format!("not a sky: a skybox is a folder of six faces or one panorama image (.{})", EXTENSIONS.join(" .")),
         ));
     }
-    let image = read_image(path, 2 * MAX_PANORAMA_HEIGHT)?;
+    let image = read_image_checked(path, 2 * MAX_PANORAMA_HEIGHT, |(width, height), decode| {
+        check_shape(width, height).map_err(|problem| Error::input(path, problem))?;
+        let needed = decode + conversion_bytes((width, height), decode) + stored_bytes(face_side(width));
+        budget::check_transient(Share::Sky, needed, || format!("a panorama of {width}x{height}"))
+            .map_err(|problem| Error::input(path, problem))
+    })?;
     let (width, height) = (image.width(), image.height());
-    if width.abs_diff(2 * height) > 1 {
-        return Err(Error::input(
-            path,
-            format!("panorama is {width}x{height}; an equirectangular panorama is twice as wide as it is high"),
-        ));
-    }
-    if height > MAX_PANORAMA_HEIGHT {
-        return Err(Error::input(
-            path,
-            format!(
-                "panorama is {width}x{height}; at most {}x{MAX_PANORAMA_HEIGHT} is accepted",
-                2 * MAX_PANORAMA_HEIGHT
-            ),
-        ));
-    }
-    let mut warnings = Vec::new();
-    let (texels, bad) = linear_texels(image);
-    if bad > 0 {
-        warnings.push(format!("{}: {bad} non-finite or negative value(s) replaced by 0", path.display()));
-    }
+    let (texels, repaired) = linear_texels(image);
+    let mut warnings = repaired.warnings(path);
     let panorama = Panorama { width, height, texels };
     let size = panorama.face_side();
     if width / 4 > size {
@@ -168,7 +213,9 @@ pub fn load(path: &Path) -> Result<Skybox> {
         log::warn!("{w}");
     }
     let name = path.file_stem().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "panorama".into());
-    Ok(Skybox::from_faces(name, size, panorama.to_faces(size), warnings))
+    let faces = crate::guard::catch(|| panorama.to_faces(size))
+        .map_err(|panic| Error::input(path, format!("resampling the panorama failed: {panic}")))?;
+    Ok(Skybox::from_faces(name, size, faces, warnings))
 }
 
 #[cfg(test)]

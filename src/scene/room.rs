@@ -62,6 +62,10 @@ impl Layout {
             if !(1..=MAX_FIGURE_TRIANGLES).contains(&n) {
                 return Err(Error::Setting(format!("--triangles {n}: must be from 1 to {MAX_FIGURE_TRIANGLES}")));
             }
+            // The same check as a model file's, before the figure is built.
+            let needed = (n as u64).saturating_mul(crate::budget::BYTES_PER_TRIANGLE);
+            crate::budget::check(crate::budget::Share::Geometry, needed, || format!("--triangles {n}"))
+                .map_err(Error::Setting)?;
         }
         let model = match (self, path) {
             (Self::Room, None) => figure(triangles.unwrap_or(DEFAULT_FIGURE_TRIANGLES))?,

@@ -4,8 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use super::skybox::{is_hdr, linear_texels, Skybox, EXTENSIONS, FACE_NAMES, MAX_FACE_SIDE, STORED_FACE_SIDE};
-use super::texture::read_image;
+use super::skybox::{
+    conversion_bytes, is_hdr, linear_texels, stored_bytes, Skybox, EXTENSIONS, FACE_NAMES, MAX_FACE_SIDE,
+    STORED_FACE_SIDE,
+};
+use super::texture::read_image_checked;
+use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 impl Skybox {
@@ -23,6 +27,9 @@ impl Skybox {
         if let Some(panorama) = super::panorama::in_folder(dir) {
             return super::panorama::load(&panorama);
         }
+        if let Some(problem) = super::panorama::several_in_folder(dir) {
+            return Err(Error::input(dir, problem));
+        }
         let mut faces = Vec::with_capacity(6);
         let mut warnings = Vec::new();
         let mut size = 0;
@@ -30,21 +37,26 @@ impl Skybox {
         let mut first_face = String::new();
         for (index, names) in FACE_NAMES.iter().enumerate() {
             let path = find_face(dir, *names)?;
-            let mut image = read_image(&path, MAX_FACE_SIDE)?;
-            let (w, h) = (image.width(), image.height());
-            if w != h {
-                return Err(Error::input(&path, format!("skybox face is {w}x{h}; faces must be square")));
-            }
+            // Shape, size and memory from the header, before the face is decoded.
+            let mut image = read_image_checked(&path, MAX_FACE_SIDE, |(w, h), decode| {
+                let problem = if w == 0 || h == 0 {
+                    Some(format!("skybox face is {w}x{h}; a face needs at least one texel"))
+                } else if w != h {
+                    Some(format!("skybox face is {w}x{h}; faces must be square"))
+                } else if index > 0 && w != size {
+                    Some(format!(
+                        "skybox face is {w}x{w} but {first_face} is {size}x{size}; all faces must be the same size"
+                    ))
+                } else {
+                    let needed = decode + conversion_bytes((w, h), decode) + stored_bytes(w.min(STORED_FACE_SIDE));
+                    budget::check_transient(Share::Sky, needed, || format!("skybox faces of {w}x{w}")).err()
+                };
+                problem.map_or(Ok(()), |problem| Err(Error::input(&path, problem)))
+            })?;
+            let w = image.width();
             if index == 0 {
                 size = w;
                 first_face = path.display().to_string();
-            } else if w != size {
-                return Err(Error::input(
-                    &path,
-                    format!(
-                        "skybox face is {w}x{w} but {first_face} is {size}x{size}; all faces must be the same size"
-                    ),
-                ));
             }
             // Kept at most STORED_FACE_SIDE² per face, one face at a time, so an 8192² sky takes
             // what a 2048² one does once loaded (0.3 GB, not 4.8 GB) and fits any adapter.
@@ -58,10 +70,8 @@ impl Skybox {
                 }
             }
             kinds.push(is_hdr(&image));
-            let (texels, bad) = linear_texels(image);
-            if bad > 0 {
-                warnings.push(format!("{}: {bad} non-finite or negative value(s) replaced by 0", path.display()));
-            }
+            let (texels, repaired) = linear_texels(image);
+            warnings.extend(repaired.warnings(&path));
             faces.push(texels);
         }
         if kinds.iter().any(|&k| k != kinds[0]) {

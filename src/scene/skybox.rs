@@ -89,27 +89,81 @@ pub(super) fn is_hdr(image: &image::DynamicImage) -> bool {
     matches!(image, image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_))
 }
 
+/// The brightest radiance a sky keeps: texels above it are clamped as they load, with a warning.
+/// A sky's irradiance sums millions of texels in f32, and so do its mips, its resampling from a
+/// panorama and the truth's estimates; the gains (`--sky-scale`, `--sky-strength`, up to 1e6
+/// each) multiply it again. A few texels of 3e38 overflowed them all and the frame came out
+/// black; 1e20 leaves every one of those sums and products finite (and is fifteen orders above
+/// the sun's disc in a real HDR capture).
+pub const MAX_SKY_RADIANCE: f32 = 1e20;
+
+/// What [`linear_texels`] replaced: non-finite or negative values (now 0), and values above
+/// [`MAX_SKY_RADIANCE`] (now that).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Repaired {
+    pub invalid: usize,
+    pub clamped: usize,
+}
+
+impl Repaired {
+    /// The warnings for `path`'s texels, one line each kind.
+    pub fn warnings(&self, path: &std::path::Path) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.invalid > 0 {
+            out.push(format!("{}: {} non-finite or negative value(s) replaced by 0", path.display(), self.invalid));
+        }
+        if self.clamped > 0 {
+            out.push(format!(
+                "{}: {} value(s) above {MAX_SKY_RADIANCE:e} clamped to it (brighter would overflow the sky's sums)",
+                path.display(),
+                self.clamped
+            ));
+        }
+        out
+    }
+}
+
 /// An image's texels as linear RGB, rows top to bottom, with non-finite and negative values
-/// replaced by 0; and how many were.
-pub(super) fn linear_texels(image: image::DynamicImage) -> (Vec<[f32; 3]>, usize) {
+/// replaced by 0 and values above [`MAX_SKY_RADIANCE`] clamped; and how many were. A float
+/// RGB image is converted in place (a 16384x8192 panorama is 1.5 GiB as one copy).
+pub(super) fn linear_texels(image: image::DynamicImage) -> (Vec<[f32; 3]>, Repaired) {
     let hdr = is_hdr(&image);
-    let mut bad = 0usize;
-    let texels = image
-        .to_rgb32f()
-        .pixels()
-        .map(|p| {
-            p.0.map(|c| {
-                let c = if hdr { c } else { srgb_to_linear(c) };
-                if c.is_finite() && c >= 0.0 {
-                    c
-                } else {
-                    bad += 1;
-                    0.0
-                }
-            })
-        })
-        .collect();
-    (texels, bad)
+    let mut repaired = Repaired::default();
+    let mut values = image.into_rgb32f().into_raw();
+    for c in &mut values {
+        let linear = if hdr { *c } else { srgb_to_linear(*c) };
+        *c = if !(linear.is_finite() && linear >= 0.0) {
+            repaired.invalid += 1;
+            0.0
+        } else if linear > MAX_SKY_RADIANCE {
+            repaired.clamped += 1;
+            MAX_SKY_RADIANCE
+        } else {
+            linear
+        };
+    }
+    let texels = bytemuck::allocation::try_cast_vec(values)
+        .unwrap_or_else(|(_, values)| values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+    (texels, repaired)
+}
+
+/// The bytes a sky of faces of `side`² holds once loaded: the f32 faces, their mip chain (a
+/// third more) and the half-float copy with mips that the GPU keeps (in the same RAM on a
+/// software adapter).
+pub fn stored_bytes(side: u32) -> u64 {
+    let texels = 6 * side as u64 * side as u64;
+    texels * 12 + texels * 4 + texels * 8 * 4 / 3
+}
+
+/// The bytes a decode of `size` takes beyond `decode` (what the decoder allocates) while it
+/// becomes linear f32 RGB: nothing when it is f32 RGB already (converted in place), else a copy.
+pub fn conversion_bytes(size: (u32, u32), decode: u64) -> u64 {
+    let rgb_f32 = size.0 as u64 * size.1 as u64 * 12;
+    if decode == rgb_f32 {
+        0
+    } else {
+        rgb_f32
+    }
 }
 
 impl Skybox {

@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use super::files::read_bounded;
+use super::files::{read_bounded, ModelFolder};
 use crate::{Error, Result};
 
 /// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every
@@ -59,15 +59,15 @@ impl TextureCache {
     /// key, and its header; the pixels are not decoded) and plans each one's size: all of them together within `room` bytes of RGBA8, the
     /// largest halved first (see [`crate::budget::fit_images`]). A file that cannot be read is
     /// left to [`load_texture`] to report.
-    pub(super) fn plan<'a>(dir: &Path, arguments: impl IntoIterator<Item = &'a str>, room: u64) -> Self {
+    pub(super) fn plan<'a>(folder: &ModelFolder, arguments: impl IntoIterator<Item = &'a str>, room: u64) -> Self {
         let mut seen_paths = HashSet::new();
         let mut pictures = Vec::new();
         for argument in arguments {
-            let Some(path) = texture_file_name(argument).and_then(|name| find_texture(dir, &name)) else { continue };
+            let Some(Ok((path, _))) = texture_file_name(argument).map(|name| folder.find(&name)) else { continue };
             if !seen_paths.insert(std::fs::canonicalize(&path).unwrap_or(path.clone())) {
                 continue;
             }
-            let Ok(bytes) = read_bounded(&path, 1 << 30) else { continue };
+            let Ok(bytes) = folder.read_found(&path, file_limit()) else { continue };
             note_picture(&mut pictures, &bytes);
         }
         Self::fitted(pictures, room)
@@ -158,40 +158,29 @@ pub fn texture_file_name(argument: &str) -> Option<String> {
     (!name.is_empty()).then_some(name)
 }
 
-/// Finds a texture file next to the MTL: as written, then by its file name alone, then ignoring
-/// letter case (files made on Windows often disagree with their MTL about case).
-pub(super) fn find_texture(dir: &Path, name: &str) -> Option<PathBuf> {
-    let direct = dir.join(name);
-    if direct.is_file() {
-        return Some(direct);
-    }
-    let file_name = Path::new(name).file_name()?.to_string_lossy().to_lowercase();
-    let base = dir.join(Path::new(name).parent().unwrap_or(Path::new("")));
-    for folder in [base, dir.to_path_buf()] {
-        let Ok(entries) = std::fs::read_dir(&folder) else { continue };
-        for entry in entries.flatten() {
-            if entry.file_name().to_string_lossy().to_lowercase() == file_name && entry.path().is_file() {
-                return Some(entry.path());
-            }
-        }
-    }
-    None
+/// The largest map file read: what the textures' share may hold while it decodes.
+fn file_limit() -> u64 {
+    crate::budget::transient_room(crate::budget::Share::Textures)
 }
 
-/// Decodes an image file whatever its extension says, within a size limit.
-pub fn read_image(path: &Path, max_side: u32) -> Result<image::DynamicImage> {
-    // A face of 16384² RGBA32F is 4 GiB decoded; compressed files are far smaller than that.
+/// Decodes an image file whatever its extension says, within a size limit, after `check` has
+/// seen its size and the bytes its decode allocates, both read from the header: nothing is
+/// decoded that the caller would refuse.
+pub fn read_image_checked(
+    path: &Path,
+    max_side: u32,
+    check: impl FnOnce((u32, u32), u64) -> Result<()>,
+) -> Result<image::DynamicImage> {
+    use image::ImageDecoder;
+    // A face of 8192² RGBA32F is 1 GiB decoded; compressed files are far smaller than that.
     let bytes = read_bounded(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
-    decode_image(path, &bytes, max_side)
-}
-
-/// Decodes an image file's bytes (named `path` in errors), with the same limits.
-pub fn decode_image(path: &Path, bytes: &[u8], max_side: u32) -> Result<image::DynamicImage> {
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
         .with_guessed_format()
         .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
     reader.limits(decode_limits(max_side));
-    reader.decode().map_err(|e| Error::input(path, format!("not a readable image: {e}")))
+    let decoder = reader.into_decoder().map_err(|e| Error::input(path, format!("not a readable image: {e}")))?;
+    check(decoder.dimensions(), decoder.total_bytes())?;
+    image::DynamicImage::from_decoder(decoder).map_err(|e| Error::input(path, format!("not a readable image: {e}")))
 }
 
 /// The decoder's limits: sides up to `max_side`, and no allocation past 4 GiB.
@@ -207,7 +196,7 @@ fn decode_limits(max_side: u32) -> image::Limits {
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
 
 pub(super) fn load_texture(
-    dir: &Path,
+    folder: &ModelFolder,
     argument: &str,
     cache: &mut TextureCache,
     warnings: &mut Vec<String>,
@@ -216,18 +205,24 @@ pub(super) fn load_texture(
         warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
         return TextureImage::checker();
     };
-    let Some(path) = find_texture(dir, &name) else {
-        warnings.push(format!("{}: texture not found; using a checker", dir.join(&name).display()));
-        return TextureImage::checker();
+    let path = match folder.find(&name) {
+        Ok((path, note)) => {
+            warnings.extend(note);
+            path
+        }
+        Err(problem) => {
+            warnings.push(format!("texture {problem}; using a checker"));
+            return TextureImage::checker();
+        }
     };
     let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
     if let Some(image) = cache.by_path.get(&canonical) {
         return image.clone();
     }
-    let bytes = match read_bounded(&path, 1 << 30) {
+    let bytes = match folder.read_found(&path, file_limit()) {
         Ok(bytes) => bytes,
         Err(problem) => {
-            warnings.push(format!("{}: {problem}; using a checker", path.display()));
+            warnings.push(format!("{problem}; using a checker"));
             return TextureImage::checker();
         }
     };
@@ -235,9 +230,6 @@ pub(super) fn load_texture(
     cache.by_path.insert(canonical, texture.clone());
     texture
 }
-
-/// The smallest transient decode allowed whatever the texture share: a 4096² RGBA8 picture.
-const MIN_DECODE_BYTES: u64 = 64 << 20;
 
 /// Decodes a picture at its own size, then resizes it to `planned` (filtered) and turns it into
 /// RGBA8. The decode's own allocation is checked from the header first: it may take the
@@ -257,7 +249,7 @@ fn decode_texture(
     reader.limits(decode_limits(MAX_TEXTURE_SIDE));
     let decoder = reader.into_decoder().map_err(cannot)?;
     let original = decoder.dimensions();
-    let (decode_bytes, allowed) = (decoder.total_bytes(), room.max(MIN_DECODE_BYTES));
+    let (decode_bytes, allowed) = (decoder.total_bytes(), room.max(crate::budget::MIN_TRANSIENT));
     if decode_bytes > allowed {
         let size = crate::budget::format_bytes;
         return Err(Error::input(

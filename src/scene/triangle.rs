@@ -27,9 +27,11 @@ pub(super) fn push_triangle(
     if !pos.iter().all(|p| p.is_finite() && p.abs().max_element() <= 1e12) {
         return Triangle::Dropped;
     }
-    let (e1, e2) = (pos[1] - pos[0], pos[2] - pos[0]);
+    // In f64: the cross product of edges 1e-20 long underflows f32 (to a zero normal); a model
+    // that small is scaled up later, and keeps the normals computed here.
+    let (e1, e2) = ((pos[1] - pos[0]).as_dvec3(), (pos[2] - pos[0]).as_dvec3());
     let cross = e1.cross(e2);
-    let mut face_normal = cross.try_normalize().unwrap_or(Vec3::Y);
+    let mut face_normal = cross.try_normalize().map_or(Vec3::Y, |n| n.as_vec3());
     // A sliver (a sphere's pole) has no trustworthy winding: it is left as it is.
     let well_shaped = cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared());
     let mut order = [0, 1, 2];

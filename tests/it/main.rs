@@ -18,6 +18,7 @@ mod backends;
 
 mod cpu {
     mod fuzz_loaders;
+    mod hostile_files;
     mod scene_loading;
     mod shaders;
 }

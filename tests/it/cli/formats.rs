@@ -2,6 +2,7 @@
 //! the tests themselves.
 
 use crate::common;
+use common::{one_node, plain_material, quad_buffer, quad_gltf, write_glb};
 
 use std::path::Path;
 
@@ -144,81 +145,6 @@ fn a_redblue_panorama_renders_like_the_redblue_folder() {
     assert!(mean_level > 20.0, "the image is lit");
     // The seams between faces blend over a texel in the panorama; the rest is the same sky.
     assert!(mean < 2.0, "mean difference {mean}");
-}
-
-/// The bytes of buffer 0: a unit quad on y = 0 facing up, with normals, UVs and 16-bit indices.
-fn quad_buffer() -> Vec<u8> {
-    let positions: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
-    let normals = [[0.0f32, 1.0, 0.0]; 4];
-    let uvs: [[f32; 2]; 4] = [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]];
-    let indices: [u16; 6] = [0, 1, 3, 0, 3, 2];
-    let mut bytes: Vec<u8> = Vec::new();
-    bytes.extend(bytemuck::cast_slice(&positions));
-    bytes.extend(bytemuck::cast_slice(&normals));
-    bytes.extend(bytemuck::cast_slice(&uvs));
-    bytes.extend(bytemuck::cast_slice(&indices));
-    bytes.resize(144, 0);
-    bytes
-}
-
-/// A glTF document for [`quad_buffer`]: `buffer` is the buffer's JSON (its URI or none), `nodes`
-/// the node list and `material` the first material.
-fn quad_gltf(buffer: serde_json::Value, nodes: serde_json::Value, material: serde_json::Value) -> serde_json::Value {
-    let view = |offset: usize, length: usize| json!({ "buffer": 0, "byteOffset": offset, "byteLength": length });
-    let node_count = nodes.as_array().map_or(0, Vec::len);
-    let roots: Vec<usize> = (0..node_count)
-        .filter(|i| {
-            !nodes.as_array().unwrap().iter().any(|n| n["children"].as_array().is_some_and(|c| c.contains(&json!(i))))
-        })
-        .collect();
-    json!({
-        "asset": { "version": "2.0" },
-        "scene": 0,
-        "scenes": [{ "nodes": roots }],
-        "nodes": nodes,
-        "meshes": [{ "primitives": [{
-            "attributes": { "POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2 },
-            "indices": 3,
-            "material": 0
-        }] }],
-        "materials": [material],
-        "buffers": [buffer],
-        "bufferViews": [view(0, 48), view(48, 48), view(96, 32), view(128, 12)],
-        "accessors": [
-            { "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 0.0, 1.0] },
-            { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3" },
-            { "bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2" },
-            { "bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR" }
-        ]
-    })
-}
-
-fn plain_material() -> serde_json::Value {
-    json!({ "name": "paint", "pbrMetallicRoughness": { "baseColorFactor": [0.2, 0.4, 0.6, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5 } })
-}
-
-fn one_node() -> serde_json::Value {
-    json!([{ "mesh": 0 }])
-}
-
-/// Writes a `.glb`: the JSON chunk and the binary chunk, each padded to 4 bytes.
-fn write_glb(path: &Path, document: &serde_json::Value, bin: &[u8]) {
-    let mut json = serde_json::to_vec(document).unwrap();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((json.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(&json);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(bin);
-    std::fs::write(path, out).unwrap();
 }
 
 fn sorted_positions(model: &Model) -> Vec<[i32; 3]> {

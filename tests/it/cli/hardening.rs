@@ -196,3 +196,55 @@ fn models_outside_what_f32_shades_are_rescaled_rebased_or_refused() {
     assert_eq!(result.status.code(), Some(3), "{}", stderr(&result));
     assert!(error_line(&result).contains("far.obj") && error_line(&result).contains("nearer the origin"));
 }
+
+#[test]
+fn the_command_line_refuses_far_cameras_bad_budgets_and_bad_folders_before_the_work() {
+    // A negative budget is a value with a message, not an unknown flag.
+    refused(&["capture", "--memory-budget", "-1"], 2, "'-1' is not a size");
+    // Camera points far from the model leave f32 nothing to draw with: refused with the range.
+    for flag in ["--target", "--eye"] {
+        let mut args = vec!["capture", flag, "3e8,0,0", "--size", "16x12"];
+        if flag == "--eye" {
+            args.extend(["--look-at", "0,0,0"]);
+        }
+        let line = refused(&args, 2, "must lie within");
+        assert!(line.contains("of the model's centre") && line.contains(flag), "{line}");
+    }
+    // An output folder that is a dangling link: refused before anything is loaded or rendered.
+    #[cfg(unix)]
+    {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        std::os::unix::fs::symlink(dir.path().join("gone"), &out).unwrap();
+        let result = ssdo(&["capture", "--size", "16x12", "--out", out.to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
+        assert!(error_line(&result).contains("which does not exist"), "{}", stderr(&result));
+        assert!(!stderr(&result).contains("adapter:"), "the run opened a device first: {}", stderr(&result));
+    }
+    // A panorama given as the model says what it is.
+    let dir = tempfile::tempdir().unwrap();
+    let sky = dir.path().join("sky.hdr");
+    std::fs::write(&sky, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n").unwrap();
+    refused(&["capture", "--model", sky.to_str().unwrap()], 3, "an image, not a model");
+}
+
+#[test]
+fn a_stale_or_foreign_lock_is_taken_over_at_once_with_a_line() {
+    if !has_adapter() {
+        return;
+    }
+    // An empty lock (a writer killed between creating it and writing its pid), and one naming
+    // pid 1 (alive, but no run of this program): each taken over at once, with a line saying so.
+    for (contents, needle) in [("", "an empty or garbled lock"), ("1", "pid 1 is no run of ssdo")] {
+        let out = tempfile::tempdir().unwrap();
+        let lock = out.path().join(".ssdo-tmp.lock");
+        std::fs::write(&lock, contents).unwrap();
+        let old = std::time::SystemTime::now() - std::time::Duration::from_secs(60);
+        std::fs::File::options().write(true).open(&lock).unwrap().set_modified(old).unwrap();
+        let result = ssdo(&["capture", "--mode", "off", "--size", "16x12", "--out", out.path().to_str().unwrap()]);
+        assert!(result.status.success(), "{}", stderr(&result));
+        assert!(stderr(&result).contains(needle), "{}", stderr(&result));
+        assert!(out.path().join("off.png").is_file());
+        assert!(!lock.exists(), "the lock was left behind");
+    }
+}
