@@ -3,9 +3,10 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     default: 600 s each, every target:
 #   obj (OBJ + MTL), skybox (six faces), gltf (.gltf + a buffer + an image), glb, panorama
 # Installs cargo-fuzz (from crates.io) and the nightly toolchain (through rustup) where missing.
-# A crash stops its target and leaves the input in fuzz/artifacts/<target>/; make it a
-# regression test (tests/it/cpu/fuzz_loaders.rs) before fixing it. CI runs the bounded property tests in
-# tests/it/cpu/fuzz_loaders.rs instead of this.
+# A crash stops its target and leaves the input in fuzz/artifacts/<target>/; copy it into
+# fuzz/regressions/<target>/ before fixing it: the tests run every file there through the same
+# body (tests/it/cpu/fuzz_entries.rs, which the targets include). CI runs those and the bounded
+# property tests in tests/it/cpu/fuzz_loaders.rs instead of this.
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
 seconds="${1:-600}"

@@ -1,20 +1,9 @@
-//! The OBJ loader on arbitrary bytes; the first NUL byte splits them into the OBJ and its MTL.
+//! The obj loader on arbitrary bytes; the body (how the bytes become files) is
+//! `tests/it/cpu/fuzz_entries.rs`, which the tests compile and run on the seeds and every input
+//! a fuzzer failed on.
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
+#[path = "../../tests/it/cpu/fuzz_entries.rs"]
+mod entries;
 
-fuzz_target!(|data: &[u8]| {
-    let (obj, mtl) = match data.iter().position(|&b| b == 0) {
-        Some(i) => (&data[..i], &data[i + 1..]),
-        None => (data, &[][..]),
-    };
-    let dir = tempfile::tempdir().unwrap();
-    let mut text = b"mtllib m.mtl\n".to_vec();
-    text.extend_from_slice(obj);
-    std::fs::write(dir.path().join("m.mtl"), mtl).unwrap();
-    std::fs::write(dir.path().join("m.obj"), text).unwrap();
-    // Errors are fine; a panic is a finding, even one the loader's guard catches.
-    let before = ssdo::guard::caught();
-    let _ = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj"));
-    assert_eq!(ssdo::guard::caught(), before, "the OBJ loader panicked (caught by its guard)");
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| entries::obj(data));

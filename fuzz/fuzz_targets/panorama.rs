@@ -1,16 +1,9 @@
-//! The panorama loader on arbitrary bytes: the first byte picks the file's extension (`.hdr`,
-//! `.exr`, `.png`, `.jpg`), the rest is the file.
+//! The panorama loader on arbitrary bytes; the body (how the bytes become files) is
+//! `tests/it/cpu/fuzz_entries.rs`, which the tests compile and run on the seeds and every input
+//! a fuzzer failed on.
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
+#[path = "../../tests/it/cpu/fuzz_entries.rs"]
+mod entries;
 
-fuzz_target!(|data: &[u8]| {
-    let Some((&pick, bytes)) = data.split_first() else { return };
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(format!("sky.{}", ["hdr", "exr", "png", "jpg"][pick as usize % 4]));
-    std::fs::write(&path, bytes).unwrap();
-    // Errors are fine; a panic is a finding, even one the loader's guard catches.
-    let before = ssdo::guard::caught();
-    let _ = ssdo::scene::Skybox::load(&path);
-    assert_eq!(ssdo::guard::caught(), before, "the panorama loader panicked (caught by its guard)");
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| entries::panorama(data));

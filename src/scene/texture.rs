@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use super::files::{read_bounded, ModelFolder};
+use super::files::{check_file, ModelFolder};
 use crate::{Error, Result};
 
 /// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every
@@ -172,9 +172,11 @@ pub fn read_image_checked(
     check: impl FnOnce((u32, u32), u64) -> Result<()>,
 ) -> Result<image::DynamicImage> {
     use image::ImageDecoder;
-    // A face of 8192² RGBA32F is 1 GiB decoded; compressed files are far smaller than that.
-    let bytes = read_bounded(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
+    // Decoded from the file as it is read (a 16384x8192 HDR panorama can be 512 MiB on disk),
+    // once it is known to be a regular file of a bounded size.
+    check_file(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
+    let file = std::fs::File::open(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    let mut reader = image::ImageReader::new(std::io::BufReader::new(file))
         .with_guessed_format()
         .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
     reader.limits(decode_limits(max_side));

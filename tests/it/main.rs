@@ -17,6 +17,7 @@ mod common;
 mod backends;
 
 mod cpu {
+    mod fuzz_entries;
     mod fuzz_loaders;
     mod hostile_files;
     mod scene_loading;
