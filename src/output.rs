@@ -260,11 +260,6 @@ pub fn save_png(path: &Path, image: &image::RgbaImage) -> Result<()> {
     write_atomic(path, &png_bytes(path, image)?)
 }
 
-/// Encodes a linear float image as OpenEXR and writes it atomically.
-pub fn save_exr(path: &Path, image: &image::Rgba32FImage) -> Result<()> {
-    write_atomic(path, &exr_bytes(path, image)?)
-}
-
 /// Writes `text` and a newline to standard output. A reader that closed the pipe ends the program
 /// quietly ([`Error::StdoutClosed`]); any other failure (a full disk) is an output error naming
 /// standard output. Never panics, unlike `println!`.

@@ -1,4 +1,5 @@
-//! WGSL sources, embedded in the binary, and a tiny `#include "path"` resolver.
+//! WGSL sources, embedded in the binary (every file under `shaders/`, listed by `build.rs`), and a
+//! tiny `#include "path"` resolver.
 //!
 //! Shared code (uniform structs, the full-screen triangle, lighting, sampling helpers) lives in
 //! `shaders/common/`. A line `#include "common/x.wgsl"` is replaced by that file's text the
@@ -7,31 +8,8 @@
 
 use crate::{Error, Result};
 
-/// Every WGSL file under `shaders/`, by its path relative to that folder.
-pub const SOURCES: &[(&str, &str)] = &[
-    ("common/uniforms.wgsl", include_str!("../shaders/common/uniforms.wgsl")),
-    ("common/fullscreen.wgsl", include_str!("../shaders/common/fullscreen.wgsl")),
-    ("common/point_lights.wgsl", include_str!("../shaders/common/point_lights.wgsl")),
-    ("common/occlusion_params.wgsl", include_str!("../shaders/common/occlusion_params.wgsl")),
-    ("common/sky.wgsl", include_str!("../shaders/common/sky.wgsl")),
-    ("common/sky_irradiance.wgsl", include_str!("../shaders/common/sky_irradiance.wgsl")),
-    ("common/tone_curve.wgsl", include_str!("../shaders/common/tone_curve.wgsl")),
-    ("common/surface_pack.wgsl", include_str!("../shaders/common/surface_pack.wgsl")),
-    ("common/gbuffer_read.wgsl", include_str!("../shaders/common/gbuffer_read.wgsl")),
-    ("gbuffer.wgsl", include_str!("../shaders/gbuffer.wgsl")),
-    ("lighting.wgsl", include_str!("../shaders/lighting.wgsl")),
-    ("occlusion.wgsl", include_str!("../shaders/occlusion.wgsl")),
-    ("march.wgsl", include_str!("../shaders/march.wgsl")),
-    ("upsample.wgsl", include_str!("../shaders/upsample.wgsl")),
-    ("blur.wgsl", include_str!("../shaders/blur.wgsl")),
-    ("temporal.wgsl", include_str!("../shaders/temporal.wgsl")),
-    ("composite.wgsl", include_str!("../shaders/composite.wgsl")),
-    ("skybox.wgsl", include_str!("../shaders/skybox.wgsl")),
-    ("light_cubes.wgsl", include_str!("../shaders/light_cubes.wgsl")),
-    ("tonemap.wgsl", include_str!("../shaders/tonemap.wgsl")),
-    ("depth_copy.wgsl", include_str!("../shaders/depth_copy.wgsl")),
-    ("depth_pyramid.wgsl", include_str!("../shaders/depth_pyramid.wgsl")),
-];
+// `SOURCES`: every WGSL file under `shaders/`, listed by `build.rs`.
+include!(concat!(env!("OUT_DIR"), "/shader_sources.rs"));
 
 /// The shaders that are compiled as modules (the rest are only included).
 pub fn entry_points() -> impl Iterator<Item = &'static str> {

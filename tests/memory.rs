@@ -225,7 +225,7 @@ fn the_targets_counted_before_allocation_are_the_targets_allocated() {
             let mut renderer = common::renderer(&gpu, &scene, &sky, (97, 61), settings);
             renderer.keep_hdr(&gpu, keep_hdr);
             let allocated: u64 = renderer.targets().allocations().iter().map(|(_, b)| b).sum();
-            let counted = ssdo::render::targets::Targets::bytes_for((97, 61), &renderer.plan().target_set());
+            let counted = ssdo::render::targets::Targets::bytes_for((97, 61), &renderer.plan().targets());
             assert_eq!(counted, allocated, "{mode:?}, HDR kept: {keep_hdr}");
         }
     }

@@ -271,7 +271,7 @@ impl Viewer {
         {
             let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("egui_pass"),
-                color_attachments: &[crate::render::passes::color_attachment(&target, false)],
+                color_attachments: &[crate::render::graph::color_attachment(&target, false)],
                 depth_stencil_attachment: None,
                 timestamp_writes: None,
                 occlusion_query_set: None,

@@ -9,7 +9,7 @@ mod frame;
 mod loader;
 mod ui;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -421,9 +421,4 @@ impl Viewer {
             self.panel.say(e.to_string(), true);
         }
     }
-}
-
-/// Where screenshots go by default.
-pub fn default_screenshot_dir() -> &'static Path {
-    Path::new("screenshots")
 }

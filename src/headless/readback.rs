@@ -103,7 +103,8 @@ pub fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureForma
 }
 
 fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
-    use crate::render::passes::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
+    use crate::render::bindings::texture_entry;
+    use crate::render::graph::{color_attachment, fullscreen_pipeline, FullscreenDesc, FullscreenPass};
     let device = &gpu.device;
     let format = wgpu::TextureFormat::R32Uint;
     let size = depth.size();
@@ -159,11 +160,11 @@ pub struct OcclusionValues {
 /// Reads `set`; `with_ao` says whether DO's alpha is AO (the mode computes AO).
 pub fn read_occlusion(
     gpu: &Gpu,
-    set: &crate::render::targets::OcclusionTargets,
+    set: crate::render::targets::OcclusionTargets<'_>,
     with_ao: bool,
 ) -> Result<OcclusionValues> {
-    let directional = set.directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture)).transpose()?;
-    let ao = match (&set.ao, &directional) {
+    let directional = set.directional.map(|t| read_rgba16f(gpu, &t.texture)).transpose()?;
+    let ao = match (set.ao, &directional) {
         (Some(t), _) => Some(read_r16f(gpu, &t.texture)?),
         (None, Some(d)) if with_ao => Some(d.iter().map(|p| p[3]).collect()),
         _ => None,

@@ -71,7 +71,7 @@ fn measure(gpu: &Gpu, renderer: &mut Renderer, camera: &OrbitCamera) -> Result<V
         for (view, name) in [(View::DoDirect, "do_direct"), (View::DoIndirect, "do_indirect")] {
             renderer.settings.view = view;
             capture_converged(gpu, renderer, camera)?;
-            let target = renderer.targets().occlusion().directional.as_ref().expect("a DO mode has a DO target");
+            let target = renderer.targets().occlusion().directional.expect("a DO mode has a DO target");
             let values = read_rgba16f(gpu, &target.texture)?;
             stats.push(BufferStats::of(name, values.iter().flat_map(|p| [p[0], p[1], p[2]]).map(|v| v / pre)));
         }

@@ -15,6 +15,7 @@ use super::targets::Target;
 /// What a history is, and what it is valid for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HistorySpec {
+    /// Its target's name (`modes::OCCLUSION_HISTORY`, ...).
     pub name: &'static str,
     pub format: wgpu::TextureFormat,
     /// A digest of the inputs whose change makes the history meaningless (the settings it
@@ -75,7 +76,7 @@ impl History {
     pub fn ensure(&mut self, device: &wgpu::Device, size: (u32, u32), specs: &[HistorySpec]) {
         self.pairs.retain(|p| p.size == size && specs.contains(&p.spec));
         for spec in specs {
-            if self.get(spec.name).is_none() {
+            if !self.pairs.iter().any(|p| p.spec.name == spec.name) {
                 self.made += 1;
                 let target = || Target::new(device, spec.name, size, spec.format);
                 let targets = [target(), target()];
@@ -100,8 +101,9 @@ impl History {
         }
     }
 
-    pub fn get(&self, name: &str) -> Option<&PingPong> {
-        self.pairs.iter().find(|p| p.spec.name == name)
+    /// The history of that name (`modes::OCCLUSION_HISTORY`, or its name).
+    pub fn get(&self, name: impl AsRef<str>) -> Option<&PingPong> {
+        self.pairs.iter().find(|p| p.spec.name == name.as_ref())
     }
 
     pub fn all(&self) -> impl Iterator<Item = &PingPong> {

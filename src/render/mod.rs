@@ -5,8 +5,10 @@
 //! differently; resizing rebuilds the targets and the passes' bind groups.
 
 mod accumulation;
+pub mod bindings;
 mod derived;
 pub mod frame;
+pub mod graph;
 pub mod history;
 pub mod kernel;
 pub mod modes;
@@ -27,15 +29,18 @@ use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
 use accumulation::StillView;
 use frame::FrameData;
+use graph::io::{Fallbacks, Inputs};
+use graph::{FrameState, Preparation, Recording};
 use history::History;
-pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, StepIo, TargetId, TargetSet};
-use passes::set::PassSet;
-use passes::{FrameState, Preparation, Recording};
+pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step};
+use passes::PassSet;
+pub use passes::StepIo;
 use resources::sampling::OcclusionData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
 pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
 pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE};
+pub use targets::TargetId;
 use targets::Targets;
 use timer::GpuTimer;
 pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
@@ -54,10 +59,8 @@ pub struct Renderer {
     frame: FrameData,
     occlusion_data: OcclusionData,
     sky_layout: wgpu::BindGroupLayout,
-    /// Bound where a pass's input does not exist in the current plan (1x1, never read).
-    unused: wgpu::TextureView,
-    /// The same for the depth pyramid's integer format.
-    unused_pyramid: wgpu::TextureView,
+    /// Bound where a pass's input does not exist in the current plan.
+    fallbacks: Fallbacks,
     targets: Targets,
     /// Targets that survive frames and re-plans (the temporal pass's).
     history: History,
@@ -93,14 +96,12 @@ impl Renderer {
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
         let sky_layout = sky_layout(device);
-        let targets = Targets::new(device, size, &plan.target_set());
+        let targets = Targets::new(device, size, &plan.targets());
         let mut history = History::default();
         history.ensure(device, size, &plan.history);
         let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
-        let scene_gpu = passes.gbuffer.upload(gpu, &scene.model);
+        let scene_gpu = passes.upload_scene(gpu, &scene.model);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
-        let unused = targets::Target::new(device, "unused_input", (1, 1), targets::DO_FORMAT).view;
-        let unused_pyramid = targets::Target::new(device, "unused_pyramid", (1, 1), targets::PYRAMID_FORMAT).view;
         let mut renderer = Self {
             settings,
             prepared: (settings.sampling.variant, settings.view),
@@ -114,8 +115,7 @@ impl Renderer {
             plan,
             frame,
             sky_layout,
-            unused,
-            unused_pyramid,
+            fallbacks: Fallbacks::new(device),
             targets,
             history,
             history_settings: settings,
@@ -190,7 +190,7 @@ impl Renderer {
     }
 
     fn rebuild_targets(&mut self, gpu: &Gpu) {
-        self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan.target_set());
+        self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan.targets());
         // A history outlives the re-plan unless its size or its own inputs changed.
         self.history.ensure(&gpu.device, self.targets.size, &self.plan.history);
         self.prepare_passes(gpu);
@@ -201,18 +201,14 @@ impl Renderer {
     /// variant asks for a different one.
     fn prepare_passes(&mut self, gpu: &Gpu) {
         let (variant, view) = (self.settings.sampling.variant, self.settings.view);
-        let preparation = Preparation {
+        let inputs = Inputs {
             targets: &self.targets,
-            plan: &self.plan,
-            variant,
-            view,
-            data: &self.occlusion_data,
-            unused: &self.unused,
-            unused_pyramid: &self.unused_pyramid,
             history: &self.history,
+            params: &self.occlusion_data.buffer,
+            fallbacks: &self.fallbacks,
         };
-        let device = &gpu.device;
-        self.passes.each(|pass| pass.prepare(device, &preparation));
+        let preparation = Preparation { plan: &self.plan, variant, view, inputs };
+        self.passes.prepare(&gpu.device, &preparation);
         self.prepared = (variant, view);
     }
 
@@ -234,7 +230,7 @@ impl Renderer {
 
     /// Replaces the model and lights.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
-        self.scene = self.passes.gbuffer.upload(gpu, &scene.model);
+        self.scene = self.passes.upload_scene(gpu, &scene.model);
         self.rig = scene.rig;
         self.scene_radius = scene.default_radius();
         self.set_lights(gpu, scene.lights.clone());
@@ -261,7 +257,7 @@ impl Renderer {
             // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
             let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
             let history: u64 = plan.history.iter().map(|h| 2 * targets::texel_bytes(size, h.format)).sum();
-            let bytes = Targets::bytes_for(size, &plan.target_set()) + history + output;
+            let bytes = Targets::bytes_for(size, &plan.targets()) + history + output;
             budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
                 .map_err(Error::Setting)?;
         }
@@ -322,7 +318,7 @@ impl Renderer {
     pub fn allocations(&self) -> Vec<(String, u64)> {
         let mut list: Vec<(String, u64)> =
             self.targets.allocations().into_iter().map(|(n, b)| (n.to_string(), b)).collect();
-        list.extend(self.history.all().map(|h| (format!("history_{}", h.spec.name), h.bytes())));
+        list.extend(self.history.all().map(|h| (h.spec.name.to_string(), h.bytes())));
         list.push(("scene_geometry_and_materials".into(), self.scene.bytes));
         list.push(("sky_cubemap".into(), self.sky.bytes));
         list.push(("frame_uniforms_and_lights".into(), self.frame.bytes()));
@@ -361,20 +357,23 @@ impl Renderer {
         self.passes.each(|pass| pass.begin_frame(&state));
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));
-            self.passes.get(step).record(Recording {
-                encoder,
-                timestamps: self.timer.as_ref().map(|timer| timer.writes(index)),
-                targets: &self.targets,
-                plan: &self.plan,
-                frame: &self.frame.bind_group,
-                sky: &self.sky,
-                scene: &self.scene,
-                lights: self.lights.len() as u32,
-                light_order: &self.frame.cube_order,
-                output,
-                origin,
-                history: &self.history,
-            });
+            self.passes.record(
+                step,
+                Recording {
+                    encoder,
+                    timestamps: self.timer.as_ref().map(|timer| timer.writes(index)),
+                    targets: &self.targets,
+                    plan: &self.plan,
+                    frame: &self.frame.bind_group,
+                    sky: &self.sky,
+                    scene: &self.scene,
+                    lights: self.lights.len() as u32,
+                    light_order: &self.frame.cube_order,
+                    output,
+                    origin,
+                    history: &self.history,
+                },
+            );
             encoder.pop_debug_group();
         }
         // What this frame wrote is what the next one reads.

@@ -1,6 +1,7 @@
-//! Screen-sized textures. `Targets` owns them and is rebuilt as a whole on resize or when the
+//! Screen-sized textures. Each is a [`TargetId`] (name, format, size), declared once; `Targets`
+//! owns the ones the current plan's steps write and is rebuilt as a whole on resize or when the
 //! plan needs a different set; passes own pipelines and rebuild only their bind groups. A target
-//! that the current plan does not read or write is not allocated at all.
+//! that the current plan does not write is not allocated at all.
 
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// View-space normal and shininess packed in one u32 (`shaders/common/surface_pack.wgsl`).
@@ -33,30 +34,213 @@ pub fn unpack_surface(bits: u32) -> (glam::Vec3, f32) {
     (n, ((bits >> 24) as f32 / SHININESS_SCALE).exp2() - 1.0)
 }
 
-/// One texture with its default view and its size in bytes.
+/// Where a target lives, and so how large it is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Place {
+    /// A screen texture of the screen's size.
+    Screen,
+    /// A screen texture of half the screen's size, rounded up ([`half_size`]).
+    HalfScreen,
+    /// The closest-depth pyramid: half the screen at level 0, halving down (see [`Target`]).
+    Pyramid,
+    /// A texture that outlives the frame (`history.rs`): read as the last frame left it.
+    History,
+    /// What the frame is drawn into (the window or the capture); not allocated here.
+    Output,
+}
+
+/// A texture a pass reads or writes, declared once: by the pass that writes it
+/// (`passes/<pass>.rs`), or below for the G-buffer and the targets several passes share. Two
+/// ids are the same target when their names are.
+#[derive(Clone, Copy, Debug)]
+pub struct TargetId {
+    pub name: &'static str,
+    pub format: wgpu::TextureFormat,
+    pub place: Place,
+}
+
+impl PartialEq for TargetId {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+    }
+}
+
+impl Eq for TargetId {}
+
+impl std::hash::Hash for TargetId {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.name.hash(state);
+    }
+}
+
+impl AsRef<str> for TargetId {
+    fn as_ref(&self) -> &str {
+        self.name
+    }
+}
+
+impl TargetId {
+    pub const fn new(name: &'static str, format: wgpu::TextureFormat, place: Place) -> Self {
+        Self { name, format, place }
+    }
+
+    pub fn name(self) -> &'static str {
+        self.name
+    }
+
+    /// Whether the target is a history: it outlives the frame, and a step may read it before any
+    /// step of this frame writes it.
+    pub fn persistent(self) -> bool {
+        self.place == Place::History
+    }
+
+    /// Whether the target is one of the G-buffer's three, which every plan has.
+    pub fn in_gbuffer(self) -> bool {
+        [ALBEDO, NORMAL, DEPTH].contains(&self)
+    }
+
+    /// Whether [`Targets`] allocates it (the histories and the output live elsewhere).
+    pub fn allocated(self) -> bool {
+        matches!(self.place, Place::Screen | Place::HalfScreen | Place::Pyramid)
+    }
+
+    /// The bytes it takes for a screen of `size`.
+    pub fn bytes(self, size: (u32, u32)) -> u64 {
+        match self.place {
+            Place::Screen => texel_bytes(size, self.format),
+            Place::HalfScreen => texel_bytes(half_size(size), self.format),
+            Place::Pyramid => {
+                let (base, count) = pyramid_shape(size);
+                (0..count).map(|l| texel_bytes(((base.0 >> l).max(1), (base.1 >> l).max(1)), self.format)).sum()
+            }
+            Place::History | Place::Output => 0,
+        }
+    }
+}
+
+pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
+pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The G-buffer: rgb albedo and a specular strength; the view-space normal and shininess,
+/// packed ([`pack_surface`]); depth (reverse-Z). Every plan has them.
+pub const ALBEDO: TargetId = TargetId::new("gbuffer_albedo", ALBEDO_FORMAT, Place::Screen);
+pub const NORMAL: TargetId = TargetId::new("gbuffer_normal", NORMAL_FORMAT, Place::Screen);
+pub const DEPTH: TargetId = TargetId::new("gbuffer_depth", DEPTH_FORMAT, Place::Screen);
+/// Linear HDR radiance before tone mapping: written by the lighting pass, the composite, the
+/// skybox and the light cubes, read by the tone map.
+pub const HDR: TargetId = TargetId::new("hdr_color", HDR_FORMAT, Place::Screen);
+/// The diffuse radiance of each surface under its direct light, SSDO's bounce source: written by
+/// the lighting pass, read by the sampling pass.
+pub const BOUNCE: TargetId = TargetId::new("bounce_radiance", BOUNCE_FORMAT, Place::Screen);
+pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// What the frame is drawn into.
+pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Output);
+
+/// The sampling chain's outputs, each for AO alone (SSAO) or DO + AO (SSDO and SSAO+SSDO: rgb
+/// sky light and bounce before albedo, a AO): what the sampling pass (or the upsample) writes,
+/// what a half-resolution sampling pass writes, the blurred copy and the average over frames.
+pub const AO_RAW: TargetId = TargetId::new("ao_raw", AO_FORMAT, Place::Screen);
+pub const DO_RAW: TargetId = TargetId::new("do_raw", DO_FORMAT, Place::Screen);
+pub const AO_HALF: TargetId = TargetId::new("ao_half", AO_FORMAT, Place::HalfScreen);
+pub const DO_HALF: TargetId = TargetId::new("do_half", DO_FORMAT, Place::HalfScreen);
+pub const AO_BLURRED: TargetId = TargetId::new("ao_blurred", AO_FORMAT, Place::Screen);
+pub const DO_BLURRED: TargetId = TargetId::new("do_blurred", DO_FORMAT, Place::Screen);
+pub const AO_ACCUMULATED: TargetId = TargetId::new("ao_accumulated", AO_FORMAT, Place::Screen);
+pub const DO_ACCUMULATED: TargetId = TargetId::new("do_accumulated", DO_FORMAT, Place::Screen);
+
+/// A stage of the sampling chain, and its pair of targets (AO alone, DO + AO).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Raw,
+    Half,
+    Blurred,
+    Accumulated,
+}
+
+impl Stage {
+    /// The stage's target for a mode that computes DO (`directional`) or AO alone.
+    pub fn target(self, directional: bool) -> TargetId {
+        let (ao, d) = match self {
+            Stage::Raw => (AO_RAW, DO_RAW),
+            Stage::Half => (AO_HALF, DO_HALF),
+            Stage::Blurred => (AO_BLURRED, DO_BLURRED),
+            Stage::Accumulated => (AO_ACCUMULATED, DO_ACCUMULATED),
+        };
+        if directional {
+            d
+        } else {
+            ao
+        }
+    }
+}
+
+/// One texture with its default view, its mip levels' views where it has several (the pyramid),
+/// and its size in bytes.
 pub struct Target {
     pub name: &'static str,
     pub texture: wgpu::Texture,
     pub view: wgpu::TextureView,
+    /// One view per mip level (the pyramid's, for building it); empty for one level.
+    pub levels: Vec<wgpu::TextureView>,
     pub bytes: u64,
 }
 
 impl Target {
     pub fn new(device: &wgpu::Device, name: &'static str, size: (u32, u32), format: wgpu::TextureFormat) -> Self {
+        Self::with_levels(device, name, size, format, None)
+    }
+
+    /// A target of `levels` mips with a view of each (`None`: one level, no level views, and
+    /// readable back).
+    fn with_levels(
+        device: &wgpu::Device,
+        name: &'static str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        mips: Option<u32>,
+    ) -> Self {
+        let copy = if mips.is_none() { wgpu::TextureUsages::COPY_SRC } else { wgpu::TextureUsages::empty() };
+        let levels = mips.unwrap_or(1);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(name),
             size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-            mip_level_count: 1,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | copy,
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        Self { name, texture, view, bytes: texel_bytes(size, format) }
+        let levels = if mips.is_none() {
+            Vec::new()
+        } else {
+            (0..levels)
+                .map(|level| {
+                    texture.create_view(&wgpu::TextureViewDescriptor {
+                        base_mip_level: level,
+                        mip_level_count: Some(1),
+                        ..Default::default()
+                    })
+                })
+                .collect()
+        };
+        let bytes = (0..texture.mip_level_count())
+            .map(|l| texel_bytes(((size.0 >> l).max(1), (size.1 >> l).max(1)), format))
+            .sum();
+        Self { name, texture, view, levels, bytes }
+    }
+
+    /// The target `id` for a screen of `size`.
+    fn of(device: &wgpu::Device, id: TargetId, size: (u32, u32)) -> Self {
+        match id.place {
+            Place::HalfScreen => Self::new(device, id.name, half_size(size), id.format),
+            Place::Pyramid => {
+                let (base, count) = pyramid_shape(size);
+                Self::with_levels(device, id.name, base, id.format, Some(count))
+            }
+            _ => Self::new(device, id.name, size, id.format),
+        }
     }
 }
 
@@ -65,245 +249,111 @@ pub(crate) fn texel_bytes(size: (u32, u32), format: wgpu::TextureFormat) -> u64 
     size.0 as u64 * size.1 as u64 * format.block_copy_size(None).unwrap_or(4) as u64
 }
 
-/// The depth pyramid: closest depth per block, as f32 bits (see `shaders/depth_pyramid.wgsl`).
-pub const PYRAMID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-/// Levels of the pyramid at most: level k covers 2^(k+1) pixels, so 7 levels serve steps up
-/// to 256 pixels apart.
+/// Levels of the depth pyramid at most: level k covers 2^(k+1) pixels, so 7 levels serve steps
+/// up to 256 pixels apart.
 pub const PYRAMID_LEVELS: u32 = 7;
 
-/// The depth pyramid: half the screen at level 0, halving down to 1x1 or `PYRAMID_LEVELS`.
-pub struct Pyramid {
-    pub texture: wgpu::Texture,
-    /// Every level, for the march.
-    pub view: wgpu::TextureView,
-    /// One view per level, for building it.
-    pub levels: Vec<wgpu::TextureView>,
-    pub bytes: u64,
+/// The pyramid's level 0 size and number of levels for a screen of `size`: half the screen,
+/// halving down to 1x1 or [`PYRAMID_LEVELS`].
+fn pyramid_shape(size: (u32, u32)) -> ((u32, u32), u32) {
+    let base = ((size.0 / 2).max(1), (size.1 / 2).max(1));
+    (base, (32 - base.0.max(base.1).leading_zeros()).clamp(1, PYRAMID_LEVELS))
 }
 
-impl Pyramid {
-    /// Level 0's size and the number of levels for a screen of `size`.
-    fn shape(size: (u32, u32)) -> ((u32, u32), u32) {
-        let base = ((size.0 / 2).max(1), (size.1 / 2).max(1));
-        (base, (32 - base.0.max(base.1).leading_zeros()).clamp(1, PYRAMID_LEVELS))
-    }
-
-    /// The bytes of a pyramid for a screen of `size`.
-    fn bytes_for(size: (u32, u32)) -> u64 {
-        let (base, count) = Self::shape(size);
-        (0..count).map(|l| ((base.0 >> l).max(1) as u64) * ((base.1 >> l).max(1) as u64) * 4).sum()
-    }
-
-    fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
-        let (base, count) = Self::shape(size);
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("depth_pyramid"),
-            size: wgpu::Extent3d { width: base.0, height: base.1, depth_or_array_layers: 1 },
-            mip_level_count: count,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: PYRAMID_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let levels = (0..count)
-            .map(|level| {
-                texture.create_view(&wgpu::TextureViewDescriptor {
-                    base_mip_level: level,
-                    mip_level_count: Some(1),
-                    ..Default::default()
-                })
-            })
-            .collect();
-        Self { texture, view, levels, bytes: Self::bytes_for(size) }
-    }
-}
-
-pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
-pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-
-/// Which screen targets a plan allocates besides the G-buffer (formats below).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TargetSet {
-    /// Linear HDR radiance (`hdr_color`).
-    pub hdr: bool,
-    /// The diffuse radiance SSDO bounces (`bounce_radiance`): the senders' direct light.
-    pub bounce: bool,
-    /// AO alone (`ao_raw`): SSAO.
-    pub ao: bool,
-    /// DO + AO (`do_raw`): SSDO and SSAO+SSDO.
-    pub directional: bool,
-    /// A blurred copy of whichever of the two the plan has.
-    pub blurred: bool,
-    /// Its average over frames (`ao_accumulated` / `do_accumulated`), the temporal pass's output.
-    pub accumulated: bool,
-    /// The sampling pass's output at half resolution (`ao_half` / `do_half`), before the upsample.
-    pub half: bool,
-    /// The closest-depth pyramid of the march's far steps.
-    pub pyramid: bool,
-    /// The sky each sender sees, at half resolution (`sender_sky`).
-    pub sender_sky: bool,
-}
-
-/// The view of an optional target.
-pub fn view_of(target: &Option<Target>) -> Option<&wgpu::TextureView> {
-    target.as_ref().map(|t| &t.view)
-}
-
-/// Half of `size`, rounded up: the sender-sky march's resolution (its pixel (x, y) is the
+/// Half of `size`, rounded up: the half-resolution passes' size (their pixel (x, y) is the
 /// full-resolution pixel (2x, 2y)).
 pub fn half_size(size: (u32, u32)) -> (u32, u32) {
     (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1))
 }
 
-/// The view of an optional target, or `unused` where it does not exist.
-pub fn view_or<'a>(target: &'a Option<Target>, unused: &'a wgpu::TextureView) -> &'a wgpu::TextureView {
-    view_of(target).unwrap_or(unused)
-}
-
-/// Which output of the sampling chain a set of [`OcclusionTargets`] holds.
+/// A stage of the sampling chain as it exists in a plan: AO alone, or DO + AO, or neither.
 #[derive(Clone, Copy)]
-enum Stage {
-    Raw,
-    Blurred,
-    Accumulated,
-    Half,
-}
-
-/// The sampling pass's outputs (raw, blurred or accumulated): whichever the plan computes.
-pub struct OcclusionTargets {
+pub struct OcclusionTargets<'a> {
     /// Ambient occlusion in [0, 1] (SSAO only).
-    pub ao: Option<Target>,
+    pub ao: Option<&'a Target>,
     /// SSDO and SSAO+SSDO: rgb = sky light + indirect bounce (before albedo), a = AO.
-    pub directional: Option<Target>,
+    pub directional: Option<&'a Target>,
 }
 
-impl OcclusionTargets {
-    /// The pair named `ao_<stage>` and `do_<stage>`: `raw`, `blurred` or `accumulated`.
-    fn new(device: &wgpu::Device, set: &TargetSet, size: (u32, u32), stage: Stage) -> Self {
-        let (ao, directional) = match stage {
-            Stage::Raw => ("ao_raw", "do_raw"),
-            Stage::Blurred => ("ao_blurred", "do_blurred"),
-            Stage::Accumulated => ("ao_accumulated", "do_accumulated"),
-            Stage::Half => ("ao_half", "do_half"),
-        };
-        let size = if let Stage::Half = stage { half_size(size) } else { size };
-        let make = |wanted: bool, name: &'static str, format| wanted.then(|| Target::new(device, name, size, format));
-        Self { ao: make(set.ao, ao, AO_FORMAT), directional: make(set.directional, directional, DO_FORMAT) }
-    }
-
-    /// The one target the sampling pass (and the blur) writes.
-    pub fn output(&self) -> Option<&Target> {
-        self.ao.as_ref().or(self.directional.as_ref())
-    }
-
-    pub fn all(&self) -> impl Iterator<Item = &Target> {
-        [&self.ao, &self.directional].into_iter().flatten()
+impl<'a> OcclusionTargets<'a> {
+    /// The one target of the stage.
+    pub fn output(&self) -> Option<&'a Target> {
+        self.ao.or(self.directional)
     }
 }
 
-/// The G-buffer and the intermediate buffers of the current plan. A buffer the plan does not
-/// use is `None`, not allocated.
+/// The screen targets of the current plan: the G-buffer and exactly the targets its steps
+/// write (`Plan::targets`). A target the plan does not write is not allocated at all.
 pub struct Targets {
     pub size: (u32, u32),
-    /// rgb albedo, a specular strength
-    pub albedo: Target,
-    /// View-space normal and shininess, packed (`pack_surface`)
-    pub normal: Target,
-    pub depth: Target,
-    /// Linear HDR radiance before tone mapping (not in a display plan without a lighting pass).
-    pub hdr: Option<Target>,
-    /// The diffuse radiance of each surface under its direct light: SSDO's bounce source.
-    pub bounce: Option<Target>,
-    /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a),
-    /// at half resolution: the sender-sky march's output, read by the lighting pass.
-    pub sender_sky: Option<Target>,
-    /// What the sampling pass writes.
-    pub raw: OcclusionTargets,
-    /// What the blur writes (when the plan blurs).
-    pub blurred: Option<OcclusionTargets>,
-    /// What the temporal pass writes (when the plan accumulates).
-    pub accumulated: Option<OcclusionTargets>,
-    /// What a half-resolution sampling pass writes (the upsample then writes `raw`).
-    pub half: Option<OcclusionTargets>,
-    /// The closest-depth pyramid the march reads (when the plan builds one).
-    pub pyramid: Option<Pyramid>,
+    list: Vec<(TargetId, Target)>,
 }
 
 impl Targets {
-    /// Allocates the G-buffer and the targets of `set` (a plan's [`TargetSet`]).
-    pub fn new(device: &wgpu::Device, size: (u32, u32), set: &TargetSet) -> Self {
-        Self {
-            size,
-            albedo: Target::new(device, "gbuffer_albedo", size, ALBEDO_FORMAT),
-            normal: Target::new(device, "gbuffer_normal", size, NORMAL_FORMAT),
-            depth: Target::new(device, "gbuffer_depth", size, DEPTH_FORMAT),
-            hdr: set.hdr.then(|| Target::new(device, "hdr_color", size, HDR_FORMAT)),
-            bounce: set.bounce.then(|| Target::new(device, "bounce_radiance", size, BOUNCE_FORMAT)),
-            sender_sky: set.sender_sky.then(|| Target::new(device, "sender_sky", half_size(size), DO_FORMAT)),
-            raw: OcclusionTargets::new(device, set, size, Stage::Raw),
-            blurred: set.blurred.then(|| OcclusionTargets::new(device, set, size, Stage::Blurred)),
-            accumulated: set.accumulated.then(|| OcclusionTargets::new(device, set, size, Stage::Accumulated)),
-            half: set.half.then(|| OcclusionTargets::new(device, set, size, Stage::Half)),
-            pyramid: set.pyramid.then(|| Pyramid::new(device, size)),
-        }
+    /// Allocates `ids` (a plan's targets, the G-buffer among them) for a screen of `size`.
+    pub fn new(device: &wgpu::Device, size: (u32, u32), ids: &[TargetId]) -> Self {
+        let list = ids.iter().filter(|id| id.allocated()).map(|&id| (id, Target::of(device, id, size))).collect();
+        Self { size, list }
     }
 
-    /// The bytes [`Targets::new`] allocates for `set` at `size`, known before anything is
+    /// The bytes [`Targets::new`] allocates for `ids` at `size`, known before anything is
     /// allocated (the memory budget is checked with it).
-    pub fn bytes_for(size: (u32, u32), set: &TargetSet) -> u64 {
-        let when = |wanted: bool, bytes: u64| if wanted { bytes } else { 0 };
-        let occlusion =
-            when(set.ao, texel_bytes(size, AO_FORMAT)) + when(set.directional, texel_bytes(size, DO_FORMAT));
-        [ALBEDO_FORMAT, NORMAL_FORMAT, DEPTH_FORMAT].map(|f| texel_bytes(size, f)).iter().sum::<u64>()
-            + when(set.hdr, texel_bytes(size, HDR_FORMAT))
-            + when(set.bounce, texel_bytes(size, BOUNCE_FORMAT))
-            + when(set.sender_sky, texel_bytes(half_size(size), DO_FORMAT))
-            + occlusion * (1 + set.blurred as u64 + set.accumulated as u64)
-            + when(set.half, {
-                let half = half_size(size);
-                when(set.ao, texel_bytes(half, AO_FORMAT)) + when(set.directional, texel_bytes(half, DO_FORMAT))
-            })
-            + when(set.pyramid, Pyramid::bytes_for(size))
+    pub fn bytes_for(size: (u32, u32), ids: &[TargetId]) -> u64 {
+        ids.iter().filter(|id| id.allocated()).map(|id| id.bytes(size)).sum()
+    }
+
+    /// The target `id`, where the plan has it.
+    pub fn get(&self, id: TargetId) -> Option<&Target> {
+        self.list.iter().find(|(i, _)| *i == id).map(|(_, t)| t)
+    }
+
+    /// The target `id`, which the plan must have (a pass asks for what it declared).
+    pub fn expect(&self, id: TargetId) -> &Target {
+        self.get(id).unwrap_or_else(|| panic!("the plan has no target {}", id.name))
+    }
+
+    pub fn albedo(&self) -> &Target {
+        self.expect(ALBEDO)
+    }
+
+    pub fn normal(&self) -> &Target {
+        self.expect(NORMAL)
+    }
+
+    pub fn depth(&self) -> &Target {
+        self.expect(DEPTH)
     }
 
     /// The HDR target, where the plan keeps one (see `Renderer::keep_hdr`).
     pub fn hdr(&self) -> crate::Result<&Target> {
-        self.hdr.as_ref().ok_or_else(|| {
+        self.get(HDR).ok_or_else(|| {
             crate::Error::Gpu("this frame kept no HDR image: call Renderer::keep_hdr(true) before rendering".into())
         })
     }
 
-    /// The AO/DO buffers the composite reads: accumulated when the plan accumulates, otherwise
-    /// blurred when it blurs.
-    pub fn occlusion(&self) -> &OcclusionTargets {
-        self.accumulated.as_ref().or(self.blurred.as_ref()).unwrap_or(&self.raw)
+    /// A stage of the sampling chain, as the plan has it.
+    pub fn stage(&self, stage: Stage) -> OcclusionTargets<'_> {
+        OcclusionTargets { ao: self.get(stage.target(false)), directional: self.get(stage.target(true)) }
     }
 
-    /// What the temporal pass reads: the blurred output when the plan blurs, else the raw one.
-    pub fn filtered(&self) -> &OcclusionTargets {
-        self.blurred.as_ref().unwrap_or(&self.raw)
+    /// What the sampling pass (or the upsample) writes.
+    pub fn raw(&self) -> OcclusionTargets<'_> {
+        self.stage(Stage::Raw)
+    }
+
+    /// The AO/DO buffers the composite reads: accumulated when the plan accumulates, otherwise
+    /// blurred when it blurs, else raw.
+    pub fn occlusion(&self) -> OcclusionTargets<'_> {
+        [Stage::Accumulated, Stage::Blurred, Stage::Raw]
+            .map(|s| self.stage(s))
+            .into_iter()
+            .find(|t| t.output().is_some())
+            .unwrap_or(OcclusionTargets { ao: None, directional: None })
     }
 
     /// Every allocated target with its size in bytes.
     pub fn allocations(&self) -> Vec<(&'static str, u64)> {
-        let fixed = [&self.albedo, &self.normal, &self.depth].into_iter();
-        let optional = self
-            .hdr
-            .iter()
-            .chain(self.bounce.iter())
-            .chain(self.sender_sky.iter())
-            .chain(self.raw.all())
-            .chain(self.blurred.iter().flat_map(|b| b.all()))
-            .chain(self.accumulated.iter().flat_map(|b| b.all()))
-            .chain(self.half.iter().flat_map(|b| b.all()));
-        let mut list: Vec<(&'static str, u64)> = fixed.chain(optional).map(|t| (t.name, t.bytes)).collect();
-        if let Some(p) = &self.pyramid {
-            list.push(("depth_pyramid", p.bytes));
-        }
-        list
+        self.list.iter().map(|(_, t)| (t.name, t.bytes)).collect()
     }
 }
 

@@ -125,7 +125,7 @@ impl Bench<'_> {
             renderer.settings.view = View::DoIndirect;
             capture_path(gpu, renderer, camera_at)?;
             renderer.settings.view = s.view;
-            let bounce = renderer.targets().occlusion().directional.as_ref().map(|t| read_rgba16f(gpu, &t.texture));
+            let bounce = renderer.targets().occlusion().directional.map(|t| read_rgba16f(gpu, &t.texture));
             let bounce = bounce.transpose()?.unwrap_or_default();
             let mean =
                 |f: &dyn Fn(usize) -> f32| valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64;

@@ -193,7 +193,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
 
     // The G-buffer is the same in every mode: one frame gives the depth the reference checks.
     capture(gpu, &mut renderer, &camera)?;
-    let depth = read_depth(gpu, &renderer.targets().depth.texture)?;
+    let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
     let bvh = ReferenceScene::new(&scene.model);
     let target = crate::headless::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());

@@ -5,14 +5,28 @@
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
 //! (display).
 
-use super::super::modes::Plan;
-use super::super::targets::{view_or, HDR_FORMAT};
-use super::super::variant::{Composite, Variant};
-use super::super::View;
-use super::state::PassState;
-use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, FullscreenDesc};
-use super::{Pass, PassContext, Preparation, Recording};
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::state::PassState;
+use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc};
+use crate::render::graph::{Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{Stage, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
+use crate::render::variant::{Composite, Variant};
+use crate::render::View;
 use crate::Result;
+
+impl Step {
+    pub const COMPOSITE: Step = Step::new("composite");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::COMPOSITE,
+    runs: |_| true,
+    io: CompositePass::io,
+    histories: no_history,
+    group_shaders: &["composite.wgsl"],
+    build: |cx| Ok(Box::new(CompositePass::new(cx)?)),
+};
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,18 +62,40 @@ pub struct CompositePass {
 
 impl CompositePass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let [a, n, d] = gbuffer_entries();
-        let input = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
-        let layout = cx.layout("composite_layout", &[a, n, d, input(3), input(4), input(5)]);
-        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", true, layout)?, output: cx.output })
+        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", true)?, output: cx.output })
     }
+
+    /// The G-buffer, the averaged (or filtered) AO or DO + AO, and in a display plan the
+    /// lighting pass's direct light (blended onto otherwise, where it is the attachment and
+    /// cannot also be bound); HDR, or in a display plan the output.
+    pub fn io(plan: &Plan) -> PassIo {
+        let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH)];
+        reads.extend(occlusion_reads(plan));
+        reads.push(Read::target_if(plan.display && plan.lighting_writes_direct(), HDR));
+        PassIo { reads, attached: vec![], writes: vec![if plan.display { OUTPUT } else { HDR }] }
+    }
+}
+
+/// What the composite (and the tone map's debug views) read of the sampling chain: its last
+/// stage, AO alone or DO + AO, the other absent.
+pub fn occlusion_reads(plan: &Plan) -> [Read; 2] {
+    let stage = if plan.accumulates() {
+        Stage::Accumulated
+    } else if plan.blur {
+        Stage::Blurred
+    } else {
+        Stage::Raw
+    };
+    let (sampled, d) = (plan.decl.runs_sampling(), plan.decl.directional_occlusion);
+    [Read::target_if(sampled && !d, stage.target(false)), Read::target_if(sampled && d, stage.target(true))]
 }
 
 impl Pass for CompositePass {
     /// Builds the pipeline the plan needs (if it changed) and the bind group for `targets`.
     /// `white_albedo` is the "lighting only" view: every surface white.
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, variant, unused, view, .. } = *p;
+        let Preparation { plan, variant, view, .. } = *p;
+        self.state.bind(device, &Self::io(plan), &p.inputs);
         let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
         let output = self.output;
@@ -99,29 +135,15 @@ impl Pass for CompositePass {
                 },
             )
         });
-        let occlusion = targets.occlusion();
-        let views = [
-            &targets.albedo.view,
-            &targets.normal.view,
-            &targets.depth.view,
-            view_or(&occlusion.ao, unused),
-            view_or(&occlusion.directional, unused),
-            // The lighting pass's direct light, read in a display plan (blended onto otherwise,
-            // where it is the attachment and cannot also be bound).
-            if plan.display { view_or(&targets.hdr, unused) } else { unused },
-        ];
-        self.state.bind(device, &super::view_entries(&views));
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, sky, output, origin, .. } = rec;
         let (key, _, _) = self.state.ready();
-        let (w, h) = targets.size;
-        let (attachment, viewport) = match (key.display, &targets.hdr) {
-            (false, Some(hdr)) => (color_attachment(&hdr.view, !key.additive), None),
-            (true, _) => (color_attachment(output, true), Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32])),
-            (false, None) => unreachable!("an HDR plan always has its HDR target"),
-        };
-        self.state.draw((encoder, timestamps), &[attachment], (frame, Some(&sky.bind_group)), viewport);
+        // Onto the lighting pass's direct light (kept), or cleared; a display plan at its origin.
+        let keep = key.additive && !key.display;
+        let writes = Self::io(rec.plan).writes;
+        let attachments = crate::render::graph::io::attachments(&writes, rec.targets, rec.history, rec.output, !keep);
+        let viewport = key.display.then(|| rec.viewport());
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), viewport);
     }
 }

@@ -2,10 +2,31 @@
 //! level from the one before, one small full-screen pass per level. Built only by plans whose
 //! sampling pass marches far (the march variant in SSDO and SSAO+SSDO).
 
-use super::super::targets::PYRAMID_FORMAT;
-use super::{color_attachment, fullscreen_pipeline, texture_entry, FullscreenDesc, FullscreenPass};
-use super::{Pass, PassContext, Preparation, Recording};
+use crate::render::graph::io::{Kind, PassIo, Read};
+use crate::render::graph::{color_attachment, fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{Place, TargetId, DEPTH};
 use crate::{shaders, Result};
+
+impl Step {
+    pub const DEPTH_PYRAMID: Step = Step::new("depth_pyramid");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::DEPTH_PYRAMID,
+    // The march's far steps read it, and only where DO is computed.
+    runs: |f| f.options.pyramid && f.decl.directional_occlusion,
+    io: DepthPyramidPass::io,
+    histories: no_history,
+    group_shaders: &[],
+    build: |cx| Ok(Box::new(DepthPyramidPass::new(cx)?)),
+};
+
+/// The closest depth per block, as f32 bits, half the screen at level 0 and halving down: read
+/// by the march's far steps (the sampling pass and the sender-sky march).
+pub const PYRAMID: TargetId = TargetId::new("depth_pyramid", PYRAMID_FORMAT, Place::Pyramid);
+pub const PYRAMID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 pub struct DepthPyramidPass {
     layout: wgpu::BindGroupLayout,
@@ -13,34 +34,13 @@ pub struct DepthPyramidPass {
     next: wgpu::RenderPipeline,
     /// One bind group per level: its source (the depth buffer, or the level before).
     groups: Vec<wgpu::BindGroup>,
-    /// Bound where an entry point does not read its slot.
-    unused_depth: wgpu::TextureView,
-    unused_level: wgpu::TextureView,
-}
-
-fn unused(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("depth_pyramid_unused"),
-            size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-        .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 impl DepthPyramidPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let device = cx.device;
         let module = shaders::module(device, "depth_pyramid.wgsl")?;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("depth_pyramid_layout"),
-            entries: &[texture_entry(0, false, wgpu::TextureViewDimension::D2), super::uint_entry(1)],
-        });
+        let layout = cx.layout("depth_pyramid_layout", &Self::level_reads().layout_entries());
         let pipeline = |entry: &str| {
             fullscreen_pipeline(
                 device,
@@ -55,40 +55,48 @@ impl DepthPyramidPass {
                 },
             )
         };
-        Ok(Self {
-            first: pipeline("fs_first"),
-            next: pipeline("fs_next"),
-            layout,
-            groups: Vec::new(),
-            unused_depth: unused(device, wgpu::TextureFormat::R32Float),
-            unused_level: unused(device, PYRAMID_FORMAT),
-        })
+        Ok(Self { first: pipeline("fs_first"), next: pipeline("fs_next"), layout, groups: Vec::new() })
+    }
+
+    /// What each level's group binds: the depth buffer (level 0) and the level before (the
+    /// others), each level binding the fallback for the one it does not read.
+    fn level_reads() -> PassIo {
+        PassIo { reads: vec![Read::Target(DEPTH), Read::Target(PYRAMID)], ..PassIo::default() }
+    }
+
+    /// The depth (through its levels' own groups); the pyramid.
+    pub fn io(_plan: &Plan) -> PassIo {
+        PassIo { reads: vec![], attached: vec![DEPTH], writes: vec![PYRAMID] }
     }
 }
 
 impl Pass for DepthPyramidPass {
     /// Bind groups for the targets' pyramid (none when the plan has no pyramid).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, .. } = *p;
+        let (targets, fallbacks) = (p.inputs.targets, p.inputs.fallbacks);
         self.groups.clear();
-        let Some(pyramid) = &targets.pyramid else { return };
+        let Some(pyramid) = targets.get(PYRAMID) else { return };
         for level in 0..pyramid.levels.len() {
             let (depth, above) = if level == 0 {
-                (&targets.depth.view, &self.unused_level)
+                (&targets.depth().view, fallbacks.of(Kind::Uint))
             } else {
-                (&self.unused_depth, &pyramid.levels[level - 1])
+                (fallbacks.of(Kind::Float), &pyramid.levels[level - 1])
             };
+            let view = wgpu::BindingResource::TextureView;
             self.groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("depth_pyramid_bind_group"),
                 layout: &self.layout,
-                entries: &super::view_entries(&[depth, above]),
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: view(depth) },
+                    wgpu::BindGroupEntry { binding: 1, resource: view(above) },
+                ],
             }));
         }
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, .. } = rec;
-        let Some(pyramid) = &targets.pyramid else { unreachable!("the depth pyramid recorded in a plan without one") };
+        let pyramid = targets.expect(PYRAMID);
         // The step's timestamps frame the whole chain: the first level's pass begins it and
         // the last one's ends it.
         let last = self.groups.len().saturating_sub(1);

@@ -7,14 +7,30 @@
 
 use wgpu::util::DeviceExt;
 
-use super::super::resources::scene::{upload_texture, Draw, SceneGpu};
-use super::super::targets::{ALBEDO_FORMAT, DEPTH_FORMAT, NORMAL_FORMAT};
-use super::super::uniforms::MaterialParams;
-use super::{Pass, PassContext, Recording};
 use crate::gpu::Gpu;
+use crate::render::bindings::{sampler_entry, texture_entry, uniform_entry};
+use crate::render::graph::io::PassIo;
+use crate::render::graph::{no_history, Entry, Pass, PassContext, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::resources::scene::{upload_texture, Draw, SceneGpu};
+use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
+use crate::render::uniforms::MaterialParams;
 use crate::scene::model::TextureImage;
 use crate::scene::{Model, Vertex};
 use crate::{shaders, Result};
+
+impl Step {
+    pub const GBUFFER: Step = Step::new("gbuffer");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::GBUFFER,
+    runs: |_| true,
+    io: GBufferPass::io,
+    histories: no_history,
+    group_shaders: &[],
+    build: |cx| Ok(Box::new(GBufferPass::new(cx)?)),
+};
 
 pub struct GBufferPass {
     pub material_layout: wgpu::BindGroupLayout,
@@ -29,8 +45,8 @@ impl GBufferPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let (device, frame_layout) = (cx.device, cx.frame_layout);
         let module = shaders::module(device, "gbuffer.wgsl")?;
-        let map = |binding| super::texture_entry(binding, true, wgpu::TextureViewDimension::D2);
-        let material_entries = [super::uniform_entry(0), map(1), map(2), super::sampler_entry(3)];
+        let map = |binding| texture_entry(binding, true, wgpu::TextureViewDimension::D2);
+        let material_entries = [uniform_entry(0), map(1), map(2), sampler_entry(3)];
         let material_layout = cx.layout("gbuffer_material_layout", &material_entries);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer_pipeline_layout"),
@@ -48,6 +64,11 @@ impl GBufferPass {
         });
         let plain = Self::pipeline(device, &pipeline_layout, &module, false);
         Ok(Self { material_layout, sampler, plain, textured: None, pipeline_layout, module })
+    }
+
+    /// The model and its materials (its own bind groups); the G-buffer, depth last.
+    pub fn io(_plan: &Plan) -> PassIo {
+        PassIo { reads: vec![], attached: vec![], writes: vec![ALBEDO, NORMAL, DEPTH] }
     }
 
     fn pipeline(
@@ -93,7 +114,7 @@ impl GBufferPass {
 
     /// Uploads `model` and builds its material bind groups (and the textured pipeline, if any
     /// material has a map and it does not exist yet).
-    pub fn upload(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
+    fn upload(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
         let device = &gpu.device;
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene_vertices"),
@@ -175,16 +196,20 @@ impl GBufferPass {
 }
 
 impl Pass for GBufferPass {
+    fn upload_scene(&mut self, gpu: &Gpu, model: &Model) -> Option<SceneGpu> {
+        Some(self.upload(gpu, model))
+    }
+
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, scene, .. } = rec;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer_pass"),
             color_attachments: &[
-                super::color_attachment(&targets.albedo.view, true),
-                super::color_attachment(&targets.normal.view, true),
+                crate::render::graph::color_attachment(&targets.albedo().view, true),
+                crate::render::graph::color_attachment(&targets.normal().view, true),
             ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth.view,
+                view: &targets.depth().view,
                 depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
                 stencil_ops: None,
             }),

@@ -6,10 +6,25 @@
 
 use wgpu::util::DeviceExt;
 
-use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
-use super::{color_attachment, depth_entry};
-use super::{Pass, PassContext, Preparation, Recording};
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::{color_attachment, no_history, Entry};
+use crate::render::graph::{Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT, OUTPUT};
 use crate::{shaders, Result};
+
+impl Step {
+    pub const LIGHT_CUBES: Step = Step::new("light_cubes");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::LIGHT_CUBES,
+    runs: |f| f.lights(),
+    io: LightCubesPass::io,
+    histories: no_history,
+    group_shaders: &["light_cubes.wgsl"],
+    build: |cx| Ok(Box::new(LightCubesPass::new(cx)?)),
+};
 
 /// The 36 corners of a unit cube's 12 triangles (±1 on each axis).
 fn cube_corners() -> Vec<[f32; 3]> {
@@ -39,10 +54,7 @@ impl LightCubesPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let (device, frame_layout, output) = (cx.device, cx.frame_layout, cx.output);
         let module = shaders::module(device, "light_cubes.wgsl")?;
-        let depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("light_cubes_depth_layout"),
-            entries: &[depth_entry(0)],
-        });
+        let depth_layout = cx.layout("light_cubes_depth_layout", &Self::display_io().layout_entries());
         let pipeline = Self::pipeline(device, &module, &[Some(frame_layout)], HDR_FORMAT, None);
         let display = Self::pipeline(device, &module, &[Some(frame_layout), Some(&depth_layout)], output, Some(()));
         let corners = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -51,6 +63,21 @@ impl LightCubesPass {
             usage: wgpu::BufferUsages::VERTEX,
         });
         Ok(Self { pipeline, display, depth_layout, depth_group: None, corners })
+    }
+
+    /// A display plan's: the depth, bound (the shader tests it); the output.
+    fn display_io() -> PassIo {
+        PassIo { reads: vec![Read::Target(DEPTH)], attached: vec![], writes: vec![OUTPUT] }
+    }
+
+    /// The depth, bound in a display plan and attached (tested and written) otherwise; the
+    /// output or HDR.
+    pub fn io(plan: &Plan) -> PassIo {
+        if plan.display {
+            Self::display_io()
+        } else {
+            PassIo { reads: vec![], attached: vec![DEPTH], writes: vec![HDR] }
+        }
     }
 
     /// `display`: the pipeline that draws into the output and tests depth itself.
@@ -114,13 +141,12 @@ impl LightCubesPass {
 }
 
 impl Pass for LightCubesPass {
-    /// Binds the G-buffer depth of `targets` for the display pipeline.
+    /// Binds the G-buffer depth for the display pipeline.
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, .. } = *p;
         self.depth_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("light_cubes_depth_bind_group"),
             layout: &self.depth_layout,
-            entries: &super::view_entries(&[&targets.depth.view]),
+            entries: &Self::display_io().entries(&p.inputs, 0),
         }));
     }
 
@@ -128,11 +154,11 @@ impl Pass for LightCubesPass {
         let Recording { encoder, timestamps, targets, frame, lights, light_order, plan, output, origin, .. } = rec;
         let display = plan.display.then_some((output, origin));
         // `display`: a display plan's output and the image's origin in it; otherwise into HDR.
-        let (color, depth) = match (display, &targets.hdr) {
+        let (color, depth) = match (display, targets.get(HDR)) {
             (None, Some(hdr)) => (
                 &hdr.view,
                 Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth.view,
+                    view: &targets.depth().view,
                     depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
                     stencil_ops: None,
                 }),

@@ -2,16 +2,32 @@
 //! It writes the diffuse radiance SSDO bounces into `bounce` — the point lights and, unless the
 //! senders are lit by the point lights alone, the sky and the ambient they receive (from the
 //! sender-sky march, or the sky's unoccluded irradiance) — and, where there are point lights,
-//! their displayed light into HDR. The pipeline is specialised
-//! to the plan: without lights it has one target and runs no light loop.
+//! their displayed light into HDR. The pipeline is specialised to the plan: without lights it
+//! has one target and runs no light loop.
 
-use super::super::modes::{Plan, Step};
-use super::super::settings::SenderSky;
-use super::super::targets::{view_of, view_or, BOUNCE_FORMAT, HDR_FORMAT};
-use super::state::{flag, PassState, PipelineSpec};
-use super::{cleared_attachments, gbuffer_entries, texture_entry, view_entries};
-use super::{Pass, PassContext, Preparation, Recording};
+use super::sender_sky::SENDER_SKY;
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::settings::SenderSky;
+use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_FORMAT, DEPTH, HDR, HDR_FORMAT, NORMAL};
 use crate::Result;
+
+impl Step {
+    pub const LIGHTING: Step = Step::new("lighting");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::LIGHTING,
+    // Where a DO mode bounces light and there is light to bounce: point lights, or the sky when
+    // the senders take it.
+    runs: |f| f.bounces() && (f.lights() || f.sender_sky() != SenderSky::Off),
+    io: LightingPass::io,
+    histories: no_history,
+    group_shaders: &["lighting.wgsl"],
+    build: |cx| Ok(Box::new(LightingPass::new(cx)?)),
+};
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,22 +49,30 @@ pub struct LightingPass {
 
 impl LightingPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let [a, n, d] = gbuffer_entries();
-        let layout = cx.layout("lighting_layout", &[a, n, d, texture_entry(3, false, wgpu::TextureViewDimension::D2)]);
-        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false, layout)? })
+        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false)? })
+    }
+
+    /// The G-buffer and, after their march, the senders' sky; the point lights' displayed light
+    /// (with lights) and the bounce.
+    pub fn io(plan: &Plan) -> PassIo {
+        let reads = vec![
+            Read::Target(ALBEDO),
+            Read::Target(NORMAL),
+            Read::Target(DEPTH),
+            Read::target_if(plan.sender_march, SENDER_SKY),
+        ];
+        let direct = plan.lighting_writes_direct().then_some(HDR);
+        PassIo { reads, attached: vec![], writes: direct.into_iter().chain([BOUNCE]).collect() }
     }
 }
 
 impl Pass for LightingPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, unused, .. } = *p;
-        if !self.state.runs(plan.has(Step::Lighting)) {
+        if !self.state.runs(p.plan.has(Step::LIGHTING)) {
             return;
         }
-        let views =
-            [&targets.albedo.view, &targets.normal.view, &targets.depth.view, view_or(&targets.sender_sky, unused)];
-        self.state.bind(device, &view_entries(&views));
-        self.state.ensure_fullscreen(device, Key::of(plan), |key| {
+        self.state.bind(device, &Self::io(p.plan), &p.inputs);
+        self.state.ensure_fullscreen(device, Key::of(p.plan), |key| {
             let hdr = key.lights.then(|| HDR_FORMAT.into());
             PipelineSpec {
                 entry: if key.lights { "fs_main" } else { "fs_bounce" },
@@ -59,14 +83,13 @@ impl Pass for LightingPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, .. } = rec;
-        let (key, _, _) = self.state.ready();
-        let bounce = view_of(&targets.bounce);
-        let attachments = if key.lights {
-            cleared_attachments(&[view_of(&targets.hdr), bounce])
-        } else {
-            cleared_attachments(&[bounce])
-        };
-        self.state.draw((encoder, timestamps), &attachments, (frame, None), None);
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            true,
+        );
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), None);
     }
 }

@@ -1,15 +1,10 @@
-//! The passes of a frame. Each has the same shape, the [`Pass`] trait: `new` (its own) builds
-//! what lives as long as the renderer — layouts, shader modules, samplers, pipelines that depend
-//! on nothing else; [`Pass::prepare`] rebuilds what depends on the targets and the plan — bind
-//! groups always, a pipeline specialised to a key (`KeyedPipeline`) when the plan, variant or view
-//! asks for another; [`Pass::record`] records the pass into a frame from one [`Recording`]. The
-//! helpers below keep the pipeline and attachment boilerplate in one place.
-//!
-//! To add a pass: a module here with a struct, its `new` and `impl Pass`; a `Step` in
-//! `modes/mod.rs` placed by `Plan::new`; the targets it writes in `targets.rs`; a field of
-//! `Renderer` and its line in `Renderer::pass`.
+//! The passes of a frame, one module each (what a pass is made of is `graph/`), and their list in
+//! frame order — the frame's table of contents — with what follows from their declarations: the
+//! plan for a mode (each pass's own rule says whether it runs), what each step of it reads and
+//! writes, the targets it allocates, and the passes themselves, built together, prepared together
+//! and found by their step. Adding a pass is its WGSL, its module here, and its two lines in this
+//! file: `mod` and its [`Entry`] in [`PASSES`].
 
-pub mod bindings;
 pub mod blur;
 pub mod composite;
 pub mod depth_pyramid;
@@ -18,242 +13,167 @@ pub mod light_cubes;
 pub mod lighting;
 pub mod occlusion;
 pub mod sender_sky;
-pub mod set;
 pub mod skybox;
-pub mod state;
 pub mod temporal;
 pub mod tonemap;
 pub mod upsample;
 
-use super::history::History;
-use super::modes::Plan;
-use super::resources::sampling::OcclusionData;
-use super::resources::scene::SceneGpu;
-use super::resources::sky::SkyGpu;
-use super::targets::Targets;
-use super::variant::Variant;
-use super::View;
-pub use bindings::*;
+use crate::gpu::Gpu;
+use crate::render::graph::io::PassIo;
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Mode, Plan, PlanFacts, PlanOptions, SceneFeatures, Step};
+use crate::render::resources::scene::SceneGpu;
+use crate::render::targets::TargetId;
+use crate::scene::Model;
+use crate::Result;
 
-/// Everything a pass records one step of a frame from.
-pub struct Recording<'a> {
-    pub encoder: &'a mut wgpu::CommandEncoder,
-    /// Where the step's GPU time is written (`None` when not timing).
-    pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
-    pub targets: &'a Targets,
-    pub plan: &'a Plan,
-    /// Bind group 0: the frame uniforms and the lights.
-    pub frame: &'a wgpu::BindGroup,
-    pub sky: &'a SkyGpu,
-    pub scene: &'a SceneGpu,
-    pub lights: u32,
-    /// The lights' indices, farthest first (an instance buffer of u32, for the light cubes).
-    pub light_order: &'a wgpu::Buffer,
-    /// What the frame is drawn into, and where the image starts in it (the viewer's panel is
-    /// beside it).
-    pub output: &'a wgpu::TextureView,
-    pub origin: (u32, u32),
-    /// The targets that survive frames: read the last frame's, write this one's.
-    pub history: &'a History,
+/// Every pass, in the order a frame runs them.
+pub const PASSES: [Entry; 12] = [
+    // Geometry once: albedo, normal, depth.
+    gbuffer::ENTRY,
+    // The closest depth per block, for the march's far steps.
+    depth_pyramid::ENTRY,
+    // The sky each sender sees, at half resolution.
+    sender_sky::ENTRY,
+    // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
+    lighting::ENTRY,
+    // AO and/or DO from one set of samples.
+    occlusion::ENTRY,
+    // Half-resolution AO/DO to full resolution, on each pixel's own surface.
+    upsample::ENTRY,
+    // Denoise AO/DO.
+    blur::ENTRY,
+    // Average AO/DO over frames, where the same surface was.
+    temporal::ENTRY,
+    // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky behind
+    // and the tone curve, into the output).
+    composite::ENTRY,
+    // Sky behind everything (HDR plans).
+    skybox::ENTRY,
+    // Lights as emissive cubes.
+    light_cubes::ENTRY,
+    // HDR to display (HDR plans).
+    tonemap::ENTRY,
+];
+
+fn entry(step: Step) -> &'static Entry {
+    PASSES.iter().find(|e| e.step == step).unwrap_or_else(|| panic!("no pass for step {}", step.name()))
 }
 
-/// What a pass's bind groups and pipeline are built for.
-#[derive(Clone, Copy)]
-pub struct Preparation<'a> {
-    pub targets: &'a Targets,
-    pub plan: &'a Plan,
-    pub variant: Variant,
-    pub view: View,
-    /// The sampling pass's parameters (kernel, rotations, radius...).
-    pub data: &'a OcclusionData,
-    /// Bound where an input does not exist in the plan (1x1, never read).
-    pub unused: &'a wgpu::TextureView,
-    /// The same for the depth pyramid's integer format.
-    pub unused_pyramid: &'a wgpu::TextureView,
-    /// The plan's histories, made before the passes are prepared.
-    pub history: &'a History,
+/// A step's reads (the targets the plan has, bound or attached) and writes in one plan.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StepIo {
+    pub reads: Vec<TargetId>,
+    pub writes: Vec<TargetId>,
 }
 
-/// One pass of the frame (see the module's documentation).
-pub trait Pass {
-    /// Rebuilds what depends on the targets and the plan. Passes that hold nothing of the kind
-    /// keep this default.
-    fn prepare(&mut self, _device: &wgpu::Device, _p: &Preparation<'_>) {}
-
-    /// Updates what the pass keeps from frame to frame (a jitter, a frame count), once a frame
-    /// before any pass records, for every pass whether the plan runs it or not. Stateless
-    /// passes keep this default.
-    fn begin_frame(&mut self, _frame: &FrameState<'_>) {}
-
-    /// Records the pass. Only steps of the plan are recorded, and only after `prepare`: a pass
-    /// recorded otherwise is a bug, and says so.
-    fn record(&self, rec: Recording<'_>);
-}
-
-/// What every pass is built from: the device, the layouts of bind groups 0 (frame) and 2 (sky)
-/// that all passes share, and the format of the output a display plan draws into.
-pub struct PassContext<'a> {
-    pub gpu: &'a crate::gpu::Gpu,
-    pub device: &'a wgpu::Device,
-    pub frame_layout: &'a wgpu::BindGroupLayout,
-    pub sky_layout: &'a wgpu::BindGroupLayout,
-    pub output: wgpu::TextureFormat,
-}
-
-impl PassContext<'_> {
-    /// A bind group layout named after its pass.
-    pub fn layout(&self, name: &str, entries: &[wgpu::BindGroupLayoutEntry]) -> wgpu::BindGroupLayout {
-        self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(name), entries })
+impl Step {
+    /// What this step reads and writes in `plan`, as its pass declares them.
+    pub fn io(self, plan: &Plan) -> StepIo {
+        let io: PassIo = (entry(self).io)(plan);
+        StepIo { reads: io.targets_read(), writes: io.writes }
     }
 }
 
-/// What a pass may look at in [`Pass::begin_frame`].
-pub struct FrameState<'a> {
-    pub plan: &'a Plan,
-    /// Counts frames since the renderer was made (wraps).
-    pub frame_index: u32,
-    /// The histories and how many frames each holds (0 after a reset).
-    pub history: &'a History,
-    /// The camera differs from the last frame's.
-    pub camera_moved: bool,
-}
-
-/// Colour attachments for views that may be absent, all cleared.
-pub fn cleared_attachments<'a>(
-    views: &[Option<&'a wgpu::TextureView>],
-) -> Vec<Option<wgpu::RenderPassColorAttachment<'a>>> {
-    views.iter().map(|v| v.and_then(|view| color_attachment(view, true))).collect()
-}
-
-/// A colour attachment that either clears to black or keeps what is there.
-pub fn color_attachment(view: &wgpu::TextureView, clear: bool) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: if clear { wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT) } else { wgpu::LoadOp::Load },
-            store: wgpu::StoreOp::Store,
-        },
-    })
-}
-
-/// Everything that distinguishes one full-screen pipeline from another.
-pub struct FullscreenDesc<'a> {
-    pub label: &'a str,
-    pub module: &'a wgpu::ShaderModule,
-    /// Fragment entry point.
-    pub entry: &'a str,
-    pub bind_group_layouts: &'a [Option<&'a wgpu::BindGroupLayout>],
-    /// One per fragment output; `None` discards that output.
-    pub targets: &'a [Option<wgpu::ColorTargetState>],
-    pub depth: Option<wgpu::DepthStencilState>,
-    pub constants: &'a [(&'a str, f64)],
-}
-
-/// Colour target states for formats that may be absent (an output the plan does not keep).
-pub fn color_targets(formats: &[Option<wgpu::TextureFormat>]) -> Vec<Option<wgpu::ColorTargetState>> {
-    formats.iter().map(|f| f.map(Into::into)).collect()
-}
-
-/// A pipeline that draws the full-screen triangle of `common/fullscreen.wgsl`.
-pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> wgpu::RenderPipeline {
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(&format!("{}_layout", desc.label)),
-        bind_group_layouts: desc.bind_group_layouts,
-        immediate_size: 0,
-    });
-    let options = wgpu::PipelineCompilationOptions { constants: desc.constants, ..Default::default() };
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(desc.label),
-        layout: Some(&layout),
-        vertex: wgpu::VertexState {
-            module: desc.module,
-            entry_point: Some("fullscreen_vs"),
-            compilation_options: options.clone(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: desc.depth.clone(),
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: desc.module,
-            entry_point: Some(desc.entry),
-            compilation_options: options,
-            targets: desc.targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
-
-/// Records one full-screen pass: `attachments` as colour targets, an optional read-only depth
-/// attachment (for the depth test of the skybox), the pipeline with its bind groups by index, and
-/// the triangle of `common/fullscreen.wgsl` drawn into `viewport` (the whole target when `None`).
-pub struct FullscreenPass<'a> {
-    pub label: &'a str,
-    pub attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
-    pub depth: Option<&'a wgpu::TextureView>,
-    pub timestamps: Option<wgpu::RenderPassTimestampWrites<'a>>,
-    pub pipeline: &'a wgpu::RenderPipeline,
-    pub bind_groups: &'a [(u32, &'a wgpu::BindGroup)],
-    pub viewport: Option<[f32; 4]>,
-}
-
-impl FullscreenPass<'_> {
-    pub fn record(self, encoder: &mut wgpu::CommandEncoder) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(self.label),
-            color_attachments: self.attachments,
-            depth_stencil_attachment: self.depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
-                view,
-                depth_ops: None,
-                stencil_ops: None,
-            }),
-            timestamp_writes: self.timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        if let Some([x, y, w, h]) = self.viewport {
-            pass.set_viewport(x, y, w, h, 0.0, 1.0);
+impl Plan {
+    /// The steps of `mode` for a scene with `features` and the options `o`: every pass whose
+    /// rule says it runs, in frame order.
+    pub fn new(mode: Mode, features: SceneFeatures, o: PlanOptions) -> Self {
+        let facts = PlanFacts { decl: *mode.declaration(), features, options: o };
+        let steps: Vec<Step> = PASSES.iter().filter(|e| (e.runs)(&facts)).map(|e| e.step).collect();
+        let has = |step: Step| steps.contains(&step);
+        let history = PASSES.iter().filter(|e| has(e.step)).flat_map(|e| (e.histories)(&facts.decl)).collect();
+        Self {
+            mode,
+            decl: facts.decl,
+            features,
+            blur: has(Step::BLUR),
+            display: o.display,
+            sender_sky: facts.sender_sky(),
+            half: has(Step::UPSAMPLE),
+            accumulates: has(Step::TEMPORAL),
+            lighting: has(Step::LIGHTING),
+            pyramid: has(Step::DEPTH_PYRAMID),
+            sender_march: has(Step::SENDER_SKY),
+            steps,
+            history,
         }
-        pass.set_pipeline(self.pipeline);
-        for (index, group) in self.bind_groups {
-            pass.set_bind_group(*index, *group, &[]);
+    }
+
+    /// Every step's inputs and outputs, in order.
+    pub fn io(&self) -> Vec<(Step, StepIo)> {
+        self.steps.iter().map(|&s| (s, s.io(self))).collect()
+    }
+
+    /// Whether a step of this plan writes `target`.
+    pub fn writes(&self, target: TargetId) -> bool {
+        self.steps.iter().any(|s| s.io(self).writes.contains(&target))
+    }
+
+    /// The screen targets this plan allocates: those its steps write, in the order they are
+    /// first written (the G-buffer's three first).
+    pub fn targets(&self) -> Vec<TargetId> {
+        let mut out: Vec<TargetId> = Vec::new();
+        for write in self.steps.iter().flat_map(|s| s.io(self).writes) {
+            if write.allocated() && !out.contains(&write) {
+                out.push(write);
+            }
         }
-        pass.draw(0..3, 0..1);
+        out
+    }
+
+    /// Whether the plan allocates `target`.
+    pub fn allocates(&self, target: TargetId) -> bool {
+        self.targets().contains(&target)
     }
 }
 
-/// A pipeline built for one key (a plan's variant), rebuilt only when the key changes.
-pub struct KeyedPipeline<K> {
-    built: Option<(K, wgpu::RenderPipeline)>,
+/// Every pass of the renderer, built once, in the order of [`PASSES`].
+pub struct PassSet {
+    passes: Vec<(Step, Box<dyn Pass>)>,
 }
 
-impl<K: PartialEq + Copy> Default for KeyedPipeline<K> {
-    fn default() -> Self {
-        Self::new()
+impl PassSet {
+    /// Builds every pass: what lives as long as the renderer (shaders, samplers, pipelines that
+    /// depend on nothing else). `frame` and `sky` are the layouts of bind groups 0 and 2.
+    pub fn new(
+        gpu: &Gpu,
+        frame: &wgpu::BindGroupLayout,
+        sky: &wgpu::BindGroupLayout,
+        output: wgpu::TextureFormat,
+    ) -> Result<Self> {
+        let cx = PassContext { gpu, device: &gpu.device, frame_layout: frame, sky_layout: sky, output };
+        let passes = PASSES.iter().map(|e| Ok((e.step, (e.build)(&cx)?))).collect::<Result<_>>()?;
+        Ok(Self { passes })
     }
-}
 
-impl<K: PartialEq + Copy> KeyedPipeline<K> {
-    pub fn new() -> Self {
-        Self { built: None }
-    }
-
-    /// The pipeline for `key`, built by `build` if the current one is for another key.
-    pub fn ensure(&mut self, key: K, build: impl FnOnce(K) -> wgpu::RenderPipeline) -> &wgpu::RenderPipeline {
-        if self.built.as_ref().map(|(k, _)| *k) != Some(key) {
-            self.built = Some((key, build(key)));
+    /// Rebuilds every pass's bind groups and pipelines for `p`, whether the plan runs it or not
+    /// (a pass the plan lacks drops what it held).
+    pub fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
+        for (_, pass) in &mut self.passes {
+            pass.prepare(device, p);
         }
-        &self.built.as_ref().expect("built above").1
     }
 
-    pub fn get(&self) -> Option<(&K, &wgpu::RenderPipeline)> {
-        self.built.as_ref().map(|(k, p)| (k, p))
+    /// Calls `f` on every pass, whether the plan runs it or not.
+    pub fn each(&mut self, mut f: impl FnMut(&mut dyn Pass)) {
+        for (_, pass) in &mut self.passes {
+            f(pass.as_mut());
+        }
     }
 
-    pub fn clear(&mut self) {
-        self.built = None;
+    /// Records `step` (a step of the plan).
+    pub fn record(&self, step: Step, rec: Recording<'_>) {
+        let pass = self.passes.iter().find(|(s, _)| *s == step).map(|(_, p)| p);
+        pass.unwrap_or_else(|| panic!("no pass for step {}", step.name())).record(rec);
+    }
+
+    /// Uploads `model` through the pass that draws it.
+    pub fn upload_scene(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
+        let uploaded = self.passes.iter_mut().find_map(|(_, p)| p.upload_scene(gpu, model));
+        uploaded.expect("the G-buffer pass draws the scene")
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,15 +1,32 @@
-//! The sampling pass: SSAO, SSDO, or both from one set of samples (`shaders/occlusion.wgsl`).
-//! One shader, two entry points (`fs_ao` writes AO; `fs_do` writes DO + AO); the variant (default or
-//! classic) and whether there is a bounce buffer are override constants. The pipeline is built
-//! for what the plan needs and rebuilt only when that changes.
+//! The sampling pass: SSAO, SSDO, or both from one set of samples (`shaders/occlusion.wgsl`,
+//! or the march's `shaders/march.wgsl`). One shader, two entry points (`fs_ao` writes AO; `fs_do`
+//! writes DO + AO); the variant (default or classic) and whether there is a bounce buffer are
+//! override constants. The pipeline is built for what the plan needs and rebuilt only when that
+//! changes.
 
-use super::super::modes::{Plan, Step};
-use super::super::targets::{AO_FORMAT, DO_FORMAT};
-use super::super::variant::{Estimator, Sampler};
-use super::state::PassState;
-use super::{color_attachment, fullscreen_pipeline, gbuffer_entries, texture_entry, uniform_entry, FullscreenDesc};
-use super::{Pass, PassContext, Preparation, Recording};
+use super::depth_pyramid::PYRAMID;
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::state::PassState;
+use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc};
+use crate::render::graph::{Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{Stage, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
+use crate::render::variant::{Estimator, Sampler};
 use crate::{shaders, Result};
+
+impl Step {
+    /// Named after what the mode computes: `ssao`, `ssdo` or `ssao_ssdo`.
+    pub const OCCLUSION: Step = Step::named_by_mode("occlusion");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::OCCLUSION,
+    runs: |f| f.samples(),
+    io: OcclusionPass::io,
+    histories: no_history,
+    group_shaders: &["occlusion.wgsl", "march.wgsl"],
+    build: |cx| Ok(Box::new(OcclusionPass::new(cx)?)),
+};
 
 /// What a plan's sampling (and blur) pass produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,11 +38,7 @@ pub struct Outputs {
 
 impl Outputs {
     pub fn of(plan: &Plan) -> Self {
-        Self {
-            ao: plan.decl.ambient_occlusion,
-            directional: plan.decl.directional_occlusion,
-            indirect: plan.has(Step::Lighting),
-        }
+        Self { ao: plan.decl.ambient_occlusion, directional: plan.decl.directional_occlusion, indirect: plan.lighting }
     }
 
     /// The format of the one target written: AO alone, or DO + AO.
@@ -78,24 +91,46 @@ pub struct OcclusionPass {
 
 impl OcclusionPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let state = PassState::new(cx, "occlusion", "occlusion.wgsl", true, sampling_layout(cx, "occlusion_layout"))?;
+        let state = PassState::new(cx, "occlusion", "occlusion.wgsl", true)?;
         Ok(Self { state, march_module: shaders::module(cx.device, "march.wgsl")? })
+    }
+
+    /// The sampling passes' reads (this one's and the sender-sky march's): the G-buffer, the
+    /// parameters, the bounce source where `bounce` says it is read, and the depth pyramid.
+    pub fn reads(plan: &Plan, bounce: bool) -> Vec<Read> {
+        vec![
+            Read::Target(ALBEDO),
+            Read::Target(NORMAL),
+            Read::Target(DEPTH),
+            Read::Params,
+            Read::target_if(bounce, BOUNCE),
+            Read::target_if(plan.pyramid, PYRAMID),
+        ]
+    }
+
+    /// The sampling reads with the bounce where a lighting pass writes it; AO or DO + AO, at
+    /// half size when an upsample follows.
+    pub fn io(plan: &Plan) -> PassIo {
+        let stage = if plan.half { Stage::Half } else { Stage::Raw };
+        let writes = vec![stage.target(plan.decl.directional_occlusion)];
+        PassIo { reads: Self::reads(plan, plan.lighting), attached: vec![], writes }
     }
 }
 
 impl Pass for OcclusionPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, variant, unused, .. } = *p;
-        if !self.state.runs(plan.decl.runs_sampling()) {
+        let Preparation { plan, variant, .. } = *p;
+        if !self.state.runs(plan.has(Step::OCCLUSION)) {
             return;
         }
+        self.state.bind(device, &Self::io(plan), &p.inputs);
         let key = Key {
             outputs: Outputs::of(plan),
             classic: variant.decl().estimator == Estimator::Classic,
             march: variant.decl().sampler == Sampler::March,
-            pyramid: plan.has(Step::DepthPyramid),
-            half: plan.half(),
+            pyramid: plan.pyramid,
+            half: plan.half,
         };
         let march_module = &self.march_module;
         self.state.ensure(key, |key, points_module, layouts| {
@@ -113,36 +148,16 @@ impl Pass for OcclusionPass {
                 },
             )
         });
-        let bounce = targets.bounce.as_ref().map_or(unused, |t| &t.view);
-        self.state.bind(device, &sampling_entries(p, bounce));
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let set = targets.half.as_ref().unwrap_or(&targets.raw);
-        let output = set.output().expect("a plan with a sampling step has its target");
-        let attachments = [color_attachment(&output.view, true)];
-        self.state.draw((encoder, timestamps), &attachments, (frame, Some(&sky.bind_group)), None);
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            true,
+        );
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), None);
     }
-}
-
-/// The layout of a sampling pass's bind group 1 (the sampling pass and the sender-sky march):
-/// the G-buffer, the parameters, the bounce source and the depth pyramid.
-pub fn sampling_layout(cx: &PassContext<'_>, label: &'static str) -> wgpu::BindGroupLayout {
-    let [a, n, d] = gbuffer_entries();
-    let bounce = texture_entry(4, false, wgpu::TextureViewDimension::D2);
-    cx.layout(label, &[a, n, d, uniform_entry(3), bounce, super::uint_entry(5)])
-}
-
-/// Bind group 1 of a sampling pass for the prepared targets, with `bounce` as its bounce source.
-pub fn sampling_entries<'a>(p: &Preparation<'a>, bounce: &'a wgpu::TextureView) -> Vec<wgpu::BindGroupEntry<'a>> {
-    let Preparation { targets, data, unused_pyramid, .. } = *p;
-    let pyramid = targets.pyramid.as_ref().map_or(unused_pyramid, |p| &p.view);
-    let mut entries = super::view_entries(&[&targets.albedo.view, &targets.normal.view, &targets.depth.view]);
-    entries.extend([
-        wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
-        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(bounce) },
-        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(pyramid) },
-    ]);
-    entries
 }

@@ -3,35 +3,69 @@
 //! built with DO on and AO and the bounce off). The lighting pass turns it into the sky light each
 //! sender bounces, so the bounce carries the sky with the sender's own visibility.
 
-use super::super::modes::Step;
-use super::super::targets::DO_FORMAT;
-use super::color_attachment;
-use super::occlusion::{sampling_entries, sampling_layout};
-use super::state::{flag, state_pass, PassState, PipelineSpec};
-use super::{Pass, PassContext, Preparation, Recording};
+use super::occlusion::OcclusionPass;
+use crate::render::graph::io::PassIo;
+use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::settings::SenderSky;
+use crate::render::targets::{Place, TargetId, DO_FORMAT};
 use crate::Result;
 
-// Keyed by whether the far steps read the depth pyramid.
-state_pass!(SenderSkyPass, bool, "sender_sky", "march.wgsl", sky: true, sampling_layout);
+impl Step {
+    pub const SENDER_SKY: Step = Step::new("sender_sky");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::SENDER_SKY,
+    runs: |f| f.sender_sky() == SenderSky::March,
+    io: SenderSkyPass::io,
+    histories: no_history,
+    group_shaders: &["march.wgsl"],
+    build: |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
+};
+
+/// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a), at
+/// half resolution: read by the lighting pass.
+pub const SENDER_SKY: TargetId = TargetId::new("sender_sky", DO_FORMAT, Place::HalfScreen);
+
+pub struct SenderSkyPass {
+    /// Keyed by whether the far steps read the depth pyramid.
+    state: PassState<bool>,
+}
+
+impl SenderSkyPass {
+    pub fn new(cx: &PassContext<'_>) -> Result<Self> {
+        Ok(Self { state: PassState::new(cx, "sender_sky", "march.wgsl", true)? })
+    }
+
+    /// The sampling pass's reads but the bounce, which this pass feeds; the senders' sky.
+    pub fn io(plan: &Plan) -> PassIo {
+        PassIo { reads: OcclusionPass::reads(plan, false), attached: vec![], writes: vec![SENDER_SKY] }
+    }
+}
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        if !self.state.runs(p.plan.has(Step::SenderSky)) {
+        if !self.state.runs(p.plan.has(Step::SENDER_SKY)) {
             return;
         }
-        self.state.ensure_fullscreen(device, p.plan.has(Step::DepthPyramid), |pyramid| PipelineSpec {
+        self.state.bind(device, &Self::io(p.plan), &p.inputs);
+        self.state.ensure_fullscreen(device, p.plan.pyramid, |pyramid| PipelineSpec {
             entry: "fs_sender",
             targets: vec![Some(DO_FORMAT.into())],
             constants: vec![("HAS_AO", 0.0), ("HAS_DO", 1.0), ("INDIRECT", 0.0), ("USE_PYRAMID", flag(pyramid))],
         });
-        // The bounce source is what this pass feeds; it reads none.
-        self.state.bind(device, &sampling_entries(p, p.unused));
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let output = targets.sender_sky.as_ref().expect("a plan with the sender-sky march has its target");
-        let attachments = [color_attachment(&output.view, true)];
-        self.state.draw((encoder, timestamps), &attachments, (frame, Some(&sky.bind_group)), None);
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            true,
+        );
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), None);
     }
 }

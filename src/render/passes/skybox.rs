@@ -1,10 +1,26 @@
 //! Skybox: the cube map drawn into HDR behind everything, in HDR plans (a display plan's
 //! composite draws the sky itself). The sky's GPU resources are `resources/sky.rs`.
 
-use super::super::targets::{DEPTH_FORMAT, HDR_FORMAT};
-use super::{color_attachment, fullscreen_pipeline, FullscreenDesc, FullscreenPass};
-use super::{Pass, PassContext, Recording};
+use crate::render::graph::io::PassIo;
+use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{Pass, PassContext, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT};
 use crate::{shaders, Result};
+
+impl Step {
+    pub const SKYBOX: Step = Step::new("skybox");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::SKYBOX,
+    // A display plan's composite draws the sky itself.
+    runs: |f| !f.options.display,
+    io: SkyboxPass::io,
+    histories: no_history,
+    group_shaders: &[],
+    build: |cx| Ok(Box::new(SkyboxPass::new(cx)?)),
+};
 
 pub struct SkyboxPass {
     pipeline: wgpu::RenderPipeline,
@@ -33,21 +49,31 @@ impl SkyboxPass {
         );
         Ok(Self { pipeline })
     }
+
+    /// The depth (through the depth attachment, tested read-only); HDR where nothing was drawn.
+    pub fn io(_plan: &Plan) -> PassIo {
+        PassIo { reads: vec![], attached: vec![DEPTH], writes: vec![HDR] }
+    }
 }
 
 impl Pass for SkyboxPass {
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, sky, .. } = rec;
-        let hdr = targets.hdr.as_ref().expect("the skybox pass runs only in plans with an HDR target");
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            false,
+        );
         FullscreenPass {
             label: "skybox_pass",
-            attachments: &[color_attachment(&hdr.view, false)],
-            depth: Some(&targets.depth.view),
-            timestamps,
+            attachments: &attachments,
+            depth: Some(&rec.targets.depth().view),
+            timestamps: rec.timestamps,
             pipeline: &self.pipeline,
-            bind_groups: &[(0, frame), (2, &sky.bind_group)],
+            bind_groups: &[(0, rec.frame), (2, &rec.sky.bind_group)],
             viewport: None,
         }
-        .record(encoder);
+        .record(rec.encoder);
     }
 }

@@ -4,14 +4,27 @@
 //! `do_accumulated`), and the two histories the next frame reads (`history.rs`). Its bind group
 //! reads one side of each history pair, so it keeps one group a parity and binds the frame's.
 
-use super::super::history::History;
-use super::super::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
 use super::occlusion::Outputs;
-use super::state::{flag, PassState, PipelineSpec};
-use super::{color_attachment, gbuffer_entries, texture_entry, uint_entry, uniform_entry};
-use super::{FrameState, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
+use crate::render::history::HistorySpec;
+use crate::render::modes::{ModeDecl, Plan, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
+use crate::render::targets::{Stage, ALBEDO, DEPTH, NORMAL};
 use crate::Result;
-use wgpu::TextureViewDimension::D2;
+
+impl Step {
+    pub const TEMPORAL: Step = Step::new("temporal");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::TEMPORAL,
+    runs: |f| f.samples() && f.options.accumulate,
+    io: TemporalPass::io,
+    histories: TemporalPass::histories,
+    group_shaders: &["temporal.wgsl"],
+    build: |cx| Ok(Box::new(TemporalPass::new(cx)?)),
+};
 
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
@@ -26,32 +39,50 @@ pub struct TemporalPass {
 
 impl TemporalPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let [a, n, d] = gbuffer_entries();
-        let input = |b| texture_entry(b, false, D2);
-        let layout = cx.layout("temporal_layout", &[a, n, d, uniform_entry(3), input(4), input(5), uint_entry(6)]);
-        let state = PassState::new(cx, "temporal", "temporal.wgsl", false, layout)?;
+        let state = PassState::new(cx, "temporal", "temporal.wgsl", false)?;
         let still = state.sibling("temporal_still");
         Ok(Self { state, still, camera_moved: false, groups: None })
     }
-}
 
-/// The histories of a plan that accumulates.
-fn pairs(history: &History) -> (&super::super::history::PingPong, &super::super::history::PingPong) {
-    match (history.get(OCCLUSION_HISTORY), history.get(SURFACE_HISTORY)) {
-        (Some(o), Some(s)) => (o, s),
-        _ => unreachable!("a plan that accumulates has its histories"),
+    /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
+    /// histories; the average and this frame's histories.
+    pub fn io(plan: &Plan) -> PassIo {
+        let d = plan.decl.directional_occlusion;
+        let filtered = if plan.blur { Stage::Blurred } else { Stage::Raw }.target(d);
+        let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Params]);
+        let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
+        PassIo {
+            reads,
+            attached: vec![],
+            writes: vec![Stage::Accumulated.target(d), OCCLUSION_HISTORY, SURFACE_HISTORY],
+        }
+    }
+
+    /// Its two histories: the averaged sampling output (in its own format) and the surface each
+    /// pixel of it belongs to. What a channel means depends on what the mode computes, so the
+    /// mode is the key: another mode starts anew.
+    pub fn histories(decl: &ModeDecl) -> Vec<HistorySpec> {
+        let format = Stage::Raw.target(decl.directional_occlusion).format;
+        let key = decl.mode as u64;
+        vec![
+            HistorySpec { name: OCCLUSION_HISTORY.name, format, key },
+            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, key },
+        ]
     }
 }
 
 impl Pass for TemporalPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, data, history, .. } = *p;
+        let plan = p.plan;
         if !plan.accumulates() {
             self.state.clear();
             self.still.clear();
             self.groups = None;
             return;
         }
+        let io = Self::io(plan);
+        self.groups = Some([0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
+        self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
             state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
                 entry: "fs_main",
@@ -63,25 +94,6 @@ impl Pass for TemporalPass {
                 constants: vec![("CAMERA_MOVED", flag(moved))],
             });
         }
-        let input = targets.filtered().output().expect("a plan that accumulates samples");
-        let (occlusion, surface) = pairs(history);
-        let group = |parity: usize| {
-            let views = [&targets.albedo.view, &targets.normal.view, &targets.depth.view];
-            let mut entries = super::view_entries(&views);
-            let view = |b, v| wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) };
-            entries.extend([
-                wgpu::BindGroupEntry { binding: 3, resource: data.buffer.as_entire_binding() },
-                view(4, &input.view),
-                view(5, &occlusion.read_side(parity).view),
-                view(6, &surface.read_side(parity).view),
-            ]);
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("temporal_bind_group"),
-                layout: &self.state.layout,
-                entries: &entries,
-            })
-        };
-        self.groups = Some([group(0), group(1)]);
     }
 
     fn begin_frame(&mut self, frame: &FrameState<'_>) {
@@ -89,19 +101,21 @@ impl Pass for TemporalPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, history, .. } = rec;
-        let (occlusion, surface) = pairs(history);
+        let (occlusion, surface) = match (rec.history.get(OCCLUSION_HISTORY), rec.history.get(SURFACE_HISTORY)) {
+            (Some(o), Some(s)) => (o, s),
+            _ => unreachable!("a plan that accumulates has its histories"),
+        };
         let parity = occlusion.parity();
         debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
-        let shown =
-            targets.accumulated.as_ref().and_then(|a| a.output()).expect("a plan that accumulates has its target");
         let groups = self.groups.as_ref().expect("the temporal pass recorded before `prepare`");
-        let attachments = [
-            color_attachment(&shown.view, true),
-            color_attachment(&occlusion.write().view, true),
-            color_attachment(&surface.write().view, true),
-        ];
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            true,
+        );
         let state = if self.camera_moved { &self.state } else { &self.still };
-        state.draw_with((encoder, timestamps), &attachments, (frame, &groups[parity], None), None);
+        state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, &groups[parity], None), None);
     }
 }

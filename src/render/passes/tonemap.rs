@@ -3,13 +3,29 @@
 //! linear one the shader does (`OUTPUT_SRGB = false`). The debug views (G-buffer channels, AO, DO)
 //! are variants of this pass, so showing one costs no extra pass.
 
-use super::super::modes::Plan;
-use super::super::targets::view_or;
-use super::super::View;
-use super::state::{flag, PassState, PipelineSpec};
-use super::{color_attachment, depth_entry, texture_entry, view_entries};
-use super::{Pass, PassContext, Preparation, Recording};
+use super::composite::occlusion_reads;
+use crate::render::graph::io::{PassIo, Read};
+use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::{no_history, Entry};
+use crate::render::graph::{Pass, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
+use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
+use crate::render::View;
 use crate::Result;
+
+impl Step {
+    pub const TONEMAP: Step = Step::new("tonemap");
+}
+
+pub const ENTRY: Entry = Entry {
+    step: Step::TONEMAP,
+    // A display plan's composite tone-maps itself.
+    runs: |f| !f.options.display,
+    io: TonemapPass::io,
+    histories: no_history,
+    group_shaders: &["tonemap.wgsl"],
+    build: |cx| Ok(Box::new(TonemapPass::new(cx)?)),
+};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
@@ -39,17 +55,26 @@ pub struct TonemapPass {
 
 impl TonemapPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let float = |b| texture_entry(b, false, wgpu::TextureViewDimension::D2);
-        let entries = [float(0), float(1), super::normal_entry(2), depth_entry(3), float(4), float(5)];
-        let layout = cx.layout("tonemap_layout", &entries);
-        Ok(Self { state: PassState::new(cx, "tonemap", "tonemap.wgsl", false, layout)?, output: cx.output })
+        Ok(Self { state: PassState::new(cx, "tonemap", "tonemap.wgsl", false)?, output: cx.output })
+    }
+
+    /// HDR, and for the debug views the G-buffer and what the composite reads of the sampling
+    /// chain; the output.
+    pub fn io(plan: &Plan) -> PassIo {
+        let mut reads = vec![Read::Target(HDR), Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH)];
+        reads.extend(occlusion_reads(plan));
+        PassIo { reads, attached: vec![], writes: vec![OUTPUT] }
     }
 }
 
 impl Pass for TonemapPass {
     /// Builds the pipeline for the plan and view (if it changed) and the bind group for `targets`.
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let Preparation { targets, plan, view, unused, .. } = *p;
+        let Preparation { plan, view, .. } = *p;
+        if !self.state.runs(plan.has(Step::TONEMAP)) {
+            return;
+        }
+        self.state.bind(device, &Self::io(plan), &p.inputs);
         let key = Key::of(plan, view);
         let output = self.output;
         self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
@@ -62,22 +87,17 @@ impl Pass for TonemapPass {
                 ("HAS_DO", flag(key.directional)),
             ],
         });
-        let occlusion = targets.occlusion();
-        let views = [
-            view_or(&targets.hdr, unused),
-            &targets.albedo.view,
-            &targets.normal.view,
-            &targets.depth.view,
-            view_or(&occlusion.ao, unused),
-            view_or(&occlusion.directional, unused),
-        ];
-        self.state.bind(device, &view_entries(&views));
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let Recording { encoder, timestamps, targets, frame, output, origin, .. } = rec;
-        let (w, h) = targets.size;
-        let viewport = Some([origin.0 as f32, origin.1 as f32, w as f32, h as f32]);
-        self.state.draw((encoder, timestamps), &[color_attachment(output, true)], (frame, None), viewport);
+        let attachments = crate::render::graph::io::attachments(
+            &Self::io(rec.plan).writes,
+            rec.targets,
+            rec.history,
+            rec.output,
+            true,
+        );
+        let viewport = Some(rec.viewport());
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), viewport);
     }
 }

@@ -4,7 +4,7 @@
 //! back in f32. Bind group 2 of the passes that read it.
 
 use crate::gpu::Gpu;
-use crate::render::passes::bindings::{sampler_entry, texture_entry};
+use crate::render::bindings::{sampler_entry, texture_entry};
 use crate::scene::Skybox;
 use crate::Result;
 

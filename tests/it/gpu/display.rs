@@ -44,13 +44,13 @@ fn display_frames_match_the_hdr_path_in_every_mode_and_variant() {
             // Both frames the first of their average, so that they hold the same samples.
             r.reset_history();
             let hdr = shoot(&gpu, &mut r, &camera);
-            assert!(r.plan().has(Step::Tonemap) && r.targets().hdr.is_some());
+            assert!(r.plan().has(Step::TONEMAP) && r.targets().hdr().is_ok());
             r.keep_hdr(&gpu, false);
             r.reset_history();
             let display = shoot(&gpu, &mut r, &camera);
             let plan = r.plan();
-            assert!(!plan.has(Step::Tonemap) && !plan.has(Step::Skybox), "{variant} {mode}: {:?}", plan.steps);
-            assert_eq!(r.targets().hdr.is_some(), plan.has(Step::Lighting), "{variant} {mode}: HDR only for lighting");
+            assert!(!plan.has(Step::TONEMAP) && !plan.has(Step::SKYBOX), "{variant} {mode}: {:?}", plan.steps);
+            assert_eq!(r.targets().hdr().is_ok(), plan.has(Step::LIGHTING), "{variant} {mode}: HDR only for lighting");
             // The HDR path rounds radiance to half floats before its tone map: one step of 255 at most.
             let (worst, over) = compare(&hdr, &display, 1);
             println!("{variant} {mode}: largest difference {worst}/255, {over} pixels over 1");

@@ -23,7 +23,7 @@ fn directional(
     let mut r = renderer(gpu, scene, sky, (W, H), s);
     shoot(gpu, &mut r, camera);
     let t = r.targets();
-    let d = read_rgba16f(gpu, &t.occlusion().directional.as_ref().unwrap().texture).unwrap();
+    let d = read_rgba16f(gpu, &t.occlusion().directional.unwrap().texture).unwrap();
     at.iter()
         .map(|&(x, y)| {
             let mut sum = Vec3::ZERO;

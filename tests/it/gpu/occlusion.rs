@@ -55,7 +55,7 @@ struct Buffers {
 fn render(gpu: &Gpu, r: &mut Renderer, camera: &OrbitCamera, blurred: bool) -> Buffers {
     shoot(gpu, r, camera);
     let t = r.targets();
-    let set = if blurred { t.occlusion() } else { &t.raw };
+    let set = if blurred { t.occlusion() } else { t.raw() };
     let OcclusionValues { ao, directional } = read_occlusion(gpu, set, r.plan().decl.ambient_occlusion).unwrap();
     Buffers { ao, directional, hdr: read_rgba16f(gpu, &t.hdr().unwrap().texture).unwrap() }
 }
@@ -362,7 +362,7 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
                     assert!(buffer.iter().any(|p| p[0] > 0.0), "{mode} {variant}: DO not all zero");
                 }
             }
-            let normals = ssdo::headless::readback::read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
+            let normals = ssdo::headless::readback::read_surfaces(&gpu, &r.targets().normal().texture).unwrap();
             assert!(normals.iter().all(|p| p.iter().all(|c| c.is_finite())));
         }
     }

@@ -22,12 +22,12 @@ fn plane_normal_and_depth_come_out_as_expected() {
     let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
     let camera = looking(Vec3::ZERO, 20.0, 30.0, 4.0);
     shoot(&gpu, &mut r, &camera);
-    let normals = read_surfaces(&gpu, &r.targets().normal.texture).unwrap();
+    let normals = read_surfaces(&gpu, &r.targets().normal().texture).unwrap();
     let expected = (camera.world_to_view() * Vec3::Y.extend(0.0)).xyz();
     let centre = normals[60 * 160 + 80];
     assert!((Vec3::new(centre[0], centre[1], centre[2]) - expected).length() < 2e-3, "{centre:?} vs {expected}");
     assert!((centre[3] - 32.0).abs() < 0.04 * 32.0, "shininess travels with the normal: {}", centre[3]);
-    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
     // Reverse-Z, infinite far: depth = near / (distance along the view axis). Intersect the ray
     // through the centre of pixel (80, 60) with the plane y = 0.
     let p = camera.view_to_clip(160.0 / 120.0);
@@ -50,7 +50,7 @@ fn readback_is_correct_at_an_odd_size() {
     let camera = looking(Vec3::new(0.0, 1.0, 0.0), 0.0, 0.0, 1.0);
     let image = shoot(&gpu, &mut r, &camera);
     assert_eq!(image.dimensions(), (161, 97));
-    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
     assert_eq!(depth.len(), 161 * 97);
     let horizon = |x: usize| (0..97).find(|&y| depth[y * 161 + x] > 0.0).expect("floor visible");
     let first = horizon(0);
@@ -90,7 +90,7 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     scene.lights = vec![PointLight { position: Vec3::new(-1.0, 0.3, 0.0), color: Vec3::new(1.0, 0.0, 0.0), intensity }];
     let sky = Skybox::constant(Vec3::ZERO);
     let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { ambient: 0.2, ..Settings::default() });
-    assert!(r.plan().has(Step::LightCubes));
+    assert!(r.plan().has(Step::LIGHT_CUBES));
     // Straight down on the plane: x maps to columns, the light sits left of centre.
     let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
     let image = shoot(&gpu, &mut r, &camera);
@@ -131,7 +131,7 @@ fn light_cubes_show_their_colour_and_leave_with_the_lights() {
     assert!(centre.y > 200.0 && centre.x < 30.0, "green cube in the middle: {centre}");
 
     r.set_lights(&gpu, Vec::new());
-    assert!(!r.plan().has(Step::LightCubes), "no lights, no cube pass");
+    assert!(!r.plan().has(Step::LIGHT_CUBES), "no lights, no cube pass");
     let image = shoot(&gpu, &mut r, &camera);
     assert!(mean_rgb(&image, 78, 58, 4, 4).max_element() < 3.0, "nothing lights the floor now");
 }
@@ -153,7 +153,7 @@ fn default_scene_renders_finite_with_every_part_visible() {
     let red = image.pixels().filter(|p| r8(p) > 120 && r8(p) > g8(p) + 60 && r8(p) > b8(p) + 60).count();
     let blue = image.pixels().filter(|p| b8(p) > 120 && b8(p) > r8(p) + 60 && b8(p) > g8(p) + 40).count();
     assert!(red > 500 && blue > 500, "both walls visible: red {red}, blue {blue}");
-    let depth = read_depth(&gpu, &r.targets().depth.texture).unwrap();
+    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
     let background = depth.iter().filter(|d| **d == 0.0).count();
     assert!(background > 1000, "sky visible around the room: {background}");
 }

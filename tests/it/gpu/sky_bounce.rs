@@ -34,8 +34,7 @@ fn frame(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, s: Settin
     let k = 1.0 / r.pre_exposure();
     let unexpose = |v: Vec<[f32; 4]>| v.into_iter().map(|p| [p[0] * k, p[1] * k, p[2] * k, p[3]]).collect::<Vec<_>>();
     let hdr = unexpose(read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap());
-    let directional =
-        r.targets().occlusion().directional.as_ref().map(|t| unexpose(read_rgba16f(gpu, &t.texture).unwrap()));
+    let directional = r.targets().occlusion().directional.map(|t| unexpose(read_rgba16f(gpu, &t.texture).unwrap()));
     (hdr, directional.unwrap_or_default())
 }
 
@@ -95,7 +94,7 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
     let s = Settings { sender_sky: SenderSky::Off, view: View::DoIndirect, ..settings(Mode::Ssdo) };
     let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
     shoot(&gpu, &mut r, &camera);
-    let d = read_rgba16f(&gpu, &r.targets().occlusion().directional.as_ref().unwrap().texture).unwrap();
+    let d = read_rgba16f(&gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
     assert!(d.iter().all(|p| p[..3] == [0.0; 3]), "no lights and no sky for the senders: no bounce");
 }
 

@@ -72,7 +72,7 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
             let sampling = Sampling { variant, slices: 1, samples: 8, radius: Some(0.5), ..Default::default() };
             let s = Settings { sampling, blur, ..settings(Mode::Both, 16) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-            assert!(r.plan().has(Step::Temporal));
+            assert!(r.plan().has(Step::TEMPORAL));
             for frames in [1, 16] {
                 if frames == 1 {
                     shoot(&gpu, &mut r, &camera);
@@ -108,7 +108,7 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
             let s = Settings { sampling, blur: false, half_resolution: false, ..settings(mode, accumulate) };
             let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
             capture_converged(&gpu, &mut r, &camera).unwrap();
-            let depth = ssdo::headless::readback::read_depth(&gpu, &r.targets().depth.texture).unwrap();
+            let depth = ssdo::headless::readback::read_depth(&gpu, &r.targets().depth().texture).unwrap();
             let values: Vec<f32> = if mode == Mode::Ssao {
                 ao(&gpu, &r)
             } else {
@@ -219,7 +219,7 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     // One frame averages nothing: no temporal pass, no history, nothing allocated for it.
     let mut r = renderer(&gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 1));
     shoot(&gpu, &mut r, &camera);
-    assert!(!r.plan().has(Step::Temporal) && r.history().all().count() == 0);
+    assert!(!r.plan().has(Step::TEMPORAL) && r.history().all().count() == 0);
     assert!(r.allocations().iter().all(|(name, _)| !name.contains("history") && !name.contains("accumulated")));
 
     r.settings.accumulate = 8;
@@ -282,15 +282,15 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         let s = Settings { half_resolution: true, blur: false, ..settings(mode, 1) };
         let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
         shoot(&gpu, &mut r, &camera);
-        assert!(r.plan().has(Step::Upsample));
+        assert!(r.plan().has(Step::UPSAMPLE));
         let t = r.targets();
-        let depth = ssdo::headless::readback::read_depth(&gpu, &t.depth.texture).unwrap();
+        let depth = ssdo::headless::readback::read_depth(&gpu, &t.depth().texture).unwrap();
         // AO alone as the first of four channels, beside DO + AO's four.
-        let read = |set: &ssdo::render::targets::OcclusionTargets| -> Vec<[f32; 4]> {
+        let read = |set: ssdo::render::targets::OcclusionTargets| -> Vec<[f32; 4]> {
             let values = read_occlusion(&gpu, set, false).unwrap();
             values.directional.unwrap_or_else(|| values.ao.unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect())
         };
-        let (half, full) = (read(t.half.as_ref().unwrap()), read(&t.raw));
+        let (half, full) = (read(t.stage(ssdo::render::targets::Stage::Half)), read(t.raw()));
         let (hw, hh) = (W.div_ceil(2) as i64, H.div_ceil(2) as i64);
         assert_eq!(half.len() as i64, hw * hh, "the sampling pass ran at half size");
         // Each full-resolution pixel next to a silhouette may only hold a blend of the half-size

@@ -1,8 +1,10 @@
 //! What every full-screen pass with a bind group of its own keeps: its shader, the layout of its
-//! group 1, the layouts its pipelines are built with, its pipeline for the current key, and its
-//! bind group for the current targets. `new` builds the first three once; `prepare` fills the
-//! other two (or clears them where the plan has no such step); `record` takes them ready.
+//! group 1 (built from its declared reads, `io.rs`), the layouts its pipelines are built with, its
+//! pipeline for the current key, and its bind group for the current targets. `new` loads the
+//! shader; `prepare` binds the pass's reads (making the layout the first time) and fills the
+//! pipeline, or clears both where the plan has no such step; `record` takes them ready.
 
+use super::io::{Inputs, Kind, PassIo};
 use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext};
 use crate::{shaders, Result};
 
@@ -13,25 +15,6 @@ pub struct PipelineSpec {
     pub targets: Vec<Option<wgpu::ColorTargetState>>,
     pub constants: Vec<(&'static str, f64)>,
 }
-
-/// Declares a pass that keeps only its [`PassState`], keyed by `$key`, and its `new`: it loads
-/// `shaders/$shader` and builds group 1 with `$layout(cx, "<name>_layout")`; `sky` says whether
-/// group 2 (the sky) follows. The invoking module imports `PassState`, `PassContext` and `Result`.
-macro_rules! state_pass {
-    ($pass:ident, $key:ty, $name:literal, $shader:literal, sky: $sky:literal, $layout:path) => {
-        pub struct $pass {
-            state: PassState<$key>,
-        }
-
-        impl $pass {
-            pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-                let layout = $layout(cx, concat!($name, "_layout"));
-                Ok(Self { state: PassState::new(cx, $name, $shader, $sky, layout)? })
-            }
-        }
-    };
-}
-pub(super) use state_pass;
 
 /// An override constant's value for a flag.
 pub fn flag(b: bool) -> f64 {
@@ -44,8 +27,8 @@ pub struct PassState<K> {
     /// The render pass's label (`<name>_pass`), made once rather than every frame.
     pass_label: String,
     pub module: wgpu::ShaderModule,
-    /// Group 1, the pass's own inputs.
-    pub layout: wgpu::BindGroupLayout,
+    /// Group 1, the pass's own inputs, with the kinds of its bindings it was made for.
+    layout: Option<(Vec<Kind>, wgpu::BindGroupLayout)>,
     /// Group 0, the frame uniforms and lights.
     frame_layout: wgpu::BindGroupLayout,
     /// Group 2, the sky, for the passes that read it.
@@ -55,20 +38,13 @@ pub struct PassState<K> {
 }
 
 impl<K: PartialEq + Copy> PassState<K> {
-    /// Loads `shaders/<shader>`; `layout` is group 1's, and `sky` says whether group 2 (the sky)
-    /// follows it.
-    pub fn new(
-        cx: &PassContext<'_>,
-        name: &'static str,
-        shader: &str,
-        sky: bool,
-        layout: wgpu::BindGroupLayout,
-    ) -> Result<Self> {
+    /// Loads `shaders/<shader>`; `sky` says whether group 2 (the sky) follows group 1.
+    pub fn new(cx: &PassContext<'_>, name: &'static str, shader: &str, sky: bool) -> Result<Self> {
         Ok(Self {
             name,
             pass_label: format!("{name}_pass"),
             module: shaders::module(cx.device, shader)?,
-            layout,
+            layout: None,
             frame_layout: cx.frame_layout.clone(),
             sky_layout: sky.then(|| cx.sky_layout.clone()),
             pipeline: KeyedPipeline::new(),
@@ -92,14 +68,50 @@ impl<K: PartialEq + Copy> PassState<K> {
         }
     }
 
+    /// Group 1's layout for `io`'s reads, made when their kinds first come (or, which no pass
+    /// does, change: the pipelines built with the old one are dropped then).
+    pub fn layout_for(&mut self, device: &wgpu::Device, io: &PassIo) -> &wgpu::BindGroupLayout {
+        let kinds = io.kinds();
+        if self.layout.as_ref().is_none_or(|(k, _)| *k != kinds) {
+            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(&format!("{}_layout", self.name)),
+                entries: &io.layout_entries(),
+            });
+            self.layout = Some((kinds, layout));
+            self.pipeline.clear();
+        }
+        &self.layout.as_ref().expect("made above").1
+    }
+
+    /// Group 1 with `io`'s reads bound to `inputs` (for a history, the side a frame of `parity`
+    /// reads).
+    pub fn group(&mut self, device: &wgpu::Device, io: &PassIo, inputs: &Inputs<'_>, parity: usize) -> wgpu::BindGroup {
+        let label = format!("{}_bind_group", self.name);
+        let layout = self.layout_for(device, io);
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&label),
+            layout,
+            entries: &io.entries(inputs, parity),
+        })
+    }
+
+    /// Binds `io`'s reads as the pass's group 1.
+    pub fn bind(&mut self, device: &wgpu::Device, io: &PassIo, inputs: &Inputs<'_>) {
+        self.bind_group = Some(self.group(device, io, inputs, 0));
+    }
+
     /// The pipeline for `key`: `build` makes it (from the key, the shader and groups 0, 1 and,
-    /// with the sky, 2) when the current one is for another key.
+    /// with the sky, 2) when the current one is for another key. Group 1's layout comes from
+    /// the pass's reads: bind them first.
     pub fn ensure(
         &mut self,
         key: K,
         build: impl FnOnce(K, &wgpu::ShaderModule, &[Option<&wgpu::BindGroupLayout>]) -> wgpu::RenderPipeline,
     ) {
-        let mut layouts = vec![Some(&self.frame_layout), Some(&self.layout)];
+        let Some((_, own)) = &self.layout else {
+            unreachable!("the {} pass built a pipeline before binding its reads", self.name)
+        };
+        let mut layouts = vec![Some(&self.frame_layout), Some(own)];
         layouts.extend(self.sky_layout.as_ref().map(Some));
         let module = &self.module;
         self.pipeline.ensure(key, |key| build(key, module, &layouts));
@@ -124,15 +136,6 @@ impl<K: PartialEq + Copy> PassState<K> {
         });
     }
 
-    /// Makes group 1 from `entries`.
-    pub fn bind(&mut self, device: &wgpu::Device, entries: &[wgpu::BindGroupEntry<'_>]) {
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("{}_bind_group", self.name)),
-            layout: &self.layout,
-            entries,
-        }));
-    }
-
     /// Drops the pipeline and bind group: the plan has no step for this pass.
     pub fn clear(&mut self) {
         self.pipeline.clear();
@@ -146,12 +149,6 @@ impl<K: PartialEq + Copy> PassState<K> {
             self.clear();
         }
         runs
-    }
-
-    /// [`PassState::runs`] for a pass whose input exists only where the plan runs it: the input.
-    pub fn input<T>(&mut self, input: Option<T>) -> Option<T> {
-        self.runs(input.is_some());
-        input
     }
 
     /// Records the pass (a full-screen triangle) into `attachments`, with `frame` as group 0,

@@ -1,0 +1,312 @@
+//! The plans every option makes: their steps, reads, writes and targets, against the rules and
+//! against the tables of ARCHITECTURE.md and `modes/mod.rs`.
+
+use super::*;
+use crate::render::graph::io::{Kind, Read};
+use crate::render::modes::MODES;
+use crate::render::settings::SenderSky;
+use crate::render::targets::{
+    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_RAW, BOUNCE, DO_ACCUMULATED, DO_BLURRED, DO_HALF, DO_RAW, HDR, OUTPUT,
+};
+use depth_pyramid::PYRAMID;
+use sender_sky::SENDER_SKY;
+
+/// The old set of flags, read from the plan's targets.
+struct Set {
+    hdr: bool,
+    bounce: bool,
+    ao: bool,
+    directional: bool,
+    blurred: bool,
+    accumulated: bool,
+    half: bool,
+    pyramid: bool,
+    sender_sky: bool,
+}
+
+fn set(plan: &Plan) -> Set {
+    let has = |id| plan.allocates(id);
+    Set {
+        hdr: has(HDR),
+        bounce: has(BOUNCE),
+        ao: has(AO_RAW),
+        directional: has(DO_RAW),
+        blurred: has(AO_BLURRED) || has(DO_BLURRED),
+        accumulated: has(AO_ACCUMULATED) || has(DO_ACCUMULATED),
+        half: has(AO_HALF) || has(DO_HALF),
+        pyramid: has(PYRAMID),
+        sender_sky: has(SENDER_SKY),
+    }
+}
+
+/// Every plan the options can make.
+fn all_plans() -> Vec<Plan> {
+    let mut plans = Vec::new();
+    for mode in Mode::ALL {
+        for lights in [0, 8] {
+            for bits in 0..64u32 {
+                for sender_sky in SenderSky::ALL {
+                    let [blur, pyramid, display, indirect, accumulate, half] =
+                        [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
+                    let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half, accumulate };
+                    plans.push(Plan::new(mode, SceneFeatures { lights }, o));
+                }
+            }
+        }
+    }
+    plans
+}
+
+/// Whether every step reads only what an earlier step wrote (a history excepted: what it holds
+/// is the last frame's).
+fn reads_are_written_first(io: &[(Step, StepIo)]) -> std::result::Result<(), String> {
+    for (i, (step, step_io)) in io.iter().enumerate() {
+        for read in step_io.reads.iter().filter(|t| !t.persistent()) {
+            if !io[..i].iter().any(|(_, e)| e.writes.contains(read)) {
+                return Err(format!("{} reads {} before any step writes it", step.name(), read.name()));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_write() {
+    for plan in all_plans() {
+        reads_are_written_first(&plan.io()).unwrap_or_else(|e| panic!("{:?}: {e}", plan.step_names()));
+        assert!(plan.writes(OUTPUT), "{:?}: nothing reaches the output", plan.steps);
+        // The set by hand, as the plan's rules say it.
+        let sampled = plan.decl.runs_sampling();
+        let t = set(&plan);
+        assert_eq!(t.hdr, plan.keeps_hdr(), "{:?}", plan.steps);
+        assert_eq!(t.bounce, plan.has(Step::LIGHTING));
+        assert_eq!(
+            (t.ao, t.directional),
+            (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion)
+        );
+        assert_eq!(t.blurred, plan.blur);
+        assert_eq!(t.accumulated, plan.accumulates());
+        assert_eq!(t.half, plan.half());
+        assert_eq!(plan.half(), sampled && plan.has(Step::UPSAMPLE));
+        assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
+        assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
+        assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
+    }
+}
+
+#[test]
+fn the_architecture_pages_mode_table_is_what_the_plans_are() {
+    let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/ARCHITECTURE.md")).unwrap();
+    let lit = SceneFeatures { lights: 8 };
+    let mut previous: Option<Vec<String>> = None;
+    let mut rows = 0;
+    for line in page.lines().filter(|l| l.starts_with("| ")) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let Some(mode) = MODES.iter().find(|d| d.title == cells[1]).map(|d| d.mode) else { continue };
+        let plan = Plan::new(mode, lit, PlanOptions::default());
+        assert_eq!(cells[2].replace(" → ", ", "), plan.step_names().join(", "), "{mode}: steps");
+        let mut named: Vec<String> = cells[3].split('`').skip(1).step_by(2).map(String::from).collect();
+        if cells[3].starts_with("as ") {
+            named = previous.clone().expect("'as' names an earlier row");
+        }
+        let mut written: Vec<String> = plan
+            .io()
+            .iter()
+            .flat_map(|(_, io)| io.writes.clone())
+            .filter(|t| !t.in_gbuffer() && !t.persistent() && *t != OUTPUT)
+            .map(|t| t.name().to_string())
+            .collect();
+        written.sort();
+        written.dedup();
+        let mut sorted = named.clone();
+        sorted.sort();
+        assert_eq!(sorted, written, "{mode}: targets besides the G-buffer");
+        previous = Some(named);
+        rows += 1;
+    }
+    assert_eq!(rows, MODES.len(), "one row a mode in ARCHITECTURE.md");
+}
+
+#[test]
+fn every_mode_has_one_row_with_its_own_key_and_names() {
+    for (i, d) in MODES.iter().enumerate() {
+        assert_eq!(Mode::ALL[i], d.mode);
+        assert_eq!(Mode::from_key(d.key), Some(d.mode));
+        assert_eq!(d.name.parse::<Mode>().unwrap(), d.mode);
+        assert_eq!(d.mode.declaration(), d);
+    }
+    let err = "ssdo2".parse::<Mode>().unwrap_err().to_string();
+    assert!(err.contains("expected off, ssao, ssdo, both"), "{err}");
+    assert_eq!(Mode::sampled().collect::<Vec<_>>(), [Mode::Ssao, Mode::Ssdo, Mode::Both]);
+    assert_eq!(Mode::from_key(0), None);
+}
+
+#[test]
+fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
+    let lit = SceneFeatures { lights: 8 };
+    // (mode, steps, (hdr, bounce, ao, directional))
+    let rows = [
+        (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
+        (Mode::Ssao, "gbuffer, ssao, upsample, blur, temporal, composite, light_cubes", (false, false, true, false)),
+        (
+            Mode::Ssdo,
+            "gbuffer, sender_sky, lighting, ssdo, upsample, blur, temporal, composite, light_cubes",
+            (true, true, false, true),
+        ),
+        (
+            Mode::Both,
+            "gbuffer, sender_sky, lighting, ssao_ssdo, upsample, blur, temporal, composite, light_cubes",
+            (true, true, false, true),
+        ),
+    ];
+    for (mode, steps, targets) in rows {
+        let plan = Plan::new(mode, lit, PlanOptions::default());
+        assert_eq!(plan.step_names().join(", "), steps, "{mode}");
+        let t = set(&plan);
+        assert_eq!((t.hdr, t.bounce, t.ao, t.directional), targets, "{mode}");
+        assert_eq!((t.blurred, t.pyramid), (plan.decl.runs_sampling(), false), "{mode}");
+    }
+}
+
+#[test]
+fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_lighting_pass() {
+    let lit = SceneFeatures { lights: 8 };
+    for mode in Mode::ALL {
+        let hdr = Plan::new(mode, lit, PlanOptions { display: false, ..PlanOptions::default() });
+        let display = Plan::new(mode, lit, PlanOptions::default());
+        assert!(hdr.has(Step::SKYBOX) && hdr.has(Step::TONEMAP) && hdr.keeps_hdr());
+        assert!(!display.has(Step::SKYBOX) && !display.has(Step::TONEMAP));
+        assert_eq!(display.keeps_hdr(), display.has(Step::LIGHTING), "{mode}");
+        let without = |p: &Plan| p.steps.iter().filter(|s| !matches!(**s, Step::SKYBOX | Step::TONEMAP)).count();
+        assert_eq!(without(&hdr), display.steps.len(), "{mode}: the same passes otherwise");
+    }
+    let dark = Plan::new(Mode::Ssdo, SceneFeatures { lights: 0 }, PlanOptions::default());
+    assert!(dark.has(Step::LIGHTING), "under a sky alone the senders' sky light is bounced");
+    assert!(!dark.keeps_hdr(), "no lights: the lighting pass writes the bounce alone, no HDR target");
+}
+
+#[test]
+fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
+    // (mode, lights, indirect, sender sky) -> lighting pass, bounce target, light cubes
+    let (march, irradiance, off) = (SenderSky::March, SenderSky::Irradiance, SenderSky::Off);
+    let rows = [
+        (Mode::Ssdo, 0, true, march, (true, true, false)),
+        (Mode::Both, 0, true, irradiance, (true, true, false)),
+        (Mode::Ssdo, 0, true, off, (false, false, false)),
+        (Mode::Ssdo, 8, true, off, (true, true, true)),
+        (Mode::Ssdo, 8, false, march, (false, false, true)),
+        (Mode::Ssdo, 0, false, irradiance, (false, false, false)),
+        (Mode::Off, 8, true, march, (false, false, true)),
+        (Mode::Ssao, 0, true, march, (false, false, false)),
+    ];
+    for (mode, lights, indirect, sender_sky, want) in rows {
+        let o = PlanOptions { indirect, sender_sky, ..PlanOptions::default() };
+        let plan = Plan::new(mode, SceneFeatures { lights }, o);
+        let got = (plan.has(Step::LIGHTING), set(&plan).bounce, plan.has(Step::LIGHT_CUBES));
+        assert_eq!(got, want, "{mode}, {lights} lights, indirect {indirect}, sender sky {sender_sky:?}");
+        // Without a lighting pass that writes it, the composite runs the light loop itself.
+        assert_eq!(plan.light_loop(), lights > 0 && !plan.has(Step::LIGHTING));
+        assert_eq!(plan.lighting_writes_direct(), plan.has(Step::LIGHTING) && lights > 0);
+        // The senders' own march runs exactly where a lighting pass reads it.
+        let marched = plan.has(Step::LIGHTING) && sender_sky == march;
+        assert_eq!((plan.has(Step::SENDER_SKY), set(&plan).sender_sky), (marched, marched));
+    }
+}
+
+/// Group 1's bindings as `shader` declares them: (binding, kind); each shader parsed once.
+fn shader_group(shader: &'static str) -> Vec<(u32, Kind)> {
+    static PARSED: std::sync::Mutex<Vec<(&str, Vec<(u32, Kind)>)>> = std::sync::Mutex::new(Vec::new());
+    let mut parsed = PARSED.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, group)) = parsed.iter().find(|(name, _)| *name == shader) {
+        return group.clone();
+    }
+    let group = parse_group(shader);
+    parsed.push((shader, group.clone()));
+    group
+}
+
+fn parse_group(shader: &str) -> Vec<(u32, Kind)> {
+    use naga::{AddressSpace, ImageClass, ScalarKind, TypeInner};
+    let source = crate::shaders::resolve(shader).unwrap();
+    let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{shader}: {e}"));
+    module
+        .global_variables
+        .iter()
+        .filter_map(|(_, var)| {
+            let binding = var.binding.as_ref().filter(|b| b.group == 1)?;
+            let kind = match (&module.types[var.ty].inner, var.space) {
+                (_, AddressSpace::Uniform) => Kind::Uniform,
+                (TypeInner::Image { class: ImageClass::Sampled { kind: ScalarKind::Uint, .. }, .. }, _) => Kind::Uint,
+                (TypeInner::Image { .. }, _) => Kind::Float,
+                (other, space) => panic!("{shader}: binding {} is {other:?} in {space:?}", binding.binding),
+            };
+            Some((binding.binding, kind))
+        })
+        .collect()
+}
+
+/// Whether `io`'s reads are what `entry`'s shaders bind in group 1: each binding a shader
+/// declares is the read of its number, of the same kind, and each read is bound by one of them.
+fn declared_as_bound(entry: &Entry, io: &PassIo) -> std::result::Result<(), String> {
+    let declared = io.kinds();
+    let mut used = vec![false; declared.len()];
+    for shader in entry.group_shaders {
+        for (binding, kind) in shader_group(shader) {
+            match declared.get(binding as usize) {
+                Some(d) if *d == kind => used[binding as usize] = true,
+                other => {
+                    return Err(format!(
+                        "{}: {shader} binds {binding} as {kind:?}; the pass declares {other:?} there ({declared:?})",
+                        entry.step.name()
+                    ))
+                }
+            }
+        }
+    }
+    match used.iter().position(|u| !u) {
+        Some(unbound) => Err(format!(
+            "{}: declares read {unbound} ({:?}), which none of {:?} binds",
+            entry.step.name(),
+            io.reads[unbound],
+            entry.group_shaders
+        )),
+        None => Ok(()),
+    }
+}
+
+#[test]
+fn every_pass_declares_what_its_shader_binds_in_every_plan() {
+    let mut checked = 0;
+    for plan in all_plans() {
+        for entry in PASSES.iter().filter(|e| plan.has(e.step)) {
+            let io = (entry.io)(&plan);
+            if io.reads.is_empty() {
+                continue;
+            }
+            declared_as_bound(entry, &io).unwrap_or_else(|e| panic!("{:?}: {e}", plan.step_names()));
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "{checked} declarations checked");
+}
+
+#[test]
+fn a_declaration_that_drops_a_read_fails_the_checks() {
+    // The sampling pass of SSDO with lights reads the bounce; a list without it is caught, both
+    // against the shader and by the plan (the bounce would be written and never read).
+    let plan = Plan::new(Mode::Ssdo, SceneFeatures { lights: 8 }, PlanOptions::default());
+    let entry = PASSES.iter().find(|e| e.step == Step::OCCLUSION).unwrap();
+    let mut io = (entry.io)(&plan);
+    declared_as_bound(entry, &io).unwrap();
+    io.reads.retain(|r| *r != Read::Target(BOUNCE));
+    let error = declared_as_bound(entry, &io).unwrap_err();
+    assert!(error.contains("occlusion.wgsl"), "{error}");
+    // A list that reads what no earlier step writes (the blur of a DO plan reading AO) fails
+    // the plan's check.
+    let mut io = plan.io();
+    let blur = io.iter_mut().find(|(s, _)| *s == Step::BLUR).unwrap();
+    blur.1.reads.retain(|t| *t != DO_RAW);
+    blur.1.reads.push(AO_RAW);
+    let error = reads_are_written_first(&io).unwrap_err();
+    assert!(error.contains("blur reads ao_raw"), "{error}");
+}
