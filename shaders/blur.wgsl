@@ -9,10 +9,10 @@
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
-#include "common/occlusion_params.wgsl"
+#include "common/filter_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(3) var<uniform> params: FilterParams;
 // The sampling pass's output: AO (SSAO, r) or DO + AO (SSDO and both, rgb + a).
 @group(1) @binding(4) var input: texture_2d<f32>;
 
@@ -77,7 +77,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     let p = view_position(position, depth);
     let size = vec2<i32>(frame.viewport.xy);
     // Never 0: a radius of 0 still blurs flat surfaces.
-    let tolerance = max(0.25 * occ.radius, 1e-30);
+    let tolerance = max(0.25 * params.radius, 1e-30);
 
     var sum = vec4<f32>(0.0);
     var total = 0.0;

@@ -24,10 +24,10 @@
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
-#include "common/occlusion_params.wgsl"
+#include "common/sampling_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(3) var<uniform> occ: SamplingParams;
 @group(1) @binding(4) var bounce_map: texture_2d<f32>;
 // The closest depth per 2^(k+1)-pixel block at level k, as f32 bits (shaders/depth_pyramid.wgsl),
 // read by the far steps when the plan built it (USE_PYRAMID); a 1x1 stand-in otherwise.
@@ -114,7 +114,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     let n = load_normal(pixel);
     let radius = occ.radius;
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
-    let p = view_position(position, depth) + n * occ.bias;
+    let p = view_position(position, depth) + n * occ.bias_length;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
     let slices = max(slice_count, 1u);
     let steps = max(occ.steps, 1u);

@@ -16,10 +16,10 @@
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
-#include "common/occlusion_params.wgsl"
+#include "common/filter_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(3) var<uniform> params: FilterParams;
 // This frame's output of the blur (or of the sampling pass without blur).
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The last frame's average, and the surface each of its pixels holds: x the reverse-Z depth
@@ -91,7 +91,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     var past = vec4<f32>(0.0);
     var held = 0.0;
     var moved = 0.0;
-    if !CAMERA_MOVED && occ.history_frames > 0u {
+    if !CAMERA_MOVED && params.history_frames > 0u {
         // The camera has not moved: the pixel's own texel holds the same surface exactly when it
         // holds the same depth (the scene is static).
         let s = textureLoad(history_surface, pixel, 0);
@@ -102,13 +102,13 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
         }
     }
     let clip = frame.previous_world_to_clip * vec4<f32>(world, 1.0);
-    if CAMERA_MOVED && occ.history_frames > 0u && clip.w > 0.0 {
+    if CAMERA_MOVED && params.history_frames > 0u && clip.w > 0.0 {
         let ndc = clip.xy / clip.w;
         let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
         moved = length(was - in.position.xy);
         let base = floor(was - 0.5);
         let frac = was - 0.5 - base;
-        let tolerance = max(PLANE_RADII * occ.radius, 1e-6 * -p.z);
+        let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
         var weight = 0.0;
         for (var i = 0u; i < 4u; i += 1u) {
             let corner = vec2<u32>(i & 1u, i >> 1u);
@@ -145,7 +145,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     }
 
     let still = moved < STILL_PIXELS;
-    let most = max(f32(select(occ.motion_accumulate, occ.accumulate, still)), 1.0);
+    let most = max(f32(select(params.motion_accumulate, params.accumulate, still)), 1.0);
     var frames = min(held + 1.0, most);
     var result = now;
     if held > 0.0 {

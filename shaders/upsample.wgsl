@@ -9,10 +9,10 @@
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
-#include "common/occlusion_params.wgsl"
+#include "common/filter_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(3) var<uniform> params: FilterParams;
 // The sampling pass's half-resolution output: AO (r) or DO + AO (rgb + a).
 @group(1) @binding(4) var half_input: texture_2d<f32>;
 
@@ -29,7 +29,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     }
     let p = view_position(in.position.xy, depth);
     let n = load_normal(pixel);
-    let tolerance = max(0.25 * occ.radius, 1e-30);
+    let tolerance = max(0.25 * params.radius, 1e-30);
     let full = vec2<i32>(frame.viewport.xy);
     let half_last = vec2<i32>(textureDimensions(half_input)) - 1;
     let base = pixel >> vec2<u32>(1u);

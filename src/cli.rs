@@ -92,7 +92,7 @@ pub(crate) struct ViewArgs {
     #[command(flatten)]
     pub(crate) render: RenderArgs,
     /// Mode to start in: off, ssao, ssdo or both
-    #[arg(long, default_value = "both", value_parser = parse_single_mode)]
+    #[arg(long, default_value = "both")]
     pub(crate) mode: Mode,
     /// Window size, WIDTHxHEIGHT (the 3D view is the window less the 300-pixel panel)
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
@@ -100,6 +100,28 @@ pub(crate) struct ViewArgs {
     /// Where F12 screenshots and C comparisons are written
     #[arg(long, default_value = "screenshots")]
     pub(crate) screenshot_dir: PathBuf,
+}
+
+impl ReportArgs {
+    /// The report's options from the flags (checked by `ReportOptions::check`).
+    pub(crate) fn options(&self) -> ssdo::report::ReportOptions {
+        ssdo::report::ReportOptions {
+            scene: self.scene.clone(),
+            model: self.model.clone(),
+            skybox: self.skybox.clone(),
+            size: (self.size.0, self.size.1),
+            samples: self.samples.clone(),
+            march: self.march.clone(),
+            radii: self.radius.clone(),
+            samples_per_pixel: self.spp,
+            frames: self.frames,
+            accumulate: self.accumulate.clone(),
+            orbit: self.orbit,
+            lights: self.lights,
+            seed: self.seed,
+            out: self.out.clone(),
+        }
+    }
 }
 
 #[derive(Args)]
@@ -157,7 +179,7 @@ pub(crate) const MAX_FRAMES: u64 = 10_000;
 /// The most reference rays per pixel in each trace.
 pub(crate) const MAX_SPP: u64 = 65_536;
 /// The most values in each of the report's sweep lists.
-pub(crate) const MAX_SWEEP: usize = 16;
+pub(crate) use ssdo::report::MAX_SWEEP;
 
 pub(crate) fn parse_frames(s: &str) -> std::result::Result<usize, String> {
     ssdo::spec::count_in(s, 1, MAX_FRAMES).map(|n| n as usize)
@@ -172,10 +194,6 @@ pub(crate) fn parse_march(s: &str) -> std::result::Result<(usize, usize), String
     let (a, b) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}': expected SLICESxSTEPS like 4x8"))?;
     let parse = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("'{s}': expected SLICESxSTEPS like 4x8"));
     Ok((parse(a)?, parse(b)?))
-}
-
-pub(crate) fn parse_single_mode(s: &str) -> std::result::Result<Mode, String> {
-    s.parse::<Mode>().map_err(|e| e.to_string())
 }
 
 #[derive(Args)]

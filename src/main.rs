@@ -12,118 +12,31 @@ use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 
 mod cli;
+mod progress;
 
 use cli::*;
 
 fn run_report(args: &ReportArgs) -> Result<()> {
-    use ssdo::render::{ACCUMULATE, SAMPLES, SLICES, STEPS};
-    for &n in &args.samples {
-        SAMPLES.check(n)?;
-    }
-    for &n in &args.accumulate {
-        ACCUMULATE.check(n)?;
-    }
-    ssdo::spec::in_range("orbit", args.orbit, -90.0, 90.0)?;
-    for &(slices, steps) in &args.march {
-        SLICES.check(slices)?;
-        STEPS.check(steps)?;
-    }
-    if args.samples.is_empty() || args.radius.is_empty() || args.march.is_empty() || args.accumulate.is_empty() {
-        return Err(Error::Setting("--samples, --march, --radius and --accumulate must each give at least one".into()));
-    }
-    let lists = [
-        ("samples", args.samples.len()),
-        ("march", args.march.len()),
-        ("radius", args.radius.len()),
-        ("accumulate", args.accumulate.len()),
-    ];
-    for (name, count) in lists {
-        if count > MAX_SWEEP {
-            return Err(Error::Setting(format!("--{name}: {count} values; a sweep takes at most {MAX_SWEEP}")));
-        }
-    }
-    let options = ssdo::report::ReportOptions {
-        scene: args.scene.clone(),
-        model: args.model.clone(),
-        skybox: args.skybox.clone(),
-        size: (args.size.0, args.size.1),
-        samples: args.samples.clone(),
-        march: args.march.clone(),
-        radii: args.radius.clone(),
-        samples_per_pixel: args.spp,
-        frames: args.frames,
-        accumulate: args.accumulate.clone(),
-        orbit: args.orbit,
-        lights: args.lights,
-        seed: args.seed,
-        out: args.out.clone(),
-    };
-    output::check_folder(&args.out)?;
+    let options = args.options();
+    options.check()?;
+    output::check_folder(&options.out)?;
     let gpu = Gpu::headless()?;
     let started = Instant::now();
-    let rows = args.size.1 as u64;
-    let radii = args.radius.len() as u64;
-    let configs = ssdo::report::planned_configurations(&options) as u64;
-    let (w, h) = (args.size.0 as u64, args.size.1 as u64);
-    log::info!(
-        "planned: {configs} configurations × {} timed frames (and up to {} more where a row accumulates) at {w}x{h}, \
-         and a truth of 2 × {} rays over {} pixels per radius",
-        args.frames + 2,
-        2 * args.accumulate.iter().max().copied().unwrap_or(1),
-        args.spp,
-        w * h
-    );
-    let bar = indicatif::ProgressBar::new(2 * rows * radii + configs);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
-            .expect("valid template"),
-    );
-    let progress = |message: &str| {
+    let bar = progress::bar(ssdo::report::progress_steps(&options), "");
+    let report = ssdo::report::run(&gpu, &options, &|message: &str| {
         bar.inc(1);
         if message != "reference row" {
             bar.set_message(message.to_owned());
         }
-    };
-    let report = ssdo::report::run(&gpu, &options, &progress)?;
+    })?;
     bar.finish_and_clear();
     report.write(&options)?;
     output::print_line(&report.markdown(&options))?;
     output::print_line(&format!(
         "wrote {0}/report.csv, {0}/report.md, {0}/report.png in {1:.0} s",
-        args.out.display(),
+        options.out.display(),
         started.elapsed().as_secs_f64()
     ))
-}
-
-/// Runs `work`, showing a spinner with the elapsed time on standard error once it has taken a
-/// second (a 2M-triangle model takes several); nothing when standard error is not a terminal.
-fn with_spinner<T>(message: &str, work: impl FnOnce() -> T) -> T {
-    use std::sync::atomic::{AtomicBool, Ordering};
-    use std::sync::Arc;
-    let done = Arc::new(AtomicBool::new(false));
-    let bar = indicatif::ProgressBar::hidden();
-    let watcher = {
-        let (done, bar, message) = (done.clone(), bar.clone(), message.to_owned());
-        std::thread::spawn(move || {
-            for _ in 0..20 {
-                std::thread::sleep(std::time::Duration::from_millis(50));
-                if done.load(Ordering::Relaxed) {
-                    return;
-                }
-            }
-            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-            bar.set_style(
-                indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})").expect("valid template"),
-            );
-            bar.set_message(message);
-            bar.enable_steady_tick(std::time::Duration::from_millis(120));
-        })
-    };
-    let out = work();
-    done.store(true, std::sync::atomic::Ordering::Relaxed);
-    let _ = watcher.join();
-    bar.finish_and_clear();
-    out
 }
 
 fn run_capture(args: &CaptureArgs) -> Result<()> {
@@ -159,7 +72,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     for mode in modes {
         renderer.set_mode(&gpu, mode);
         if args.print_plan {
-            print_plan(&renderer)?;
+            output::print_line(&renderer.plan_listing())?;
         }
         if args.stats {
             let stats = ssdo::headless::stats::frame_stats(&gpu, &mut renderer, &camera)?;
@@ -204,25 +117,9 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
 
 /// The scene and sky of `args`, with a spinner on the terminal while each loads.
 fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skybox)> {
-    let model = with_spinner("loading the model", || args.load_model())?;
-    let sky = with_spinner("loading the sky", || args.load_sky())?;
+    let model = progress::spinner("loading the model", || args.load_model())?;
+    let sky = progress::spinner("loading the sky", || args.load_sky())?;
     Ok((args.scene(model), sky))
-}
-
-fn print_plan(renderer: &Renderer) -> Result<()> {
-    let plan = renderer.plan();
-    let mut text = format!("plan {}:", plan.mode);
-    let names = |ids: &[ssdo::render::TargetId]| ids.iter().map(|t| t.name()).collect::<Vec<_>>().join(" ");
-    for (step, io) in plan.io() {
-        let (name, reads, writes) = (step.name_in(plan.mode), names(&io.reads), names(&io.writes));
-        text += &format!("\n  pass {name} reads [{reads}] writes [{writes}]");
-    }
-    let allocations = renderer.allocations();
-    for (name, bytes) in &allocations {
-        text += &format!("\n  bytes {name} {bytes}");
-    }
-    text += &format!("\n  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>());
-    output::print_line(&text)
 }
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
@@ -237,11 +134,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     renderer.keep_hdr(&gpu, args.hdr);
     let timestamps = renderer.enable_timing(&gpu);
     log::info!("planned: {} modes × {} frames at {}x{}", Mode::ALL.len(), args.frames + 2, size.0, size.1);
-    let bar = indicatif::ProgressBar::new(Mode::ALL.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} modes {msg}")
-            .expect("valid template"),
-    );
+    let bar = progress::bar(Mode::ALL.len() as u64, " modes");
     let target = output_texture(&gpu, size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let mut modes = Vec::new();

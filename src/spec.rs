@@ -17,7 +17,7 @@ use crate::{Error, Result};
 pub struct SceneArgs {
     /// model: the model framed by the orbit camera; room: the model lying on the floor of a closed
     /// room that fills the screen, seen by a fixed camera (the classic SSAO chapter's set-up)
-    #[arg(long = "scene", default_value = "model", value_parser = parse_layout)]
+    #[arg(long = "scene", default_value = "model")]
     pub layout: scene::Layout,
     /// With --scene room and no --model: the built-in figure's triangle count [default: 50000]
     #[arg(long)]
@@ -86,10 +86,6 @@ pub fn parse_lights(s: &str) -> std::result::Result<usize, String> {
     count_in(s, 0, MAX_LIGHTS as u64).map(|n| n as usize)
 }
 
-pub fn parse_layout(s: &str) -> std::result::Result<scene::Layout, String> {
-    s.parse::<scene::Layout>().map_err(|e| e.to_string())
-}
-
 /// A point as X,Y,Z: three finite numbers within the largest length setting.
 pub fn parse_point(s: &str) -> std::result::Result<glam::Vec3, String> {
     let bad = || format!("'{s}' is not a point X,Y,Z of three finite numbers (each within ±{MAX_LENGTH:e})");
@@ -111,7 +107,7 @@ pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
 #[derive(Args)]
 pub struct RenderArgs {
     /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the classic SSAO chapter and the SSDO course project)
-    #[arg(long, default_value = "default", value_parser = parse_variant)]
+    #[arg(long, default_value = "default")]
     pub variant: Variant,
     /// Samples per pixel of the points and classic variants (the help states the range from
     /// `render::SAMPLES`)
@@ -153,7 +149,7 @@ pub struct RenderArgs {
     /// What lights the bounce's senders besides the point lights: march (the sky each sender
     /// sees, from a half-resolution march), irradiance (the sky's unoccluded irradiance for its
     /// normal) or off (the point lights only); the first two add the ambient
-    #[arg(long, default_value = "march", value_parser = parse_sender_sky)]
+    #[arg(long, default_value = "march")]
     pub sender_sky: SenderSky,
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
@@ -176,20 +172,8 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub sky_scale: f32,
     /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting
-    #[arg(long, default_value = "final", value_parser = parse_view)]
+    #[arg(long, default_value = "final")]
     pub view: View,
-}
-
-pub fn parse_variant(s: &str) -> std::result::Result<Variant, String> {
-    s.parse::<Variant>().map_err(|e| e.to_string())
-}
-
-pub fn parse_sender_sky(s: &str) -> std::result::Result<SenderSky, String> {
-    s.parse::<SenderSky>().map_err(|e| e.to_string())
-}
-
-pub fn parse_view(s: &str) -> std::result::Result<View, String> {
-    s.parse::<View>().map_err(|e| e.to_string())
 }
 
 /// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it

@@ -2,7 +2,8 @@
 // position reconstructed from reverse-Z depth.
 
 // Each include declares what it uses: `frame` (bind group 0) comes from uniforms.wgsl. Bindings
-// 0-2 of group 1 are fixed here; `gbuffer_entries()` in src/render/passes/mod.rs lays them out.
+// 0-2 of group 1 are fixed here; each pass that includes this file declares the G-buffer as its
+// first three reads (src/render/passes/<pass>.rs, checked against this file by a test).
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
 

@@ -1,5 +1,5 @@
 // Per-frame data shared by every pass (bind group 0). Mirrors `FrameUniforms` and `GpuLight`
-// in src/render/uniforms.rs field for field, names included (tests/shaders.rs checks every
+// in src/render/uniforms.rs field for field, names included (tests/it/cpu/shaders.rs checks every
 // member's offset against naga's layout of this file).
 
 struct Frame {

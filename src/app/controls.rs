@@ -2,15 +2,12 @@
 //! right or middle drag to pan. The fly camera (F toggles): W/A/S/D to move, Q/E or Ctrl/Space
 //! down and up, Shift faster, drag to look around. R resets to the framing of the model.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use glam::{Vec3, Vec4Swizzles};
 use winit::event::{ElementState, MouseButton, MouseScrollDelta};
-use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 
-use super::ui::Action;
 use crate::scene::OrbitCamera;
 
 /// Degrees of orbit per pixel of drag.
@@ -153,37 +150,6 @@ impl CameraControls {
         camera.near *= distance / camera.distance;
         camera.distance = distance;
         true
-    }
-}
-
-impl super::Viewer {
-    pub(super) fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
-        if let Some(mode) = mode_for_key(key) {
-            return self.act(Action::Mode(mode));
-        }
-        match key {
-            KeyCode::F12 => self.act(Action::Screenshot),
-            KeyCode::KeyC => self.act(Action::Compare),
-            KeyCode::KeyR => self.act(Action::ResetCamera),
-            KeyCode::KeyT => self.act(Action::ToggleAccumulation),
-            KeyCode::KeyF => self.act(Action::ToggleFly),
-            KeyCode::KeyP => self.act(Action::CopyCommand),
-            KeyCode::Escape => event_loop.exit(),
-            _ => {}
-        }
-    }
-
-    pub(super) fn drop_file(&mut self, path: PathBuf) {
-        if path.is_dir() || crate::scene::panorama::is_image(&path) {
-            self.act(Action::LoadSky(path));
-        } else if crate::scene::is_model(&path) {
-            self.act(Action::LoadModel(path));
-        } else {
-            self.panel.say(
-                format!("{}: drop a skybox folder, a panorama image or a model (.obj, .gltf, .glb)", path.display()),
-                true,
-            );
-        }
     }
 }
 

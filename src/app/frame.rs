@@ -217,78 +217,19 @@ impl Viewer {
         }
         let started = Instant::now();
         self.apply_loads();
-        let size = self.window_size;
-        if size.width == 0 || size.height == 0 {
-            return Ok(());
-        }
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => return Ok(()),
-            wgpu::CurrentSurfaceTexture::Outdated
-            | wgpu::CurrentSurfaceTexture::Lost
-            | wgpu::CurrentSurfaceTexture::Validation => {
-                self.surface.configure(&self.gpu.device, &self.config);
-                return Ok(());
-            }
-        };
+        let Some(frame) = self.acquire() else { return Ok(()) };
         let target = frame.texture.create_view(&wgpu::TextureViewDescriptor::default());
-
         // The fly camera's step, then the panel: it may change settings for this frame.
         self.controls.step(&mut self.camera, self.scene.model.bounds.radius(), Instant::now());
         // Wherever flying, panning and zooming led, within what `capture` takes back.
         self.camera.keep_in_range(&self.scene.model.bounds);
-        self.panel.still_frames = self.renderer.still_frames();
-        self.panel.command = self.command();
-        let input = self.egui_input();
-        let default_radius = self.scene.default_radius();
-        let ctx = self.egui.egui_ctx().clone();
-        let mut actions = Vec::new();
-        let mut full = ctx
-            .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
-        let mut textures = std::mem::take(&mut full.textures_delta);
-        let delay = full.viewport_output.get(&egui::ViewportId::ROOT).map_or(Duration::MAX, |v| v.repaint_delay);
-        self.egui_repaint = Instant::now().checked_add(delay);
-        self.egui.handle_platform_output(&self.window, full.platform_output);
-        for action in actions {
-            self.act(action);
-        }
-
+        let panel = self.run_panel();
         let mut encoder =
             self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer_frame") });
         let camera = self.view_camera();
         self.renderer.encode_at(&self.gpu, &mut encoder, &camera, &target, (self.panel_pixels(), 0));
-
-        let pixels_per_point = full.pixels_per_point;
-        let jobs = ctx.tessellate(full.shapes, pixels_per_point);
-        for (id, deltas) in textures.set.drain() {
-            for delta in &deltas {
-                self.egui_renderer.update_texture(&self.gpu.device, &self.gpu.queue, id, delta);
-            }
-        }
-        let screen =
-            egui_wgpu::ScreenDescriptor { size_in_pixels: [self.config.width, self.config.height], pixels_per_point };
-        let extra = self.egui_renderer.update_buffers(&self.gpu.device, &self.gpu.queue, &mut encoder, &jobs, &screen);
-        {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("egui_pass"),
-                color_attachments: &[crate::render::graph::color_attachment(&target, false)],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
-        }
-        self.gpu_busy.store(true, std::sync::atomic::Ordering::Release);
-        self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
-        let busy = self.gpu_busy.clone();
-        self.gpu.queue.on_submitted_work_done(move || busy.store(false, std::sync::atomic::Ordering::Release));
-        self.renderer.timings_submitted();
-        for id in textures.free.drain() {
-            self.egui_renderer.free_texture(&id);
-        }
+        self.submit_with_panel(encoder, panel, &target);
         self.pending = Some((frame, started));
-
         // Timestamps of a frame or two ago, never waited for.
         if let Some(steps) = self.renderer.poll_timings(&self.gpu)? {
             let names: Vec<(&'static str, f64)> =
@@ -303,5 +244,81 @@ impl Viewer {
             self.panel.say(e.to_string(), true);
         }
         Ok(())
+    }
+
+    /// The window's next image, or `None` for no frame now (minimised, occluded, or a surface
+    /// that had to be configured anew).
+    fn acquire(&mut self) -> Option<wgpu::SurfaceTexture> {
+        if self.window_size.width == 0 || self.window_size.height == 0 {
+            return None;
+        }
+        match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame) | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => Some(frame),
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => None,
+            wgpu::CurrentSurfaceTexture::Outdated
+            | wgpu::CurrentSurfaceTexture::Lost
+            | wgpu::CurrentSurfaceTexture::Validation => {
+                self.surface.configure(&self.gpu.device, &self.config);
+                None
+            }
+        }
+    }
+
+    /// Runs the panel for this frame, carrying out what was clicked; its output to draw.
+    fn run_panel(&mut self) -> egui::FullOutput {
+        self.panel.still_frames = self.renderer.still_frames();
+        self.panel.command = self.command();
+        let input = self.egui_input();
+        let default_radius = self.scene.default_radius();
+        let ctx = self.egui.egui_ctx().clone();
+        let mut actions = Vec::new();
+        let mut full = ctx
+            .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
+        let delay = full.viewport_output.get(&egui::ViewportId::ROOT).map_or(Duration::MAX, |v| v.repaint_delay);
+        self.egui_repaint = Instant::now().checked_add(delay);
+        self.egui.handle_platform_output(&self.window, std::mem::take(&mut full.platform_output));
+        for action in actions {
+            self.act(action);
+        }
+        full
+    }
+
+    /// Draws the panel over `target` after the frame in `encoder`, and submits both; the GPU's
+    /// work is watched so the frame is presented once done.
+    fn submit_with_panel(
+        &mut self,
+        mut encoder: wgpu::CommandEncoder,
+        mut panel: egui::FullOutput,
+        target: &wgpu::TextureView,
+    ) {
+        let pixels_per_point = panel.pixels_per_point;
+        let jobs = self.egui.egui_ctx().tessellate(std::mem::take(&mut panel.shapes), pixels_per_point);
+        for (id, deltas) in panel.textures_delta.set.drain() {
+            for delta in &deltas {
+                self.egui_renderer.update_texture(&self.gpu.device, &self.gpu.queue, id, delta);
+            }
+        }
+        let screen =
+            egui_wgpu::ScreenDescriptor { size_in_pixels: [self.config.width, self.config.height], pixels_per_point };
+        let extra = self.egui_renderer.update_buffers(&self.gpu.device, &self.gpu.queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui_pass"),
+                color_attachments: &[crate::render::graph::io::color_attachment(target, false)],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.egui_renderer.render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        self.gpu_busy.store(true, std::sync::atomic::Ordering::Release);
+        self.gpu.queue.submit(extra.into_iter().chain([encoder.finish()]));
+        let busy = self.gpu_busy.clone();
+        self.gpu.queue.on_submitted_work_done(move || busy.store(false, std::sync::atomic::Ordering::Release));
+        self.renderer.timings_submitted();
+        for id in panel.textures_delta.free.drain() {
+            self.egui_renderer.free_texture(&id);
+        }
     }
 }

@@ -6,6 +6,7 @@
 
 mod controls;
 mod frame;
+mod keys;
 mod loader;
 mod ui;
 
@@ -21,7 +22,7 @@ use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
 use crate::gpu::{instance_descriptor, Gpu};
-use crate::render::{Renderer, Settings, ACCUMULATE};
+use crate::render::{Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::spec::SceneArgs;
 use crate::{Error, Result};
@@ -168,6 +169,50 @@ fn timestamp() -> String {
     format!("{}-{:03}", zoned.strftime("%Y%m%d-%H%M%S"), zoned.millisecond())
 }
 
+/// Opens the window at `size`, the device that draws into it, and its surface, configured for
+/// the window (at most the adapter's largest texture).
+fn open_window(
+    event_loop: &ActiveEventLoop,
+    size: (u32, u32),
+) -> Result<(Arc<Window>, wgpu::Surface<'static>, Gpu, wgpu::SurfaceConfiguration)> {
+    let attributes = Window::default_attributes()
+        .with_title("ssdo — screen-space directional occlusion")
+        .with_inner_size(PhysicalSize::new(size.0, size.1));
+    let window =
+        Arc::new(event_loop.create_window(attributes).map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?);
+    let descriptor =
+        wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(event_loop.owned_display_handle()));
+    let instance = wgpu::Instance::new(instance_descriptor(descriptor));
+    let surface =
+        instance.create_surface(window.clone()).map_err(|e| Error::Gpu(format!("cannot draw into the window: {e}")))?;
+    let gpu = Gpu::from_instance(instance, Some(&surface))?;
+    let caps = surface.get_capabilities(&gpu.adapter);
+    // egui blends in gamma space and wants a non-sRGB target; the tone-map pass then does the
+    // sRGB encoding itself (OUTPUT_SRGB = false).
+    let format = caps
+        .formats
+        .iter()
+        .copied()
+        .find(|f| matches!(f, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm))
+        .or(caps.formats.first().copied())
+        .ok_or_else(|| Error::Gpu("the window offers no surface format".into()))?;
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let inner = window.inner_size();
+    let config = wgpu::SurfaceConfiguration {
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        format,
+        width: inner.width.min(max).max(1),
+        height: inner.height.min(max).max(1),
+        present_mode: wgpu::PresentMode::AutoVsync,
+        desired_maximum_frame_latency: 2,
+        alpha_mode: caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
+        view_formats: vec![],
+        color_space: wgpu::SurfaceColorSpace::Auto,
+    };
+    surface.configure(&gpu.device, &config);
+    Ok((window, surface, gpu, config))
+}
+
 impl Drop for Viewer {
     fn drop(&mut self) {
         // Before the surface: it cannot be let go while one of its frames is held.
@@ -183,44 +228,9 @@ impl Viewer {
         sky: Skybox,
         camera: OrbitCamera,
     ) -> Result<Self> {
-        let attributes = Window::default_attributes()
-            .with_title("ssdo — screen-space directional occlusion")
-            .with_inner_size(PhysicalSize::new(options.size.0, options.size.1));
-        let window = Arc::new(
-            event_loop.create_window(attributes).map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?,
-        );
-        let descriptor =
-            wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(event_loop.owned_display_handle()));
-        let instance = wgpu::Instance::new(instance_descriptor(descriptor));
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| Error::Gpu(format!("cannot draw into the window: {e}")))?;
-        let gpu = Gpu::from_instance(instance, Some(&surface))?;
-        let caps = surface.get_capabilities(&gpu.adapter);
-        // egui blends in gamma space and wants a non-sRGB target; the tone-map pass then does the
-        // sRGB encoding itself (OUTPUT_SRGB = false).
-        let format = caps
-            .formats
-            .iter()
-            .copied()
-            .find(|f| matches!(f, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm))
-            .or(caps.formats.first().copied())
-            .ok_or_else(|| Error::Gpu("the window offers no surface format".into()))?;
-        let max = gpu.device.limits().max_texture_dimension_2d;
-        let window_size = window.inner_size();
-        let size = PhysicalSize::new(window_size.width.min(max), window_size.height.min(max));
-        let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            format,
-            width: size.width.max(1),
-            height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoVsync,
-            desired_maximum_frame_latency: 2,
-            alpha_mode: caps.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
-            view_formats: vec![],
-            color_space: wgpu::SurfaceColorSpace::Auto,
-        };
-        surface.configure(&gpu.device, &config);
+        let (window, surface, gpu, config) = open_window(event_loop, options.size)?;
+        let (format, window_size) = (config.format, window.inner_size());
+        let size = PhysicalSize::new(config.width, config.height);
         let scale = window.scale_factor() as f32;
         let view = Self::view_size(size, scale);
         let mut renderer = Renderer::new(&gpu, &scene, &sky, view, format, options.settings)?;
@@ -231,25 +241,7 @@ impl Viewer {
         let egui =
             egui_winit::State::new(egui_ctx, egui::ViewportId::ROOT, &window, Some(scale), None, Some(max_texture));
         let egui_renderer = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
-        let panel = PanelState {
-            sky_path: String::new(),
-            model_path: String::new(),
-            sky_folders: loader::skybox_folders(),
-            lights: options.scene.lights,
-            seed: options.scene.seed,
-            messages: Vec::new(),
-            timings: Vec::new(),
-            frame_ms: 0.0,
-            timing_source: if timing { "timestamp queries" } else { "not available on this adapter" },
-            adapter: gpu.describe(),
-            model_name: scene.model.name.clone(),
-            sky_name: sky.name.clone(),
-            loading: None,
-            still_frames: 0,
-            accumulate: if options.settings.accumulates() { options.settings.accumulate } else { ACCUMULATE.default },
-            fly: options.scene.eye.is_some(),
-            command: String::new(),
-        };
+        let panel = PanelState::new((&options.scene, &options.settings), &gpu, (&scene, &sky), timing);
         Ok(Self {
             window,
             surface,

@@ -107,194 +107,252 @@ fn path_field(ui: &mut egui::Ui, text: &mut String, hint: &str) -> Option<PathBu
     .inner
 }
 
+impl PanelState {
+    /// The panel of a viewer started with the flags `args` and `settings` on `gpu`, showing
+    /// `scene` under `sky`; `timing`: the adapter has timestamp queries.
+    pub fn new(
+        (args, settings): (&crate::spec::SceneArgs, &Settings),
+        gpu: &crate::gpu::Gpu,
+        (scene, sky): (&crate::scene::Scene, &crate::scene::Skybox),
+        timing: bool,
+    ) -> Self {
+        Self {
+            sky_path: String::new(),
+            model_path: String::new(),
+            sky_folders: super::loader::skybox_folders(),
+            lights: args.lights,
+            seed: args.seed,
+            messages: Vec::new(),
+            timings: Vec::new(),
+            frame_ms: 0.0,
+            timing_source: if timing { "timestamp queries" } else { "not available on this adapter" },
+            adapter: gpu.describe(),
+            model_name: scene.model.name.clone(),
+            sky_name: sky.name.clone(),
+            loading: None,
+            still_frames: 0,
+            accumulate: if settings.accumulates() { settings.accumulate } else { crate::render::ACCUMULATE.default },
+            fly: args.eye.is_some(),
+            command: String::new(),
+        }
+    }
+}
+
 /// Draws the panel; returns what the application has to do.
 pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::Panel::left("controls").exact_size(PANEL_WIDTH).resizable(false).show(ui, |ui| {
         egui::ScrollArea::vertical().show(ui, |ui| {
-            ui.heading("ssdo");
-            ui.label(format!("{}\nmodel: {}\nsky: {}", state.adapter, state.model_name, state.sky_name));
-            if let Some(progress) = &state.loading {
-                ui.label(progress);
-            }
-            for m in &state.messages {
-                let color = if m.error {
-                    egui::Color32::from_rgb(255, 110, 110)
-                } else {
-                    egui::Color32::from_rgb(140, 220, 140)
-                };
-                ui.colored_label(color, &m.text);
-            }
+            status(ui, state);
             ui.separator();
-
-            ui.label("Mode (keys 1-4)");
-            ui.horizontal_wrapped(|ui| {
-                for mode in Mode::ALL {
-                    if ui.selectable_label(settings.mode == mode, format!("{} {}", mode.key(), mode.title())).clicked()
-                    {
-                        actions.push(Action::Mode(mode));
-                    }
-                }
-            });
-            egui::ComboBox::from_label("variant").selected_text(settings.sampling.variant.name()).show_ui(ui, |ui| {
-                for v in Variant::ALL {
-                    ui.selectable_value(&mut settings.sampling.variant, v, v.name());
-                }
-            });
-            egui::ComboBox::from_label("view").selected_text(settings.view.title()).show_ui(ui, |ui| {
-                for v in View::ALL {
-                    ui.selectable_value(&mut settings.view, v, v.title());
-                }
-            });
+            mode_section(ui, settings, &mut actions);
             ui.separator();
-
-            ui.label("Sampling");
-            for count in settings.sampling.variant.decl().counts {
-                let value = settings.count_mut(count.id);
-                ui.add(egui::Slider::new(value, count.range()).logarithmic(true).text(count.label));
-            }
-            // A length with a scene-derived default: the slider shows the default until moved.
-            let length = |ui: &mut egui::Ui, value: &mut Option<f32>, default: f32, max: f32, text: &str| {
-                let mut v = value.unwrap_or(default);
-                let before = v;
-                ui.add(egui::Slider::new(&mut v, 0.0..=max).text(text));
-                if v != before {
-                    *value = Some(v);
-                }
-            };
-            length(ui, &mut settings.sampling.radius, default_radius, default_radius * 5.0, "radius");
-            if settings.sampling.variant.decl().marched_lengths {
-                let defaults = crate::render::Sampling::default().lengths(default_radius);
-                let (reach, thickness) = (defaults.reach, defaults.thickness);
-                length(ui, &mut settings.sampling.reach, reach, reach * 4.0, "reach");
-                length(ui, &mut settings.sampling.thickness, thickness, thickness * 10.0, "thickness");
-                ui.checkbox(&mut settings.sampling.depth_pyramid, "depth pyramid for far steps");
-            }
-            slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
-            ui.checkbox(&mut settings.blur, "blur");
-            ui.checkbox(&mut settings.half_resolution, "half resolution")
-                .on_hover_text("sample at half width and height, then upsample by depth and normal");
-            // Accumulation: on with the last count it had, off as 1 frame.
-            let mut on = settings.accumulates();
-            ui.horizontal(|ui| {
-                if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed()
-                {
-                    settings.accumulate = if on { state.accumulate.max(2) } else { 1 };
-                }
-                if on {
-                    ui.label(format!("{} / {} frames", state.still_frames, settings.accumulate));
-                }
-            });
-            if on {
-                let count = crate::render::ACCUMULATE;
-                ui.add(egui::Slider::new(&mut settings.accumulate, 2..=count.max).logarithmic(true).text("frames"));
-                state.accumulate = settings.accumulate;
-            }
-            slider(ui, &mut settings.ao_strength, 0.0..=1.0, "AO strength");
-            slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
-            slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
-            slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
-            egui::ComboBox::from_label("bounce senders lit by")
-                .selected_text(settings.sender_sky.name())
-                .show_ui(ui, |ui| {
-                    for option in crate::render::SenderSky::ALL {
-                        ui.selectable_value(&mut settings.sender_sky, option, option.name());
-                    }
-                })
-                .response
-                .on_hover_text(
-                    "march: the sky each sender sees; irradiance: its unoccluded sky; off: point lights only",
-                );
-            ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
-            slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
-            ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));
+            sampling_section(ui, state, settings, default_radius);
+            lighting_section(ui, settings);
             ui.separator();
-
-            ui.label("Lights");
-            let (lights, seed) = (state.lights, state.seed);
-            ui.add(egui::Slider::new(&mut state.lights, 0..=64).text("count"));
-            ui.horizontal(|ui| {
-                ui.add(egui::DragValue::new(&mut state.seed).prefix("seed "));
-                if ui.button("reseed").clicked() {
-                    state.seed = state.seed.wrapping_add(1);
-                }
-            });
-            if (lights, seed) != (state.lights, state.seed) {
-                actions.push(Action::Relight { lights: state.lights, seed: state.seed });
-            }
+            lights_section(ui, state, &mut actions);
             ui.separator();
-
-            ui.label("Sky: folder or panorama (or drop one on the window)");
-            let combo = egui::ComboBox::from_id_salt("skies").selected_text(state.sky_name.clone()).show_ui(ui, |ui| {
-                for folder in &state.sky_folders {
-                    let name = folder.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                    // A panorama's sky is named after the file without its extension.
-                    let stem = folder.file_stem().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                    let current = name == state.sky_name || (folder.is_file() && stem == state.sky_name);
-                    if ui.selectable_label(current, name).clicked() {
-                        actions.push(Action::LoadSky(folder.clone()));
-                    }
-                }
-            });
-            if combo.response.clicked() {
-                state.sky_folders = super::loader::skybox_folders();
-            }
-            if let Some(path) = path_field(ui, &mut state.sky_path, "sky folder or panorama.hdr") {
-                actions.push(Action::LoadSky(path));
-            }
-            ui.label("Model: .obj, .gltf, .glb (or drop one on the window)");
-            if let Some(path) = path_field(ui, &mut state.model_path, "path/to/model.obj or .glb") {
-                actions.push(Action::LoadModel(path));
-            }
+            files_section(ui, state, &mut actions);
             ui.separator();
-
-            let mut fly = state.fly;
-            if ui
-                .checkbox(&mut fly, "fly camera (F)")
-                .on_hover_text("W A S D move, Q/E or Ctrl/Space down and up, Shift faster, drag to look")
-                .changed()
-            {
-                actions.push(Action::ToggleFly);
-            }
-            ui.horizontal_wrapped(|ui| {
-                if ui.button("reset camera (R)").clicked() {
-                    actions.push(Action::ResetCamera);
-                }
-                if ui.button("screenshot (F12)").clicked() {
-                    actions.push(Action::Screenshot);
-                }
-                if ui.button("compare modes (C)").clicked() {
-                    actions.push(Action::Compare);
-                }
-            });
-            ui.horizontal(|ui| {
-                ui.label("This view headless:");
-                if ui.button("copy command (P)").clicked() {
-                    actions.push(Action::CopyCommand);
-                }
-            });
-            ui.add(egui::Label::new(egui::RichText::new(&state.command).monospace().small()).wrap());
+            camera_section(ui, state, &mut actions);
             ui.separator();
-
-            ui.label(format!("GPU time per pass ({})", state.timing_source));
-            egui::Grid::new("timings").num_columns(2).show(ui, |ui| {
-                for (name, ms) in &state.timings {
-                    ui.label(*name);
-                    ui.label(format!("{ms:.2} ms"));
-                    ui.end_row();
-                }
-                if !state.timings.is_empty() {
-                    ui.label("all passes");
-                    ui.label(format!("{:.2} ms", state.timings.iter().map(|(_, ms)| ms).sum::<f64>()));
-                    ui.end_row();
-                }
-                // Frames are drawn only when something changes, so this is how long one frame
-                // takes from encoding to the screen (the GPU's work included), not a frame rate.
-                ui.label("frame (wall)");
-                ui.label(format!("{:.2} ms", state.frame_ms));
-                ui.end_row();
-            });
+            timings_section(ui, state);
         });
     });
     actions
+}
+
+/// The adapter, the files on screen, a load in progress and the last messages.
+fn status(ui: &mut egui::Ui, state: &PanelState) {
+    ui.heading("ssdo");
+    ui.label(format!("{}\nmodel: {}\nsky: {}", state.adapter, state.model_name, state.sky_name));
+    if let Some(progress) = &state.loading {
+        ui.label(progress);
+    }
+    for m in &state.messages {
+        let color =
+            if m.error { egui::Color32::from_rgb(255, 110, 110) } else { egui::Color32::from_rgb(140, 220, 140) };
+        ui.colored_label(color, &m.text);
+    }
+}
+
+/// The mode buttons, the variant and the debug view.
+fn mode_section(ui: &mut egui::Ui, settings: &mut Settings, actions: &mut Vec<Action>) {
+    ui.label("Mode (keys 1-4)");
+    ui.horizontal_wrapped(|ui| {
+        for mode in Mode::ALL {
+            if ui.selectable_label(settings.mode == mode, format!("{} {}", mode.key(), mode.title())).clicked() {
+                actions.push(Action::Mode(mode));
+            }
+        }
+    });
+    egui::ComboBox::from_label("variant").selected_text(settings.sampling.variant.name()).show_ui(ui, |ui| {
+        for v in Variant::ALL {
+            ui.selectable_value(&mut settings.sampling.variant, v, v.name());
+        }
+    });
+    egui::ComboBox::from_label("view").selected_text(settings.view.title()).show_ui(ui, |ui| {
+        for v in View::ALL {
+            ui.selectable_value(&mut settings.view, v, v.title());
+        }
+    });
+}
+
+/// The variant's counts and lengths, the bias, blur, half resolution and accumulation.
+fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) {
+    ui.label("Sampling");
+    for count in settings.sampling.variant.decl().counts {
+        let value = settings.count_mut(count.id);
+        ui.add(egui::Slider::new(value, count.range()).logarithmic(true).text(count.label));
+    }
+    // A length with a scene-derived default: the slider shows the default until moved.
+    let length = |ui: &mut egui::Ui, value: &mut Option<f32>, default: f32, max: f32, text: &str| {
+        let mut v = value.unwrap_or(default);
+        let before = v;
+        ui.add(egui::Slider::new(&mut v, 0.0..=max).text(text));
+        if v != before {
+            *value = Some(v);
+        }
+    };
+    length(ui, &mut settings.sampling.radius, default_radius, default_radius * 5.0, "radius");
+    if settings.sampling.variant.decl().marched_lengths {
+        let defaults = crate::render::Sampling::default().lengths(default_radius);
+        let (reach, thickness) = (defaults.reach, defaults.thickness);
+        length(ui, &mut settings.sampling.reach, reach, reach * 4.0, "reach");
+        length(ui, &mut settings.sampling.thickness, thickness, thickness * 10.0, "thickness");
+        ui.checkbox(&mut settings.sampling.depth_pyramid, "depth pyramid for far steps");
+    }
+    slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
+    ui.checkbox(&mut settings.blur, "blur");
+    ui.checkbox(&mut settings.half_resolution, "half resolution")
+        .on_hover_text("sample at half width and height, then upsample by depth and normal");
+    // Accumulation: on with the last count it had, off as 1 frame.
+    let mut on = settings.accumulates();
+    ui.horizontal(|ui| {
+        if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed() {
+            settings.accumulate = if on { state.accumulate.max(2) } else { 1 };
+        }
+        if on {
+            ui.label(format!("{} / {} frames", state.still_frames, settings.accumulate));
+        }
+    });
+    if on {
+        let count = crate::render::ACCUMULATE;
+        ui.add(egui::Slider::new(&mut settings.accumulate, 2..=count.max).logarithmic(true).text("frames"));
+        state.accumulate = settings.accumulate;
+    }
+}
+
+/// The strengths, the bounce's senders, exposure, ambient and the sky's scale.
+fn lighting_section(ui: &mut egui::Ui, settings: &mut Settings) {
+    slider(ui, &mut settings.ao_strength, 0.0..=1.0, "AO strength");
+    slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
+    slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
+    slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
+    egui::ComboBox::from_label("bounce senders lit by")
+        .selected_text(settings.sender_sky.name())
+        .show_ui(ui, |ui| {
+            for option in crate::render::SenderSky::ALL {
+                ui.selectable_value(&mut settings.sender_sky, option, option.name());
+            }
+        })
+        .response
+        .on_hover_text("march: the sky each sender sees; irradiance: its unoccluded sky; off: point lights only");
+    ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
+    slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
+    ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));
+}
+
+/// The point lights' count and seed.
+fn lights_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Action>) {
+    ui.label("Lights");
+    let (lights, seed) = (state.lights, state.seed);
+    ui.add(egui::Slider::new(&mut state.lights, 0..=64).text("count"));
+    ui.horizontal(|ui| {
+        ui.add(egui::DragValue::new(&mut state.seed).prefix("seed "));
+        if ui.button("reseed").clicked() {
+            state.seed = state.seed.wrapping_add(1);
+        }
+    });
+    if (lights, seed) != (state.lights, state.seed) {
+        actions.push(Action::Relight { lights: state.lights, seed: state.seed });
+    }
+}
+
+/// The sky folders under `skyboxes/`, and fields for any sky or model path.
+fn files_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Action>) {
+    ui.label("Sky: folder or panorama (or drop one on the window)");
+    let combo = egui::ComboBox::from_id_salt("skies").selected_text(state.sky_name.clone()).show_ui(ui, |ui| {
+        for folder in &state.sky_folders {
+            let name = folder.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            // A panorama's sky is named after the file without its extension.
+            let stem = folder.file_stem().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let current = name == state.sky_name || (folder.is_file() && stem == state.sky_name);
+            if ui.selectable_label(current, name).clicked() {
+                actions.push(Action::LoadSky(folder.clone()));
+            }
+        }
+    });
+    if combo.response.clicked() {
+        state.sky_folders = super::loader::skybox_folders();
+    }
+    if let Some(path) = path_field(ui, &mut state.sky_path, "sky folder or panorama.hdr") {
+        actions.push(Action::LoadSky(path));
+    }
+    ui.label("Model: .obj, .gltf, .glb (or drop one on the window)");
+    if let Some(path) = path_field(ui, &mut state.model_path, "path/to/model.obj or .glb") {
+        actions.push(Action::LoadModel(path));
+    }
+}
+
+/// The fly camera, the camera's reset, screenshots, and the view's command.
+fn camera_section(ui: &mut egui::Ui, state: &PanelState, actions: &mut Vec<Action>) {
+    let mut fly = state.fly;
+    if ui
+        .checkbox(&mut fly, "fly camera (F)")
+        .on_hover_text("W A S D move, Q/E or Ctrl/Space down and up, Shift faster, drag to look")
+        .changed()
+    {
+        actions.push(Action::ToggleFly);
+    }
+    ui.horizontal_wrapped(|ui| {
+        if ui.button("reset camera (R)").clicked() {
+            actions.push(Action::ResetCamera);
+        }
+        if ui.button("screenshot (F12)").clicked() {
+            actions.push(Action::Screenshot);
+        }
+        if ui.button("compare modes (C)").clicked() {
+            actions.push(Action::Compare);
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("This view headless:");
+        if ui.button("copy command (P)").clicked() {
+            actions.push(Action::CopyCommand);
+        }
+    });
+    ui.add(egui::Label::new(egui::RichText::new(&state.command).monospace().small()).wrap());
+}
+
+/// Each pass's GPU time and the frame's.
+fn timings_section(ui: &mut egui::Ui, state: &PanelState) {
+    ui.label(format!("GPU time per pass ({})", state.timing_source));
+    egui::Grid::new("timings").num_columns(2).show(ui, |ui| {
+        for (name, ms) in &state.timings {
+            ui.label(*name);
+            ui.label(format!("{ms:.2} ms"));
+            ui.end_row();
+        }
+        if !state.timings.is_empty() {
+            ui.label("all passes");
+            ui.label(format!("{:.2} ms", state.timings.iter().map(|(_, ms)| ms).sum::<f64>()));
+            ui.end_row();
+        }
+        // Frames are drawn only when something changes, so this is how long one frame takes
+        // from encoding to the screen (the GPU's work included), not a frame rate.
+        ui.label("frame (wall)");
+        ui.label(format!("{:.2} ms", state.frame_ms));
+        ui.end_row();
+    });
 }

@@ -104,7 +104,8 @@ pub fn output_texture_as(gpu: &Gpu, size: (u32, u32), format: wgpu::TextureForma
 
 fn depth_to_bits(gpu: &Gpu, depth: &wgpu::Texture) -> Result<wgpu::Texture> {
     use crate::render::bindings::texture_entry;
-    use crate::render::graph::{color_attachment, fullscreen_pipeline, FullscreenDesc, FullscreenPass};
+    use crate::render::graph::io::color_attachment;
+    use crate::render::graph::{fullscreen_pipeline, FullscreenDesc, FullscreenPass};
     let device = &gpu.device;
     let format = wgpu::TextureFormat::R32Uint;
     let size = depth.size();

@@ -6,7 +6,7 @@ use glam::{Vec3, Vec4Swizzles};
 use rand::{rngs::StdRng, SeedableRng};
 use rayon::prelude::*;
 
-use super::{point_lighting, ray_box, ReferenceScene};
+use super::scene::{point_lighting, ray_box, ReferenceScene, TraceSettings};
 use crate::scene::{LightRig, OrbitCamera, PointLight, Skybox};
 
 /// What the reference computes per pixel (linear, before albedo where the GPU's buffers are too).
@@ -39,20 +39,6 @@ pub struct Reference {
     pub covered: usize,
 }
 
-/// Parameters of a reference render.
-#[derive(Clone, Copy, Debug)]
-pub struct TraceSettings {
-    pub samples_per_pixel: u32,
-    pub seed: u64,
-    pub radius: f32,
-    /// Multiplies the sky (the renderer's sky scale).
-    pub sky_scale: f32,
-    /// The constant ambient radiance A: the senders of the bounce are lit by it through their
-    /// own openness, as receivers are (the receiver's own A·openness is applied in
-    /// [`Reference::radiance`], so it stays a parameter there).
-    pub ambient: f32,
-}
-
 struct PixelResult {
     valid: bool,
     /// A light's cube is in front of the surface.
@@ -83,92 +69,127 @@ pub fn trace(
     progress: &(dyn Fn() + Sync),
 ) -> Reference {
     let (w, h) = size;
-    let view_to_world = camera.world_to_view().inverse();
-    let projection = camera.view_to_clip(w as f32 / h as f32);
-    let eye = camera.eye();
+    let tracer = Tracer {
+        scene,
+        lights,
+        rig,
+        sky,
+        settings,
+        gpu_depth,
+        size,
+        eye: camera.eye(),
+        view_to_world: camera.world_to_view().inverse(),
+        projection: camera.view_to_clip(w as f32 / h as f32),
+    };
     let rows: Vec<Vec<PixelResult>> = (0..h)
         .into_par_iter()
         .map(|y| {
-            let row = (0..w)
-                .map(|x| {
-                    let index = (y * w + x) as usize;
-                    let ndc = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0);
-                    let view_dir = Vec3::new(ndc.0 / projection.x_axis.x, ndc.1 / projection.y_axis.y, -1.0);
-                    let direction = (view_to_world * view_dir.extend(0.0)).xyz().normalize();
-                    let empty = PixelResult {
-                        valid: false,
-                        covered: false,
-                        albedo: Vec3::ZERO,
-                        ao: (1.0, 0.0),
-                        sky: (Vec3::ZERO, 0.0),
-                        bounce: (Vec3::ZERO, 0.0),
-                        open: 1.0,
-                        sky_near: Vec3::ZERO,
-                        bounce_near: Vec3::ZERO,
-                        direct: Vec3::ZERO,
-                    };
-                    let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
-                    // The lights' emissive cubes cover the surface here on the GPU's image (and its
-                    // depth); the reference has no such cubes, so the pixel measures nothing.
-                    let cube = lights.iter().any(|l| {
-                        ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance)
-                    });
-                    if cube {
-                        return PixelResult { covered: true, ..empty };
-                    }
-                    // The GPU's depth at this pixel as a distance along the same view axis.
-                    let depth = gpu_depth[index];
-                    let view_z = surface.distance * direction.dot((view_to_world * Vec3::NEG_Z.extend(0.0)).xyz());
-                    let gpu_z =
-                        if depth > 0.0 { (projection.w_axis.z) / (depth + projection.z_axis.z) } else { f32::INFINITY };
-                    if !((view_z - gpu_z).abs() <= 1e-3 * view_z) {
-                        return empty;
-                    }
-                    let mut rng =
-                        StdRng::seed_from_u64(settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-                    let e = scene.estimate(&surface, lights, rig, sky, settings, &mut rng);
-                    let (diffuse, specular) = point_lighting(&surface, -direction, lights, rig);
-                    PixelResult {
-                        valid: true,
-                        covered: false,
-                        albedo: surface.albedo,
-                        ao: (e.ao, e.ao_error),
-                        sky: (e.sky, e.sky_error),
-                        bounce: (e.bounce, e.bounce_error),
-                        open: e.open,
-                        sky_near: e.sky_near,
-                        bounce_near: e.bounce_near,
-                        direct: diffuse + specular,
-                    }
-                })
-                .collect();
+            let row = (0..w).map(|x| tracer.pixel(x, y)).collect();
             progress();
             row
         })
         .collect();
-    let pixels: Vec<PixelResult> = rows.into_iter().flatten().collect();
-    let valid_count = pixels.iter().filter(|p| p.valid).count().max(1) as f64;
-    let mean_error = |f: &dyn Fn(&PixelResult) -> f32| {
-        pixels.iter().filter(|p| p.valid).map(|p| f(p) as f64).sum::<f64>() / valid_count
-    };
-    let surfaces = gpu_depth.iter().filter(|d| **d > 0.0).count();
-    Reference {
-        width: w,
-        height: h,
-        ao_error: mean_error(&|p| p.ao.1),
-        sky_error: mean_error(&|p| p.sky.1),
-        bounce_error: mean_error(&|p| p.bounce.1),
-        covered: pixels.iter().filter(|p| p.covered).count(),
-        mismatched: surfaces.saturating_sub(pixels.iter().filter(|p| p.valid || p.covered).count()),
-        valid: pixels.iter().map(|p| p.valid).collect(),
-        albedo: pixels.iter().map(|p| p.albedo).collect(),
-        ao: pixels.iter().map(|p| p.ao.0).collect(),
-        sky: pixels.iter().map(|p| p.sky.0).collect(),
-        bounce: pixels.iter().map(|p| p.bounce.0).collect(),
-        open: pixels.iter().map(|p| p.open).collect(),
-        sky_near: pixels.iter().map(|p| p.sky_near).collect(),
-        bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
-        direct: pixels.iter().map(|p| p.direct).collect(),
+    Reference::from_pixels(rows.into_iter().flatten().collect(), gpu_depth, size)
+}
+
+/// What every pixel of one trace shares.
+struct Tracer<'a> {
+    scene: &'a ReferenceScene,
+    lights: &'a [PointLight],
+    rig: &'a LightRig,
+    sky: &'a Skybox,
+    settings: &'a TraceSettings,
+    gpu_depth: &'a [f32],
+    size: (u32, u32),
+    eye: Vec3,
+    view_to_world: glam::Mat4,
+    projection: glam::Mat4,
+}
+
+impl Tracer<'_> {
+    /// Pixel (x, y): the surface its centre's ray hits, if the GPU sees the same one there, and
+    /// the estimates at it.
+    fn pixel(&self, x: u32, y: u32) -> PixelResult {
+        let (w, h) = self.size;
+        let (scene, lights, rig) = (self.scene, self.lights, self.rig);
+        let (eye, projection, view_to_world) = (self.eye, self.projection, self.view_to_world);
+        let index = (y * w + x) as usize;
+        let ndc = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0);
+        let view_dir = Vec3::new(ndc.0 / projection.x_axis.x, ndc.1 / projection.y_axis.y, -1.0);
+        let direction = (view_to_world * view_dir.extend(0.0)).xyz().normalize();
+        let empty = PixelResult {
+            valid: false,
+            covered: false,
+            albedo: Vec3::ZERO,
+            ao: (1.0, 0.0),
+            sky: (Vec3::ZERO, 0.0),
+            bounce: (Vec3::ZERO, 0.0),
+            open: 1.0,
+            sky_near: Vec3::ZERO,
+            bounce_near: Vec3::ZERO,
+            direct: Vec3::ZERO,
+        };
+        let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
+        // The lights' emissive cubes cover the surface here on the GPU's image (and its depth);
+        // the reference has no such cubes, so the pixel measures nothing.
+        let cube = lights
+            .iter()
+            .any(|l| ray_box(eye, direction, l.position, rig.cube_half_size).is_some_and(|t| t < surface.distance));
+        if cube {
+            return PixelResult { covered: true, ..empty };
+        }
+        // The GPU's depth at this pixel as a distance along the same view axis.
+        let depth = self.gpu_depth[index];
+        let view_z = surface.distance * direction.dot((view_to_world * Vec3::NEG_Z.extend(0.0)).xyz());
+        let gpu_z = if depth > 0.0 { (projection.w_axis.z) / (depth + projection.z_axis.z) } else { f32::INFINITY };
+        if !((view_z - gpu_z).abs() <= 1e-3 * view_z) {
+            return empty;
+        }
+        let mut rng = StdRng::seed_from_u64(self.settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let e = scene.estimate(&surface, lights, rig, self.sky, self.settings, &mut rng);
+        let (diffuse, specular) = point_lighting(&surface, -direction, lights, rig);
+        PixelResult {
+            valid: true,
+            covered: false,
+            albedo: surface.albedo,
+            ao: (e.ao, e.ao_error),
+            sky: (e.sky, e.sky_error),
+            bounce: (e.bounce, e.bounce_error),
+            open: e.open,
+            sky_near: e.sky_near,
+            bounce_near: e.bounce_near,
+            direct: diffuse + specular,
+        }
+    }
+}
+
+impl Reference {
+    /// The reference of a trace's pixels, row by row, for a screen of `size` whose G-buffer
+    /// depth is `gpu_depth`.
+    fn from_pixels(pixels: Vec<PixelResult>, gpu_depth: &[f32], size: (u32, u32)) -> Self {
+        let valid_count = pixels.iter().filter(|p| p.valid).count().max(1) as f64;
+        let mean_error = |f: &dyn Fn(&PixelResult) -> f32| {
+            pixels.iter().filter(|p| p.valid).map(|p| f(p) as f64).sum::<f64>() / valid_count
+        };
+        let surfaces = gpu_depth.iter().filter(|d| **d > 0.0).count();
+        Reference {
+            width: size.0,
+            height: size.1,
+            ao_error: mean_error(&|p| p.ao.1),
+            sky_error: mean_error(&|p| p.sky.1),
+            bounce_error: mean_error(&|p| p.bounce.1),
+            covered: pixels.iter().filter(|p| p.covered).count(),
+            mismatched: surfaces.saturating_sub(pixels.iter().filter(|p| p.valid || p.covered).count()),
+            valid: pixels.iter().map(|p| p.valid).collect(),
+            albedo: pixels.iter().map(|p| p.albedo).collect(),
+            ao: pixels.iter().map(|p| p.ao.0).collect(),
+            sky: pixels.iter().map(|p| p.sky.0).collect(),
+            bounce: pixels.iter().map(|p| p.bounce.0).collect(),
+            open: pixels.iter().map(|p| p.open).collect(),
+            sky_near: pixels.iter().map(|p| p.sky_near).collect(),
+            bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
+            direct: pixels.iter().map(|p| p.direct).collect(),
+        }
     }
 }
 

@@ -1,35 +1,9 @@
 //! The average over frames as the renderer keeps it: its histories, how far a still view's
 //! average has come, and the reset when the view jumps.
 
-use super::history::{History, PingPong};
+use super::history::{History, StillView};
 use super::{modes, Renderer};
 use crate::scene::OrbitCamera;
-
-/// Where a still view's average stands (see [`Renderer::still_frames`]).
-#[derive(Default)]
-pub(super) struct StillView {
-    pub(super) frames: u32,
-    pub(super) camera: Option<OrbitCamera>,
-    /// The history's generation the frames went into.
-    pub(super) generation: u64,
-    /// The view's first frame went into an empty history: the average holds this view's frames
-    /// alone, none reprojected from a moving camera's.
-    pub(super) clean: bool,
-}
-
-impl StillView {
-    /// Counts a frame of `camera` going into `history`.
-    pub(super) fn count(&mut self, camera: &OrbitCamera, history: Option<&PingPong>) {
-        let same =
-            history.is_some_and(|h| h.frames > 0 && h.generation == self.generation) && self.camera == Some(*camera);
-        if !same {
-            self.clean = history.is_none_or(|h| h.frames == 0);
-        }
-        self.frames = if same { self.frames.saturating_add(1) } else { 1 };
-        self.camera = Some(*camera);
-        self.generation = history.map_or(0, |h| h.generation);
-    }
-}
 
 /// The average over frames: what the temporal pass keeps, and where a still view stands.
 impl Renderer {

@@ -7,7 +7,7 @@ use glam::Vec3;
 use super::frame::{pre_exposure_for, FrameInputs};
 use super::kernel;
 use super::modes::OCCLUSION_HISTORY;
-use super::resources::sampling::SamplingParams;
+use super::resources::sampling::SamplingFrame;
 use super::sampling::Lengths;
 use super::settings::{View, MOTION_ACCUMULATE};
 use super::Renderer;
@@ -64,7 +64,7 @@ impl Renderer {
             // The sky's mip is the solid angle of one direction of the converged average: the
             // frames' directions differ (the schedule), so together they resolve finer detail.
             let directions = sampling.sky_directions() * accumulate as usize;
-            let params = SamplingParams {
+            let params = SamplingFrame {
                 sampling,
                 lengths: self.lengths(),
                 sky_mip: kernel::sky_mip_level(self.sky.size, directions),
@@ -76,7 +76,7 @@ impl Renderer {
                 motion_accumulate: accumulate.min(MOTION_ACCUMULATE),
                 history_frames: held,
             };
-            self.occlusion_data.update(&gpu.queue, &params);
+            self.sampling_data.update(&gpu.queue, &params);
         }
     }
 }

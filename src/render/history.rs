@@ -11,6 +11,7 @@
 //! A plan that asks for none allocates none.
 
 use super::targets::Target;
+use crate::scene::OrbitCamera;
 
 /// What a history is, and what it is valid for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -113,5 +114,31 @@ impl History {
     /// Bytes held by every pair.
     pub fn bytes(&self) -> u64 {
         self.pairs.iter().map(PingPong::bytes).sum()
+    }
+}
+
+/// Where a still view's average stands (see `Renderer::still_frames`).
+#[derive(Default)]
+pub struct StillView {
+    pub frames: u32,
+    pub camera: Option<OrbitCamera>,
+    /// The history's generation the frames went into.
+    pub generation: u64,
+    /// The view's first frame went into an empty history: the average holds this view's frames
+    /// alone, none reprojected from a moving camera's.
+    pub clean: bool,
+}
+
+impl StillView {
+    /// Counts a frame of `camera` going into `history`.
+    pub fn count(&mut self, camera: &OrbitCamera, history: Option<&PingPong>) {
+        let same =
+            history.is_some_and(|h| h.frames > 0 && h.generation == self.generation) && self.camera == Some(*camera);
+        if !same {
+            self.clean = history.is_none_or(|h| h.frames == 0);
+        }
+        self.frames = if same { self.frames.saturating_add(1) } else { 1 };
+        self.camera = Some(*camera);
+        self.generation = history.map_or(0, |h| h.generation);
     }
 }

@@ -27,15 +27,14 @@ use crate::budget::{self, Share};
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
-use accumulation::StillView;
 use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};
-use history::History;
+use history::{History, StillView};
 pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step};
 use passes::PassSet;
 pub use passes::StepIo;
-use resources::sampling::OcclusionData;
+use resources::sampling::SamplingData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
 pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
@@ -57,7 +56,7 @@ pub struct Renderer {
     /// The sky's E(n)/π as spherical harmonics (`Skybox::irradiance`), in its own radiance.
     sky_sh: [Vec3; 9],
     frame: FrameData,
-    occlusion_data: OcclusionData,
+    sampling_data: SamplingData,
     sky_layout: wgpu::BindGroupLayout,
     /// Bound where a pass's input does not exist in the current plan.
     fallbacks: Fallbacks,
@@ -109,7 +108,7 @@ impl Renderer {
             rig: scene.rig,
             scene_radius: scene.default_radius(),
             sky_sh: sky.irradiance,
-            occlusion_data: OcclusionData::new(device),
+            sampling_data: SamplingData::new(device),
             output,
             keep_hdr: false,
             plan,
@@ -176,7 +175,7 @@ impl Renderer {
             indirect: settings.indirect_strength > 0.0,
             sender_sky: settings.sender_sky,
             accumulate: settings.accumulates(),
-            half: settings.half_resolution,
+            half_resolution: settings.half_resolution,
         };
         Plan::new(settings.mode, features, options)
     }
@@ -204,7 +203,8 @@ impl Renderer {
         let inputs = Inputs {
             targets: &self.targets,
             history: &self.history,
-            params: &self.occlusion_data.buffer,
+            sampling: &self.sampling_data.buffer,
+            filter: &self.sampling_data.filter_buffer,
             fallbacks: &self.fallbacks,
         };
         let preparation = Preparation { plan: &self.plan, variant, view, inputs };
@@ -314,6 +314,23 @@ impl Renderer {
         self.timer.as_mut().map(|t| t.poll(gpu, plan)).transpose().map(Option::flatten)
     }
 
+    /// The plan as `--print-plan` prints it: each step with what it reads and writes, then the
+    /// bytes of each allocation and their total.
+    pub fn plan_listing(&self) -> String {
+        let plan = &self.plan;
+        let mut text = format!("plan {}:", plan.mode);
+        let names = |ids: &[TargetId]| ids.iter().map(|t| t.name()).collect::<Vec<_>>().join(" ");
+        for (step, io) in plan.io() {
+            let (name, reads, writes) = (step.name_in(plan.mode), names(&io.reads), names(&io.writes));
+            text += &format!("\n  pass {name} reads [{reads}] writes [{writes}]");
+        }
+        let allocations = self.allocations();
+        for (name, bytes) in &allocations {
+            text += &format!("\n  bytes {name} {bytes}");
+        }
+        text + &format!("\n  bytes total {}", allocations.iter().map(|(_, b)| b).sum::<u64>())
+    }
+
     /// Bytes allocated on the GPU, by name: screen targets first, then scene, sky and frame data.
     pub fn allocations(&self) -> Vec<(String, u64)> {
         let mut list: Vec<(String, u64)> =
@@ -323,7 +340,7 @@ impl Renderer {
         list.push(("sky_cubemap".into(), self.sky.bytes));
         list.push(("frame_uniforms_and_lights".into(), self.frame.bytes()));
         if self.plan.decl.runs_sampling() {
-            list.push(("occlusion_params".into(), self.occlusion_data.buffer.size()));
+            list.push(("sampling_and_filter_params".into(), self.sampling_data.bytes()));
         }
         list
     }

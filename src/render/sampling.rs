@@ -50,7 +50,8 @@ pub struct Lengths {
     pub radius: f32,
     pub reach: f32,
     pub thickness: f32,
-    pub bias: f32,
+    /// The depth bias as a length (`Sampling::bias` is its fraction of the radius).
+    pub bias_length: f32,
 }
 
 impl Default for Sampling {
@@ -117,7 +118,7 @@ impl Sampling {
             radius,
             reach: self.reach.unwrap_or(REACH_RADII * default_radius).max(radius),
             thickness: self.thickness.unwrap_or(THICKNESS_RADII * default_radius),
-            bias: self.bias * radius,
+            bias_length: self.bias * radius,
         }
     }
 
@@ -155,10 +156,10 @@ mod tests {
         let s = Sampling::default();
         let l = s.lengths(0.5);
         assert_eq!((l.radius, l.reach, l.thickness), (0.5, 0.5 * REACH_RADII, 0.5 * THICKNESS_RADII));
-        assert!((l.bias - 0.03 * 0.5).abs() < 1e-7);
+        assert!((l.bias_length - 0.03 * 0.5).abs() < 1e-7);
         let wide = Sampling { radius: Some(100.0), reach: Some(1.0), ..s }.lengths(0.5);
         assert_eq!((wide.radius, wide.reach), (100.0, 100.0));
-        assert!((wide.bias - 3.0).abs() < 1e-5);
+        assert!((wide.bias_length - 3.0).abs() < 1e-5);
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! Uniform and storage structs, mirrored field for field — names included — in
-//! `shaders/common/uniforms.wgsl`, `shaders/common/occlusion_params.wgsl` and
+//! `shaders/common/uniforms.wgsl`, `shaders/common/sampling_params.wgsl` and
 //! `shaders/gbuffer.wgsl`. Fields are 4-byte scalars, vec3s followed by a scalar, and 16-byte
 //! arrays, padded by hand where WGSL would align, so there is no hidden padding on either side;
 //! `tests/it/cpu/shaders.rs` checks every member's offset against naga's layout of the WGSL.
@@ -61,17 +61,17 @@ pub struct MaterialParams {
     pub _pad2: f32,
 }
 
-/// Sampling parameters of the occlusion pass; `OcclusionParams` in
-/// `shaders/common/occlusion_params.wgsl`, where each field is explained.
+/// Sampling parameters of the occlusion pass; `SamplingParams` in
+/// `shaders/common/sampling_params.wgsl`, where each field is explained.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct OcclusionParams {
+pub struct SamplingParams {
     /// Tangent-space offsets (z along the normal) for a unit radius; w unused.
     pub kernel: [[f32; 4]; MAX_SAMPLES],
     /// The 4x4 tile of per-pixel rotations: (cos, sin) or a random tangent-plane vector.
     pub rotations: [[f32; 4]; 16],
     pub radius: f32,
-    pub bias: f32,
+    pub bias_length: f32,
     pub sample_count: u32,
     pub sky_mip: f32,
     pub sky_strength: f32,
@@ -83,10 +83,17 @@ pub struct OcclusionParams {
     pub reach: f32,
     pub thickness: f32,
     pub schedule: [f32; 4],
+}
+
+/// What the passes that filter the samples read (the upsample, the blur, the temporal pass);
+/// `FilterParams` in `shaders/common/filter_params.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FilterParams {
+    pub radius: f32,
     pub accumulate: u32,
     pub motion_accumulate: u32,
     pub history_frames: u32,
-    pub _pad1: f32,
 }
 
 /// Largest kernel the occlusion pass takes.

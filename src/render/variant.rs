@@ -78,7 +78,7 @@ impl Count {
 pub enum Sampler {
     /// Slices × steps through the depth buffer (`march.wgsl`).
     March,
-    /// A kernel of points in the hemisphere (`occlusion.wgsl`).
+    /// A kernel of points in the hemisphere (`points.wgsl`).
     Points,
 }
 

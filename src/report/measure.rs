@@ -3,8 +3,10 @@
 
 use glam::Vec3;
 
+use super::options::ReportOptions;
+use super::row::{NoiseFloor, Row};
 use super::sweep::Config;
-use super::{metrics, plot, NoiseFloor, ReportOptions, Row};
+use super::{maps, metrics};
 use crate::gpu::Gpu;
 use crate::headless::capture::capture_path;
 use crate::headless::readback::{read_occlusion, read_rgba16f};
@@ -79,74 +81,23 @@ impl Bench<'_> {
         truth: &Truth,
         maps: bool,
     ) -> Result<Row> {
-        let (gpu, camera, ambient) = (self.gpu, self.camera, self.ambient);
-        let (valid, truth) = (&truth.valid, &truth.reference);
-        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half } = config;
+        let (gpu, camera) = (self.gpu, self.camera);
+        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half_resolution } =
+            config;
         renderer.settings = config.settings(radius);
         let ms = crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
         // The frames averaged, turning `orbit` degrees each, ending in the truth's view.
         let camera_at = |k: u32| OrbitCamera { yaw_deg: camera.yaw_deg - orbit * k as f32, ..*camera };
         let image = capture_path(gpu, renderer, camera_at)?;
-        let s = renderer.settings;
-        // The half-float buffers hold radiance × pre-exposure: divided out here.
-        let unexpose = 1.0 / renderer.pre_exposure();
-        let values = read_occlusion(gpu, renderer.targets().occlusion(), mode.declaration().ambient_occlusion)?;
-        let ao = values.ao;
-        let directional = values.directional.map(|d| {
-            d.into_iter().map(|p| [p[0] * unexpose, p[1] * unexpose, p[2] * unexpose, p[3]]).collect::<Vec<_>>()
-        });
-        let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?
-            .into_iter()
-            .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)
-            .collect();
-        let against = |want: &dyn Fn(usize) -> Vec3| {
-            metrics::rmse(valid.iter().flat_map(|&i| {
-                let (got, want) = (hdr[i], want(i));
-                (0..3).map(move |c| (got[c], want[c]))
-            }))
-        };
-        let hdr_rmse = against(&|i| truth.radiance(i, ambient));
-        let hdr_rmse_near = against(&|i| truth.radiance_near(i, ambient));
-        let hdr_peak = valid.iter().map(|&i| truth.radiance(i, ambient).max_element()).fold(1e-6f32, f32::max) as f64;
-        let ao_rmse = ao.as_ref().map(|ao| metrics::rmse(valid.iter().map(|&i| (ao[i], truth.ao[i]))));
-        let do_against = |want: &dyn Fn(usize) -> Vec3| {
-            directional.as_ref().map(|d| {
-                metrics::rmse(valid.iter().flat_map(|&i| {
-                    let w = want(i);
-                    (0..3).map(move |c| (d[i][c], w[c]))
-                }))
-            })
-        };
-        let do_rmse = do_against(&|i| truth.directional(i));
-        let do_rmse_near = do_against(&|i| truth.directional_near(i));
-        // The bounce alone (the DO-indirect view zeroes the sky), against the truth's: a ratio
-        // of means, so noise cancels and only the estimator's bias remains.
-        let bounce_ratio = if directional.is_some() && bounce.is_some() {
-            renderer.settings.view = View::DoIndirect;
-            capture_path(gpu, renderer, camera_at)?;
-            renderer.settings.view = s.view;
-            let bounce = renderer.targets().occlusion().directional.map(|t| read_rgba16f(gpu, &t.texture));
-            let bounce = bounce.transpose()?.unwrap_or_default();
-            let mean =
-                |f: &dyn Fn(usize) -> f32| valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64;
-            let got = mean(&|i| reference::luminance(Vec3::new(bounce[i][0], bounce[i][1], bounce[i][2]) * unexpose));
-            let want = mean(&|i| reference::luminance(truth.bounce[i]));
-            (want > 0.0).then(|| got / want)
+        let frame = Frame::read(gpu, renderer, mode)?;
+        let errors = frame.errors(truth, self.ambient);
+        let bounce_ratio = if frame.directional.is_some() && bounce.is_some() {
+            self.bounce_ratio(renderer, &camera_at, truth, frame.unexpose)?
         } else {
             None
         };
-
-        let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
-        let mut ref_image = gpu_image.clone();
-        let width = self.options.size.0;
-        for &i in valid {
-            let (x, y) = ((i as u32) % width, (i as u32) / width);
-            ref_image.put_pixel(x, y, image::Rgb(metrics::display(truth.radiance(i, ambient), s.exposure)));
-        }
-        let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.valid);
-        if maps {
-            plot::write_maps(&self.options.out, truth, &ao, &ref_image, &gpu_image, &flip_map)?;
-        }
+        let flip = self.flip(image, truth, renderer.settings.exposure, maps.then_some(&frame.ao))?;
+        let Errors { hdr_rmse, hdr_rmse_near, hdr_peak, ao_rmse, do_rmse, do_rmse_near } = errors;
         Ok(Row {
             mode,
             variant,
@@ -158,7 +109,7 @@ impl Bench<'_> {
             radius: if mode == Mode::Off { 0.0 } else { radius },
             accumulate,
             orbit,
-            half,
+            half_resolution,
             ms,
             ao_rmse,
             do_rmse,
@@ -170,5 +121,117 @@ impl Bench<'_> {
             flip,
             pareto: false,
         })
+    }
+
+    /// The bounce alone (the DO-indirect view zeroes the sky), against the truth's: a ratio of
+    /// means, so noise cancels and only the estimator's bias remains.
+    fn bounce_ratio(
+        &self,
+        renderer: &mut Renderer,
+        camera_at: &dyn Fn(u32) -> OrbitCamera,
+        truth: &Truth,
+        unexpose: f32,
+    ) -> Result<Option<f64>> {
+        let view = renderer.settings.view;
+        renderer.settings.view = View::DoIndirect;
+        capture_path(self.gpu, renderer, camera_at)?;
+        renderer.settings.view = view;
+        let bounce = renderer.targets().occlusion().directional.map(|t| read_rgba16f(self.gpu, &t.texture));
+        let bounce = bounce.transpose()?.unwrap_or_default();
+        let valid = &truth.valid;
+        let mean =
+            |f: &dyn Fn(usize) -> f32| valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64;
+        let got = mean(&|i| reference::luminance(Vec3::new(bounce[i][0], bounce[i][1], bounce[i][2]) * unexpose));
+        let want = mean(&|i| reference::luminance(truth.reference.bounce[i]));
+        Ok((want > 0.0).then(|| got / want))
+    }
+
+    /// FLIP between the displayed GPU image and the truth displayed alike; with `maps` (the AO
+    /// read back), the error maps are written too.
+    fn flip(
+        &self,
+        image: image::RgbaImage,
+        truth: &Truth,
+        exposure: f32,
+        maps: Option<&Option<Vec<f32>>>,
+    ) -> Result<f64> {
+        let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
+        let mut ref_image = gpu_image.clone();
+        let width = self.options.size.0;
+        for &i in &truth.valid {
+            let (x, y) = ((i as u32) % width, (i as u32) / width);
+            ref_image.put_pixel(
+                x,
+                y,
+                image::Rgb(metrics::display(truth.reference.radiance(i, self.ambient), exposure)),
+            );
+        }
+        let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.reference.valid);
+        if let Some(ao) = maps {
+            maps::write(&self.options.out, &truth.reference, ao, &ref_image, &gpu_image, &flip_map)?;
+        }
+        Ok(flip)
+    }
+}
+
+/// A frame's linear buffers as read back, pre-exposure divided out.
+struct Frame {
+    ao: Option<Vec<f32>>,
+    directional: Option<Vec<[f32; 4]>>,
+    hdr: Vec<Vec3>,
+    /// 1 / the pre-exposure the half-float buffers hold radiance at.
+    unexpose: f32,
+}
+
+/// A frame's errors against the truth, over its valid pixels.
+struct Errors {
+    hdr_rmse: f64,
+    hdr_rmse_near: f64,
+    /// The truth's brightest channel (PSNR's peak).
+    hdr_peak: f64,
+    ao_rmse: Option<f64>,
+    do_rmse: Option<f64>,
+    do_rmse_near: Option<f64>,
+}
+
+impl Frame {
+    fn read(gpu: &Gpu, renderer: &Renderer, mode: Mode) -> Result<Self> {
+        // The half-float buffers hold radiance × pre-exposure: divided out here.
+        let unexpose = 1.0 / renderer.pre_exposure();
+        let values = read_occlusion(gpu, renderer.targets().occlusion(), mode.declaration().ambient_occlusion)?;
+        let directional = values.directional.map(|d| {
+            d.into_iter().map(|p| [p[0] * unexpose, p[1] * unexpose, p[2] * unexpose, p[3]]).collect::<Vec<_>>()
+        });
+        let hdr: Vec<Vec3> = read_rgba16f(gpu, &renderer.targets().hdr()?.texture)?
+            .into_iter()
+            .map(|p| Vec3::new(p[0], p[1], p[2]) * unexpose)
+            .collect();
+        Ok(Self { ao: values.ao, directional, hdr, unexpose })
+    }
+
+    fn errors(&self, truth: &Truth, ambient: f32) -> Errors {
+        let (valid, truth) = (&truth.valid, &truth.reference);
+        let against = |want: &dyn Fn(usize) -> Vec3| {
+            metrics::rmse(valid.iter().flat_map(|&i| {
+                let (got, want) = (self.hdr[i], want(i));
+                (0..3).map(move |c| (got[c], want[c]))
+            }))
+        };
+        let do_against = |want: &dyn Fn(usize) -> Vec3| {
+            self.directional.as_ref().map(|d| {
+                metrics::rmse(valid.iter().flat_map(|&i| {
+                    let w = want(i);
+                    (0..3).map(move |c| (d[i][c], w[c]))
+                }))
+            })
+        };
+        Errors {
+            hdr_rmse: against(&|i| truth.radiance(i, ambient)),
+            hdr_rmse_near: against(&|i| truth.radiance_near(i, ambient)),
+            hdr_peak: valid.iter().map(|&i| truth.radiance(i, ambient).max_element()).fold(1e-6f32, f32::max) as f64,
+            ao_rmse: self.ao.as_ref().map(|ao| metrics::rmse(valid.iter().map(|&i| (ao[i], truth.ao[i])))),
+            do_rmse: do_against(&|i| truth.directional(i)),
+            do_rmse_near: do_against(&|i| truth.directional_near(i)),
+        }
     }
 }

@@ -1,10 +1,11 @@
-//! The report's pictures: the error-against-time plot with the Pareto front, and the error maps
-//! of the default configuration.
+//! The report's plot: error against time, with the Pareto front.
 
 use std::path::Path;
 
-use super::{Mode, Report, Row, Variant};
-use crate::{output, reference, Error, Result};
+use super::row::Row;
+use super::Report;
+use crate::render::{Mode, Variant};
+use crate::{output, Error, Result};
 
 impl Report {
     /// Log-log plot of HDR RMSE against the truth, against milliseconds a frame: every mode on
@@ -58,69 +59,8 @@ impl Report {
                     Circle::new((log_value(r.ms), log_value(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
                 }))
                 .map_err(|e| fail(&e))?;
-            let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
-            let most = rows.iter().map(|r| r.accumulate).max().unwrap_or(1);
-            // (variant, frames averaged, half resolution) of each line of a mode.
-            let mut lines: Vec<(Variant, usize, bool)> = Variant::ALL.iter().map(|&v| (v, 1, false)).collect();
-            if most > 1 {
-                lines.extend([(Variant::default(), most, false), (Variant::default(), most, true)]);
-            }
-            for (m, mode) in Mode::ALL.into_iter().enumerate() {
-                for &(variant, accumulate, half) in &lines {
-                    // Through the sample counts in order (timings are noisy; samples are not).
-                    let mut line: Vec<&Row> = rows
-                        .iter()
-                        .filter(|r| {
-                            r.mode == mode
-                                && r.variant == variant
-                                && !r.pyramid
-                                && r.orbit == 0.0
-                                && (r.accumulate, r.half) == (accumulate, half)
-                                && (mode == Mode::Off || (r.blur && r.radius == first_radius))
-                        })
-                        .collect();
-                    if line.is_empty() {
-                        continue;
-                    }
-                    line.sort_by_key(|r| r.samples * 1000 + r.steps);
-                    let points: Vec<(f64, f64)> =
-                        line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
-                    let colour = colours[m];
-                    let style = colour.mix(variant.decl().plot_opacity).stroke_width(variant.decl().plot_width);
-                    let mut label = format!("{} {}", mode.title(), variant);
-                    if accumulate > 1 {
-                        label = format!("{label} ×{accumulate} frames{}", if half { ", half res" } else { "" });
-                        chart
-                            .draw_series(DashedLineSeries::new(points.clone(), if half { 3 } else { 8 }, 4, style))
-                            .map_err(|e| fail(&e))?
-                            .label(label)
-                            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 8, y), (x + 16, y)], style));
-                        chart
-                            .draw_series(points.iter().map(|p| Circle::new(*p, 5, colour.stroke_width(2))))
-                            .map_err(|e| fail(&e))?;
-                        continue;
-                    }
-                    chart
-                        .draw_series(LineSeries::new(points.clone(), style))
-                        .map_err(|e| fail(&e))?
-                        .label(label)
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
-                    let marker = if variant == Variant::default() { 5 } else { 3 };
-                    chart
-                        .draw_series(points.iter().map(|p| Circle::new(*p, marker, colour.filled())))
-                        .map_err(|e| fail(&e))?;
-                }
-            }
-            // The Pareto front, as a staircase through its rows in time order.
-            let front: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.pareto).map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
-            let mut stairs = Vec::new();
-            for (k, p) in front.iter().enumerate() {
-                if k > 0 {
-                    stairs.push((p.0, front[k - 1].1));
-                }
-                stairs.push(*p);
-            }
+            draw_lines(&mut chart, lines(rows), &colours).map_err(|e| fail(&e))?;
+            let (front, stairs) = pareto_stairs(rows);
             chart
                 .draw_series(DashedLineSeries::new(stairs, 6, 4, BLACK.stroke_width(2)))
                 .map_err(|e| fail(&e))?
@@ -142,50 +82,113 @@ impl Report {
     }
 }
 
-/// Error maps of the default Both configuration: AO error, the two displayed images, FLIP.
-pub(super) fn write_maps(
-    out: &Path,
-    reference: &reference::Reference,
-    ao: &Option<Vec<f32>>,
-    ref_image: &image::RgbImage,
-    gpu_image: &image::RgbImage,
-    flip_map: &image::RgbImage,
-) -> Result<()> {
-    let (w, h) = (reference.width, reference.height);
-    let save = |name: &str, img: &image::RgbImage| {
-        let rgba = image::DynamicImage::ImageRgb8(img.clone()).to_rgba8();
-        output::save_png(&out.join(name), &rgba)
-    };
-    if let Some(ao) = ao {
-        // Signed AO error: red where the GPU is darker than the truth, blue where lighter.
-        let map = image::RgbImage::from_fn(w, h, |x, y| {
-            let i = (y * w + x) as usize;
-            if !reference.valid[i] {
-                return image::Rgb([40, 40, 40]);
-            }
-            let e = ((ao[i] - reference.ao[i]) * 4.0).clamp(-1.0, 1.0);
-            let v = (255.0 * e.abs()) as u8;
-            if e < 0.0 {
-                image::Rgb([255, 255 - v, 255 - v])
-            } else {
-                image::Rgb([255 - v, 255 - v, 255])
-            }
-        });
-        save("error_ao_both_default.png", &map)?;
-        let reference_ao = image::RgbImage::from_fn(w, h, |x, y| {
-            let i = (y * w + x) as usize;
-            let v = (reference.ao[i].clamp(0.0, 1.0) * 255.0) as u8;
-            if reference.valid[i] {
-                image::Rgb([v, v, v])
-            } else {
-                image::Rgb([40, 40, 40])
-            }
-        });
-        save("reference_ao.png", &reference_ao)?;
+type Chart<'a, 'b> = plotters::chart::ChartContext<
+    'a,
+    plotters::backend::BitMapBackend<'b>,
+    plotters::coord::cartesian::Cartesian2d<
+        plotters::coord::types::RangedCoordf64,
+        plotters::coord::types::RangedCoordf64,
+    >,
+>;
+type DrawError = plotters::drawing::DrawingAreaErrorKind<
+    <plotters::backend::BitMapBackend<'static> as plotters::backend::DrawingBackend>::ErrorType,
+>;
+
+/// Draws the lines in their modes' `colours`: the single-frame ones solid with filled markers,
+/// the accumulated ones dashed with hollow markers, each with its legend entry.
+fn draw_lines(
+    chart: &mut Chart<'_, '_>,
+    lines: Vec<Line>,
+    colours: &[plotters::style::RGBColor; 4],
+) -> std::result::Result<(), DrawError> {
+    use plotters::prelude::*;
+    for line in lines {
+        let (colour, variant) = (colours[line.mode_index], line.variant);
+        let style = colour.mix(variant.decl().plot_opacity).stroke_width(variant.decl().plot_width);
+        let points = line.points;
+        if line.accumulate > 1 {
+            let dash = if line.half_resolution { 3 } else { 8 };
+            chart
+                .draw_series(DashedLineSeries::new(points.clone(), dash, 4, style))?
+                .label(line.label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 8, y), (x + 16, y)], style));
+            chart.draw_series(points.iter().map(|p| Circle::new(*p, 5, colour.stroke_width(2))))?;
+            continue;
+        }
+        chart
+            .draw_series(LineSeries::new(points.clone(), style))?
+            .label(line.label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        let marker = if variant == Variant::default() { 5 } else { 3 };
+        chart.draw_series(points.iter().map(|p| Circle::new(*p, marker, colour.filled())))?;
     }
-    save("reference_both_default.png", ref_image)?;
-    save("gpu_both_default.png", gpu_image)?;
-    save("error_flip_both_default.png", flip_map)
+    Ok(())
+}
+
+/// One line of the plot: a mode (its index, for its colour) and variant through its sample
+/// counts, at a number of frames averaged and a resolution, in log-log coordinates.
+struct Line {
+    mode_index: usize,
+    variant: Variant,
+    accumulate: usize,
+    half_resolution: bool,
+    label: String,
+    points: Vec<(f64, f64)>,
+}
+
+/// The plot's lines: for each mode, one a variant through its sample counts (a single frame at
+/// full resolution, blur on, the first radius), and for the default variant its most
+/// accumulated still rows at full and at half resolution.
+fn lines(rows: &[Row]) -> Vec<Line> {
+    let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
+    let most = rows.iter().map(|r| r.accumulate).max().unwrap_or(1);
+    // (variant, frames averaged, half resolution) of each line of a mode.
+    let mut kinds: Vec<(Variant, usize, bool)> = Variant::ALL.iter().map(|&v| (v, 1, false)).collect();
+    if most > 1 {
+        kinds.extend([(Variant::default(), most, false), (Variant::default(), most, true)]);
+    }
+    let mut out = Vec::new();
+    for (mode_index, mode) in Mode::ALL.into_iter().enumerate() {
+        for &(variant, accumulate, half_resolution) in &kinds {
+            // Through the sample counts in order (timings are noisy; samples are not).
+            let mut line: Vec<&Row> = rows
+                .iter()
+                .filter(|r| {
+                    r.mode == mode
+                        && r.variant == variant
+                        && !r.pyramid
+                        && r.orbit == 0.0
+                        && (r.accumulate, r.half_resolution) == (accumulate, half_resolution)
+                        && (mode == Mode::Off || (r.blur && r.radius == first_radius))
+                })
+                .collect();
+            if line.is_empty() {
+                continue;
+            }
+            line.sort_by_key(|r| r.samples * 1000 + r.steps);
+            let mut label = format!("{} {}", mode.title(), variant);
+            if accumulate > 1 {
+                label = format!("{label} ×{accumulate} frames{}", if half_resolution { ", half res" } else { "" });
+            }
+            let points = line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
+            out.push(Line { mode_index, variant, accumulate, half_resolution, label, points });
+        }
+    }
+    out
+}
+
+/// The Pareto front's rows in time order, and the staircase through them.
+fn pareto_stairs(rows: &[Row]) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let front: Vec<(f64, f64)> =
+        rows.iter().filter(|r| r.pareto).map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
+    let mut stairs = Vec::new();
+    for (k, p) in front.iter().enumerate() {
+        if k > 0 {
+            stairs.push((p.0, front[k - 1].1));
+        }
+        stairs.push(*p);
+    }
+    (front, stairs)
 }
 
 /// The plotted position of a positive value on a log axis: log10 of it clamped to [1e-9, 1e30]

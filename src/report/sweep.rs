@@ -1,7 +1,7 @@
 //! What the report sweeps: one [`Config`] a measured row, listed by [`configurations`] for each
 //! radius. The count is known before anything renders, so the report can say its planned work.
 
-use super::ReportOptions;
+use super::options::ReportOptions;
 use crate::render::variant::{Sampler, VARIANTS};
 use crate::render::{Mode, Sampling, SenderSky, Settings, Variant};
 
@@ -24,7 +24,7 @@ pub struct Config {
     pub accumulate: usize,
     pub orbit: f32,
     /// The sampling pass at half resolution, upsampled.
-    pub half: bool,
+    pub half_resolution: bool,
 }
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
@@ -47,7 +47,18 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         if first_radius && (variant == default.variant || decl.composite != default.composite) {
             let (samples, steps, blur, pyramid, bounce, accumulate, orbit) = (0, 0, false, false, None, 1, 0.0);
             let mode = Mode::Off;
-            let off = Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half: false };
+            let off = Config {
+                mode,
+                variant,
+                samples,
+                steps,
+                blur,
+                pyramid,
+                bounce,
+                accumulate,
+                orbit,
+                half_resolution: false,
+            };
             configs.push(off);
         }
         let counts: Vec<(usize, usize)> = match decl.sampler {
@@ -59,7 +70,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             let bounce = directional.then_some(base.sender_sky);
             for &(samples, steps) in &counts {
                 // The pyramid's and the other bounces' rows: one frame at the default resolution.
-                let (accumulate, orbit, half) = (1, 0.0, base.half_resolution);
+                let (accumulate, orbit, half_resolution) = (1, 0.0, base.half_resolution);
                 let at = |blur, pyramid, bounce| Config {
                     mode,
                     variant,
@@ -70,11 +81,11 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                     bounce,
                     accumulate,
                     orbit,
-                    half,
+                    half_resolution,
                 };
-                for (blur, half) in [(true, false), (true, true), (false, false)] {
+                for (blur, half_resolution) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {
-                        let config = Config { accumulate, half, ..at(blur, false, bounce) };
+                        let config = Config { accumulate, half_resolution, ..at(blur, false, bounce) };
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
@@ -131,7 +142,7 @@ impl Config {
             sender_sky: self.bounce.unwrap_or(base.sender_sky),
             indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
             accumulate: self.accumulate,
-            half_resolution: self.half,
+            half_resolution: self.half_resolution,
             ..base
         }
     }
@@ -147,7 +158,7 @@ impl Config {
             && self.mode == Mode::Both
             && self.accumulate == base.accumulate
             && self.orbit == 0.0
-            && self.half == base.half_resolution
+            && self.half_resolution == base.half_resolution
     }
 }
 
@@ -164,7 +175,7 @@ mod tests {
             size: (16, 12),
             samples: vec![8; samples],
             march: vec![(2, 16); march],
-            radii: vec![super::super::RadiusChoice::Times(1.0); radii],
+            radii: vec![super::super::options::RadiusChoice::Times(1.0); radii],
             samples_per_pixel: 2,
             frames: 1,
             accumulate: vec![1],
@@ -213,7 +224,7 @@ mod tests {
             bounce: None,
             accumulate: 4,
             orbit: 0.0,
-            half: true,
+            half_resolution: true,
         };
         let s = none.settings(0.5);
         assert_eq!((s.accumulate, s.half_resolution), (4, true));

@@ -3,7 +3,9 @@
 
 use std::fmt::Write as _;
 
-use super::{Report, ReportOptions, Row};
+use super::options::ReportOptions;
+use super::row::Row;
+use super::Report;
 use crate::render::{Mode, SenderSky, Variant};
 use crate::{output, Result};
 
@@ -45,7 +47,7 @@ impl Row {
 
     pub fn label(&self) -> String {
         let count = Self::count_label(self.variant, self.samples, self.steps, self.pyramid);
-        if self.half {
+        if self.half_resolution {
             format!("{count} half")
         } else {
             count
@@ -72,7 +74,7 @@ impl Report {
                 r.radius,
                 r.accumulate,
                 r.orbit,
-                r.half,
+                r.half_resolution,
                 r.ms,
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),

@@ -6,7 +6,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::Bounds;
+use super::bounds::Bounds;
 
 /// The camera's distance from its target, in the model's bounding radii: from inside the model
 /// out to where it is a speck.

@@ -289,99 +289,147 @@ fn build_groups(
     warnings: &mut Vec<String>,
 ) -> std::result::Result<Vec<Vec<Vertex>>, String> {
     let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); material_count];
-    let (mut dropped, mut flipped, mut skipped, mut unreadable) = (0usize, 0usize, 0usize, 0usize);
+    let mut tally = Tally::default();
     for (mesh, world) in instances {
         if !world.is_finite() {
-            unreadable += mesh.primitives().len();
+            tally.unreadable += mesh.primitives().len();
             continue;
         }
-        let normal_matrix = normal_matrix(world);
-        // A mirroring transform turns the winding around (glTF's rule for negative determinants).
-        let mirrored = world.determinant() < 0.0;
+        let place = Placement {
+            world: *world,
+            normals: normal_matrix(world),
+            // A mirroring transform turns the winding around (glTF's rule for negative determinants).
+            mirrored: world.determinant() < 0.0,
+        };
         for primitive in mesh.primitives() {
-            use ::gltf::mesh::Mode;
-            if !matches!(primitive.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
-                skipped += 1;
-                continue;
-            }
-            // The crate's reader trusts an accessor's type and range (it asserts on a mismatch):
-            // each is checked first.
-            let uv_set =
-                primitive.material().pbr_metallic_roughness().base_color_texture().map_or(0, |t| t.tex_coord());
-            let fits = |accessor: Option<::gltf::Accessor>, kinds: &[Kind]| {
-                accessor.is_some_and(|a| accessor_fits(&a, kinds, buffers))
-            };
-            let indices_fit = primitive.indices().is_none_or(|a| accessor_fits(&a, INDEX_KINDS, buffers));
-            let positions = primitive.get(&::gltf::Semantic::Positions);
-            if positions.as_ref().is_some_and(|p| p.count() == 0) || primitive.indices().is_some_and(|i| i.count() == 0)
-            {
-                continue;
-            }
-            if !fits(positions, VEC3_KINDS) || !indices_fit {
-                unreadable += 1;
-                continue;
-            }
-            let has_normals = fits(primitive.get(&::gltf::Semantic::Normals), VEC3_KINDS);
-            let has_uvs = fits(primitive.get(&::gltf::Semantic::TexCoords(uv_set)), UV_KINDS);
-            let reader = primitive.reader(|b| buffers.get(b.index()).map(|data| data.as_slice()));
-            let Some(positions) = reader.read_positions() else {
-                unreadable += 1;
-                continue;
-            };
-            let positions: Vec<Vec3> = positions.map(|p| world.transform_point3(Vec3::from(p))).collect();
-            let count = positions.len();
-            let normals: Option<Vec<Vec3>> = has_normals
-                .then(|| reader.read_normals())
-                .flatten()
-                .map(|n| n.map(|n| normal_matrix * Vec3::from(n)).collect::<Vec<_>>())
-                .filter(|n| n.len() == count);
-            let uvs: Option<Vec<[f32; 2]>> = has_uvs
-                .then(|| reader.read_tex_coords(uv_set))
-                .flatten()
-                .map(|t| t.into_f32().collect::<Vec<_>>())
-                .filter(|t| t.len() == count);
-            let indices: Vec<u32> = match reader.read_indices() {
-                Some(indices) => indices.into_u32().collect(),
-                None if primitive.indices().is_some() => {
-                    unreadable += 1;
-                    continue;
-                }
-                None => (0..count as u32).collect(),
-            };
             let material = primitive.material().index().filter(|&i| i < default_material).unwrap_or(default_material);
-            for tri in triangle_list(primitive.mode(), &indices) {
-                let mut idx = tri.map(|i| i as usize);
-                if idx.iter().any(|&i| i >= count) {
-                    dropped += 1;
-                    continue;
-                }
-                if mirrored {
-                    idx.swap(1, 2);
-                }
-                let normals = normals.as_ref().map(|n| idx.map(|i| n[i]));
-                let uv = idx.map(|i| uvs.as_ref().map_or([0.0; 2], |t| t[i]));
-                match push_triangle(idx.map(|i| positions[i]), normals, uv, &mut groups[material]) {
-                    Triangle::Kept => {}
-                    Triangle::Flipped => flipped += 1,
-                    Triangle::Dropped => dropped += 1,
-                }
+            match read_primitive(&primitive, &place, buffers) {
+                Read::Triangles(primitive) => primitive.push_into(&mut groups[material], &mut tally),
+                Read::Empty => {}
+                Read::NotTriangles => tally.skipped += 1,
+                Read::Unreadable => tally.unreadable += 1,
             }
         }
     }
-    if groups.iter().all(Vec::is_empty) && unreadable > 0 {
+    if groups.iter().all(Vec::is_empty) && tally.unreadable > 0 {
         return Err(format!(
-            "none of its primitives could be read ({unreadable} with positions or indices of the wrong type, or outside their buffers)"
+            "none of its primitives could be read ({} with positions or indices of the wrong type, or outside their buffers)",
+            tally.unreadable
         ));
     }
     for (n, what) in [
-        (dropped, "triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12 dropped"),
-        (flipped, "triangle(s) reversed in winding to agree with their normals"),
-        (skipped, "primitive(s) of points or lines left out"),
-        (unreadable, "primitive(s) whose positions or indices could not be read left out"),
+        (tally.dropped, "triangle(s) with out-of-range indices, or positions non-finite or beyond 1e12 dropped"),
+        (tally.flipped, "triangle(s) reversed in winding to agree with their normals"),
+        (tally.skipped, "primitive(s) of points or lines left out"),
+        (tally.unreadable, "primitive(s) whose positions or indices could not be read left out"),
     ] {
         if n > 0 {
             warnings.push(format!("{n} {what}"));
         }
     }
     Ok(groups)
+}
+
+/// What became of the triangles and primitives read, for the warnings.
+#[derive(Default)]
+struct Tally {
+    dropped: usize,
+    flipped: usize,
+    skipped: usize,
+    unreadable: usize,
+}
+
+/// Where an instance's primitives go: its world transform, the matrix for its normals, and
+/// whether it mirrors.
+struct Placement {
+    world: Mat4,
+    normals: Mat3,
+    mirrored: bool,
+}
+
+/// One primitive's vertices in world space, and its triangles as index triples.
+struct Primitive {
+    positions: Vec<Vec3>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<[f32; 2]>>,
+    triangles: Vec<[u32; 3]>,
+    mirrored: bool,
+}
+
+enum Read {
+    Triangles(Primitive),
+    /// No positions or no indices: nothing to draw, nothing to say.
+    Empty,
+    /// Points or lines.
+    NotTriangles,
+    /// Positions or indices of the wrong type, or outside their buffers.
+    Unreadable,
+}
+
+/// A primitive's vertices and triangles, each accessor checked before the crate's reader trusts
+/// it (it asserts on a mismatch).
+fn read_primitive(primitive: &::gltf::Primitive, place: &Placement, buffers: &[Rc<Vec<u8>>]) -> Read {
+    use ::gltf::mesh::Mode;
+    if !matches!(primitive.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+        return Read::NotTriangles;
+    }
+    let uv_set = primitive.material().pbr_metallic_roughness().base_color_texture().map_or(0, |t| t.tex_coord());
+    let fits = |accessor: Option<::gltf::Accessor>, kinds: &[Kind]| {
+        accessor.is_some_and(|a| accessor_fits(&a, kinds, buffers))
+    };
+    let positions = primitive.get(&::gltf::Semantic::Positions);
+    if positions.as_ref().is_some_and(|p| p.count() == 0) || primitive.indices().is_some_and(|i| i.count() == 0) {
+        return Read::Empty;
+    }
+    let indices_fit = primitive.indices().is_none_or(|a| accessor_fits(&a, INDEX_KINDS, buffers));
+    if !fits(positions, VEC3_KINDS) || !indices_fit {
+        return Read::Unreadable;
+    }
+    let has_normals = fits(primitive.get(&::gltf::Semantic::Normals), VEC3_KINDS);
+    let has_uvs = fits(primitive.get(&::gltf::Semantic::TexCoords(uv_set)), UV_KINDS);
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(|data| data.as_slice()));
+    let Some(positions) = reader.read_positions() else { return Read::Unreadable };
+    let positions: Vec<Vec3> = positions.map(|p| place.world.transform_point3(Vec3::from(p))).collect();
+    let count = positions.len();
+    let normals: Option<Vec<Vec3>> = has_normals
+        .then(|| reader.read_normals())
+        .flatten()
+        .map(|n| n.map(|n| place.normals * Vec3::from(n)).collect::<Vec<_>>())
+        .filter(|n| n.len() == count);
+    let uvs: Option<Vec<[f32; 2]>> = has_uvs
+        .then(|| reader.read_tex_coords(uv_set))
+        .flatten()
+        .map(|t| t.into_f32().collect::<Vec<_>>())
+        .filter(|t| t.len() == count);
+    let indices: Vec<u32> = match reader.read_indices() {
+        Some(indices) => indices.into_u32().collect(),
+        None if primitive.indices().is_some() => return Read::Unreadable,
+        None => (0..count as u32).collect(),
+    };
+    let triangles = triangle_list(primitive.mode(), &indices);
+    Read::Triangles(Primitive { positions, normals, uvs, triangles, mirrored: place.mirrored })
+}
+
+impl Primitive {
+    /// Appends its triangles to `group` (those with an index out of range dropped).
+    fn push_into(&self, group: &mut Vec<Vertex>, tally: &mut Tally) {
+        let count = self.positions.len();
+        for tri in &self.triangles {
+            let mut idx = tri.map(|i| i as usize);
+            if idx.iter().any(|&i| i >= count) {
+                tally.dropped += 1;
+                continue;
+            }
+            if self.mirrored {
+                idx.swap(1, 2);
+            }
+            let normals = self.normals.as_ref().map(|n| idx.map(|i| n[i]));
+            let uv = idx.map(|i| self.uvs.as_ref().map_or([0.0; 2], |t| t[i]));
+            match push_triangle(idx.map(|i| self.positions[i]), normals, uv, group) {
+                Triangle::Kept => {}
+                Triangle::Flipped => tally.flipped += 1,
+                Triangle::Dropped => tally.dropped += 1,
+            }
+        }
+    }
 }

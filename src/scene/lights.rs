@@ -5,7 +5,7 @@
 use glam::Vec3;
 use rand::{rngs::StdRng, RngExt, SeedableRng};
 
-use super::Bounds;
+use super::bounds::Bounds;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLight {

@@ -6,8 +6,8 @@ use std::path::Path;
 
 use glam::Vec3;
 
+use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
-use super::Bounds;
 use crate::{Error, Result};
 
 /// One vertex as the G-buffer pass reads it.

@@ -55,32 +55,61 @@ pub fn load_obj(path: &Path) -> Result<Model> {
 
 /// [`load_obj`] with another room for textures (decoded RGBA8 bytes for all of them together).
 pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
+    let input = |problem: String| Error::input(path, problem);
     if let Some(kind) = other_model_kind(path) {
-        return Err(Error::input(
-            path,
-            format!("a {kind} file; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)"),
+        return Err(input(format!("a {kind} file; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)")));
+    }
+    check_size(path).map_err(input)?;
+    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(input)?;
+    let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
+    let folder = ModelFolder::of(path);
+    let (models, tobj_materials, mut warnings) = parse(&text, &folder).map_err(input)?;
+    if bad_faces > 0 {
+        warnings.push(format!(
+            "dropped {bad_faces} face(s) with a vertex reference of 0, out of range, or in mixed formats"
         ));
     }
-    // Sized before it is read: the triangles the faces make, against the geometry's share.
-    check_file(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
-    let counts = count_obj(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    let tobj_materials = tobj_materials.unwrap_or_else(|e| {
+        if e != tobj::LoadError::OpenFileFailed {
+            warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));
+        }
+        Vec::new()
+    });
+    let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
+    let mut cache = TextureCache::plan(&folder, maps.flatten(), texture_room);
+    let mut materials: Vec<Material> =
+        tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, &mut warnings)).collect();
+    let default_material = materials.len();
+    materials.push(Material::plain("default", [0.8; 3]));
+    let groups = build_groups(&models, default_material, &mut warnings);
+    finish(path, materials, groups, warnings)
+}
+
+/// Sizes the file before it is read: the triangles its faces make, counted from a stream of
+/// it, against the geometry's share of the budget; the problem when it is refused.
+fn check_size(path: &Path) -> std::result::Result<(), String> {
+    check_file(path, MAX_OBJ_BYTES)?;
+    let counts = count_obj(path).map_err(|e| format!("cannot read: {e}"))?;
     if !counts.has_content {
         let nothing = if counts.zero_bytes > 0 { "holds only zero bytes, no text" } else { "the file is empty" };
-        return Err(Error::input(path, nothing));
+        return Err(nothing.into());
     }
     if counts.triangles == 0 {
-        return Err(Error::input(path, NO_TRIANGLES));
+        return Err(NO_TRIANGLES.into());
     }
     let file_bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
     // The file is held three times while it is parsed: as read, as text, and cleaned.
     let needed = counts.triangles.saturating_mul(budget::BYTES_PER_TRIANGLE).saturating_add(3 * file_bytes);
     budget::check(Share::Geometry, needed, || format!("{} triangles", counts.triangles))
-        .map_err(|problem| Error::input(path, problem))?;
-    let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(|problem| Error::input(path, problem))?;
-    let (text, bad_faces) = sanitize_obj(&decode_text(&bytes));
-    let folder = ModelFolder::of(path);
-    let warnings = RefCell::new(Vec::new());
+}
 
+type Parsed = (Vec<tobj::Model>, std::result::Result<Vec<tobj::Material>, tobj::LoadError>, Vec<String>);
+
+/// The OBJ's objects and its materials (from the model's folder), by tobj, with the warnings of
+/// the MTL's reading; a panic inside the parser is still a bad file, not a crash (the known ones
+/// are avoided by `sanitize_obj`; the guard is the net under it).
+fn parse(text: &str, folder: &ModelFolder) -> std::result::Result<Parsed, String> {
+    let warnings = RefCell::new(Vec::new());
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -88,7 +117,6 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         ignore_lines: true,
         ..Default::default()
     };
-    // The MTL comes from the model's folder, as its maps do.
     let material_loader = |mtl: &Path| match folder.read(&mtl.to_string_lossy(), MAX_MTL_BYTES) {
         Ok((mtl_path, bytes)) => {
             let (text, dropped) = sanitize_mtl(&decode_text(&bytes));
@@ -105,35 +133,18 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
             Err(tobj::LoadError::OpenFileFailed)
         }
     };
-    // A panic inside the parser is still a bad file, not a crash (the known ones are avoided by
-    // `sanitize_obj`; this is the net under it).
     let parsed = crate::guard::catch(|| tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader))
-        .map_err(|_| Error::input(path, "malformed OBJ (the parser gave up on it)"))?;
-    let (models, materials) = parsed.map_err(|e| Error::input(path, format!("malformed OBJ: {e}")))?;
+        .map_err(|_| "malformed OBJ (the parser gave up on it)".to_string())?;
+    let (models, materials) = parsed.map_err(|e| format!("malformed OBJ: {e}"))?;
+    Ok((models, materials, warnings.into_inner()))
+}
 
-    let mut warnings = warnings.into_inner();
-    if bad_faces > 0 {
-        warnings.push(format!(
-            "dropped {bad_faces} face(s) with a vertex reference of 0, out of range, or in mixed formats"
-        ));
-    }
-    let tobj_materials = materials.unwrap_or_else(|e| {
-        if e != tobj::LoadError::OpenFileFailed {
-            warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));
-        }
-        Vec::new()
-    });
-    let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
-    let mut cache = TextureCache::plan(&folder, maps.flatten(), texture_room);
-    let mut materials: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, &mut warnings)).collect();
-    let default_material = materials.len();
-    materials.push(Material::plain("default", [0.8; 3]));
-
-    let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); materials.len()];
-    let mut dropped = 0usize;
-    let mut flipped = 0usize;
-    for model in &models {
+/// Every object's triangles, grouped by material (`default_material` where an object names
+/// none, or one that is not defined), with what was repaired on the way as warnings.
+fn build_groups(models: &[tobj::Model], default_material: usize, warnings: &mut Vec<String>) -> Vec<Vec<Vertex>> {
+    let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); default_material + 1];
+    let (mut dropped, mut flipped) = (0usize, 0usize);
+    for model in models {
         let mesh = &model.mesh;
         let count = mesh.positions.len() / 3;
         let has_normals = mesh.normals.len() == 3 * count;
@@ -182,5 +193,5 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     if flipped > 0 {
         warnings.push(format!("reversed the winding of {flipped} triangle(s) to agree with their normals"));
     }
-    finish(path, materials, groups, warnings)
+    groups
 }

@@ -5,13 +5,14 @@
 //! their costs compare with a program measured on that set-up (`ssdo bench --scene room`).
 
 use std::path::Path;
-use std::str::FromStr;
 
 use glam::Vec3;
 
+use super::bounds::Bounds;
 use super::builtin::MeshBuilder;
+use super::camera::OrbitCamera;
 use super::model::{Material, Model, Part};
-use super::{Bounds, OrbitCamera};
+use crate::error::named_choice;
 use crate::{Error, Result};
 
 /// Half the room's edge: the chapter's cube is scaled by 7.5.
@@ -32,17 +33,18 @@ pub enum Layout {
     Room,
 }
 
-impl FromStr for Layout {
-    type Err = Error;
+impl Layout {
+    pub const ALL: [Layout; 2] = [Layout::Model, Layout::Room];
 
-    fn from_str(s: &str) -> Result<Self> {
-        match s.to_ascii_lowercase().as_str() {
-            "model" => Ok(Self::Model),
-            "room" => Ok(Self::Room),
-            _ => Err(Error::Setting(format!("unknown scene '{s}' (expected model or room)"))),
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::Model => "model",
+            Layout::Room => "room",
         }
     }
 }
+
+named_choice!(Layout, "scene", Layout::ALL.map(|l| (l.name(), l)));
 
 /// The built-in figure's size when none is asked for: about a scanned character's.
 pub const DEFAULT_FIGURE_TRIANGLES: usize = 50_000;
@@ -69,7 +71,7 @@ impl Layout {
         }
         let model = match (self, path) {
             (Self::Room, None) => figure(triangles.unwrap_or(DEFAULT_FIGURE_TRIANGLES))?,
-            (_, path) => super::load_model(path)?,
+            (_, path) => super::load::load_model(path)?,
         };
         self.arrange(model.scaled(scale))
     }
@@ -119,7 +121,7 @@ pub fn figure(triangles: usize) -> Result<Model> {
         for i in 0..=segments {
             let phi = TAU * i as f32 / segments as f32;
             let r = radius(t, phi);
-            vertices.push(super::Vertex {
+            vertices.push(super::model::Vertex {
                 position: [r * phi.cos(), t, r * phi.sin()],
                 normal: [0.0; 3],
                 uv: [i as f32 / segments as f32, t],

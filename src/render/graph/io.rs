@@ -1,7 +1,7 @@
 //! What a pass reads and writes, declared once: its bind group 1 is built from its reads, in
 //! binding order, and its colour attachments from its writes, so the declaration cannot drift
 //! from what the shader is given. The plan's reads and writes, the targets it allocates, their
-//! bytes and `--print-plan` are derived from the same lists (`passes/set.rs`), and a test holds
+//! bytes and `--print-plan` are derived from the same lists (`passes/mod.rs`), and a test holds
 //! each list against the bindings its WGSL declares (`tests/it/cpu/shaders.rs`).
 
 use crate::render::history::History;
@@ -14,8 +14,10 @@ pub enum Read {
     Target(TargetId),
     /// A target the plan lacks: the fallback of its kind is bound, and nothing is read.
     Absent(TargetId),
-    /// The sampling parameters (`OcclusionParams`, a uniform).
-    Params,
+    /// The sampling passes' parameters (`SamplingParams`, a uniform).
+    Sampling,
+    /// What the filters of the samples read (`FilterParams`, a uniform).
+    Filter,
 }
 
 impl Read {
@@ -32,7 +34,7 @@ impl Read {
     pub fn target(self) -> Option<TargetId> {
         match self {
             Read::Target(id) => Some(id),
-            Read::Absent(_) | Read::Params => None,
+            Read::Absent(_) | Read::Sampling | Read::Filter => None,
         }
     }
 
@@ -40,7 +42,7 @@ impl Read {
     pub fn kind(self) -> Kind {
         match self {
             Read::Target(id) | Read::Absent(id) => Kind::of(id.format),
-            Read::Params => Kind::Uniform,
+            Read::Sampling | Read::Filter => Kind::Uniform,
         }
     }
 }
@@ -122,7 +124,8 @@ impl PassIo {
             .map(|(i, read)| wgpu::BindGroupEntry {
                 binding: i as u32,
                 resource: match *read {
-                    Read::Params => inputs.params.as_entire_binding(),
+                    Read::Sampling => inputs.sampling.as_entire_binding(),
+                    Read::Filter => inputs.filter.as_entire_binding(),
                     Read::Absent(id) => view(inputs.fallbacks.of(Kind::of(id.format))),
                     Read::Target(id) if id.place == Place::History => {
                         let pair = inputs.history.get(id).unwrap_or_else(|| panic!("the plan has no {}", id.name));
@@ -140,7 +143,10 @@ impl PassIo {
 pub struct Inputs<'a> {
     pub targets: &'a Targets,
     pub history: &'a History,
-    pub params: &'a wgpu::Buffer,
+    /// `SamplingParams`, for [`Read::Sampling`].
+    pub sampling: &'a wgpu::Buffer,
+    /// `FilterParams`, for [`Read::Filter`].
+    pub filter: &'a wgpu::Buffer,
     pub fallbacks: &'a Fallbacks,
 }
 
@@ -203,7 +209,20 @@ pub fn attachments<'a>(
                 }
                 _ => &targets.expect(id).view,
             };
-            super::color_attachment(view, clear)
+            color_attachment(view, clear)
         })
         .collect()
+}
+
+/// A colour attachment that either clears to black or keeps what is there.
+pub fn color_attachment(view: &wgpu::TextureView, clear: bool) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: if clear { wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT) } else { wgpu::LoadOp::Load },
+            store: wgpu::StoreOp::Store,
+        },
+    })
 }

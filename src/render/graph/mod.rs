@@ -15,9 +15,9 @@ use super::history::{History, HistorySpec};
 use super::modes::{ModeDecl, Plan, PlanFacts, Step};
 use super::resources::scene::SceneGpu;
 use super::resources::sky::SkyGpu;
+use super::settings::View;
 use super::targets::Targets;
 use super::variant::Variant;
-use super::View;
 use crate::Result;
 
 /// One pass in the frame's list (`passes::PASSES`): its step, the rule for whether a plan has it, what
@@ -127,26 +127,6 @@ pub struct FrameState<'a> {
     pub history: &'a History,
     /// The camera differs from the last frame's.
     pub camera_moved: bool,
-}
-
-/// Colour attachments for views that may be absent, all cleared.
-pub fn cleared_attachments<'a>(
-    views: &[Option<&'a wgpu::TextureView>],
-) -> Vec<Option<wgpu::RenderPassColorAttachment<'a>>> {
-    views.iter().map(|v| v.and_then(|view| color_attachment(view, true))).collect()
-}
-
-/// A colour attachment that either clears to black or keeps what is there.
-pub fn color_attachment(view: &wgpu::TextureView, clear: bool) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: if clear { wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT) } else { wgpu::LoadOp::Load },
-            store: wgpu::StoreOp::Store,
-        },
-    })
 }
 
 /// Everything that distinguishes one full-screen pipeline from another.

@@ -1,7 +1,7 @@
 //! Render modes, and what a frame of one is: the modes' table ([`MODES`]), the facts a plan is
 //! made from ([`PlanFacts`]: the mode's declaration, the scene, the options) and the plan itself
 //! ([`Plan`]: the steps in order, and what follows from them). Which steps a plan has is each
-//! pass's own rule, beside its code (`passes/<pass>.rs`); `passes/set.rs` lists the passes in
+//! pass's own rule, beside its code (`passes/<pass>.rs`); `passes/mod.rs` lists the passes in
 //! frame order and builds the plan from their rules (`Plan::new`). What each step reads and
 //! writes is the pass's declaration too, and the plan's targets are the ones its steps write:
 //! nothing a mode or a scene does not need is in the plan, and so nothing for it is allocated or
@@ -52,7 +52,7 @@ pub struct PlanOptions {
     /// What lights the bounce's senders besides the point lights (`Settings::sender_sky`).
     pub sender_sky: SenderSky,
     /// The sampling pass runs at half resolution, an upsample after it.
-    pub half: bool,
+    pub half_resolution: bool,
     /// The sampling output is averaged over frames (`Settings::accumulates`): a temporal pass
     /// and its history.
     pub accumulate: bool,
@@ -62,8 +62,8 @@ impl Default for PlanOptions {
     /// The defaults' plan: a display plan with half-resolution sampling, blur and accumulation,
     /// no pyramid, and the bounce lit by the sky and the lights.
     fn default() -> Self {
-        let (blur, pyramid, display, indirect, half, accumulate) = (true, false, true, true, true, true);
-        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), half, accumulate }
+        let (blur, pyramid, display, indirect, half_resolution, accumulate) = (true, false, true, true, true, true);
+        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), half_resolution, accumulate }
     }
 }
 
@@ -134,7 +134,7 @@ impl Step {
     }
 }
 
-/// The steps of one frame for a mode and a scene (built by `Plan::new` in `passes/set.rs`), and
+/// The steps of one frame for a mode and a scene (built by `Plan::new` in `passes/mod.rs`), and
 /// what follows from them.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
@@ -151,7 +151,7 @@ pub struct Plan {
     /// bounce.
     pub sender_sky: SenderSky,
     /// The sampling pass runs at half resolution (an upsample follows it).
-    pub half: bool,
+    pub half_resolution: bool,
     /// The sampling output is averaged over frames (a temporal pass and its histories).
     pub accumulates: bool,
     /// A lighting pass writes each surface's direct light (the bounce's source).
@@ -166,11 +166,6 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Whether the sampling pass runs at half resolution.
-    pub fn half(&self) -> bool {
-        self.half
-    }
-
     /// Whether the plan averages the sampling output over frames.
     pub fn accumulates(&self) -> bool {
         self.accumulates

@@ -42,7 +42,7 @@ pub const MODES: [ModeDecl; 4] = [
         key: 1,
         name: "off",
         title: "Off",
-        sampling_step: "occlusion",
+        sampling_step: "sampling",
         ambient_occlusion: false,
         directional_occlusion: false,
     },

@@ -1,7 +1,7 @@
 //! Denoise of the sampling pass's output (`shaders/blur.wgsl`): a 4x4 window, bilateral (plane
 //! distance and normal agreement) in the default variant, the classic box blur otherwise.
 
-use super::occlusion::Outputs;
+use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
@@ -42,7 +42,7 @@ impl BlurPass {
     pub fn io(plan: &Plan) -> PassIo {
         let d = plan.decl.directional_occlusion;
         let raw = Read::Target(Stage::Raw.target(d));
-        let reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Params, raw];
+        let reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter, raw];
         PassIo { reads, attached: vec![], writes: vec![Stage::Blurred.target(d)] }
     }
 }

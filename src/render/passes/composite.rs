@@ -10,9 +10,9 @@ use crate::render::graph::state::PassState;
 use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
+use crate::render::settings::View;
 use crate::render::targets::{Stage, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
 use crate::render::variant::{Composite, Variant};
-use crate::render::View;
 use crate::Result;
 
 impl Step {

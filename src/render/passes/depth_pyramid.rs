@@ -2,8 +2,9 @@
 //! level from the one before, one small full-screen pass per level. Built only by plans whose
 //! sampling pass marches far (the march variant in SSDO and SSAO+SSDO).
 
+use crate::render::graph::io::color_attachment;
 use crate::render::graph::io::{Kind, PassIo, Read};
-use crate::render::graph::{color_attachment, fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Place, TargetId, DEPTH};

@@ -205,8 +205,8 @@ impl Pass for GBufferPass {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer_pass"),
             color_attachments: &[
-                crate::render::graph::color_attachment(&targets.albedo().view, true),
-                crate::render::graph::color_attachment(&targets.normal().view, true),
+                crate::render::graph::io::color_attachment(&targets.albedo().view, true),
+                crate::render::graph::io::color_attachment(&targets.normal().view, true),
             ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth().view,

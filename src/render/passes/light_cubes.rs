@@ -6,8 +6,9 @@
 
 use wgpu::util::DeviceExt;
 
+use crate::render::graph::io::color_attachment;
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::{color_attachment, no_history, Entry};
+use crate::render::graph::{no_history, Entry};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT, OUTPUT};

@@ -11,7 +11,7 @@ pub mod depth_pyramid;
 pub mod gbuffer;
 pub mod light_cubes;
 pub mod lighting;
-pub mod occlusion;
+pub mod sampling;
 pub mod sender_sky;
 pub mod skybox;
 pub mod temporal;
@@ -38,7 +38,7 @@ pub const PASSES: [Entry; 12] = [
     // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
     lighting::ENTRY,
     // AO and/or DO from one set of samples.
-    occlusion::ENTRY,
+    sampling::ENTRY,
     // Half-resolution AO/DO to full resolution, on each pixel's own surface.
     upsample::ENTRY,
     // Denoise AO/DO.
@@ -90,7 +90,7 @@ impl Plan {
             blur: has(Step::BLUR),
             display: o.display,
             sender_sky: facts.sender_sky(),
-            half: has(Step::UPSAMPLE),
+            half_resolution: has(Step::UPSAMPLE),
             accumulates: has(Step::TEMPORAL),
             lighting: has(Step::LIGHTING),
             pyramid: has(Step::DEPTH_PYRAMID),

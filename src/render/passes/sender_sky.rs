@@ -3,7 +3,7 @@
 //! built with DO on and AO and the bounce off). The lighting pass turns it into the sky light each
 //! sender bounces, so the bounce carries the sky with the sender's own visibility.
 
-use super::occlusion::OcclusionPass;
+use super::sampling::SamplingPass;
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
@@ -41,7 +41,7 @@ impl SenderSkyPass {
 
     /// The sampling pass's reads but the bounce, which this pass feeds; the senders' sky.
     pub fn io(plan: &Plan) -> PassIo {
-        PassIo { reads: OcclusionPass::reads(plan, false), attached: vec![], writes: vec![SENDER_SKY] }
+        PassIo { reads: SamplingPass::reads(plan, false), attached: vec![], writes: vec![SENDER_SKY] }
     }
 }
 

@@ -4,7 +4,7 @@
 //! `do_accumulated`), and the two histories the next frame reads (`history.rs`). Its bind group
 //! reads one side of each history pair, so it keeps one group a parity and binds the frame's.
 
-use super::occlusion::Outputs;
+use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
@@ -49,7 +49,7 @@ impl TemporalPass {
     pub fn io(plan: &Plan) -> PassIo {
         let d = plan.decl.directional_occlusion;
         let filtered = if plan.blur { Stage::Blurred } else { Stage::Raw }.target(d);
-        let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Params]);
+        let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Filter]);
         let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
         PassIo {
             reads,

@@ -46,9 +46,9 @@ fn all_plans() -> Vec<Plan> {
         for lights in [0, 8] {
             for bits in 0..64u32 {
                 for sender_sky in SenderSky::ALL {
-                    let [blur, pyramid, display, indirect, accumulate, half] =
+                    let [blur, pyramid, display, indirect, accumulate, half_resolution] =
                         [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-                    let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half, accumulate };
+                    let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half_resolution, accumulate };
                     plans.push(Plan::new(mode, SceneFeatures { lights }, o));
                 }
             }
@@ -86,8 +86,8 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         );
         assert_eq!(t.blurred, plan.blur);
         assert_eq!(t.accumulated, plan.accumulates());
-        assert_eq!(t.half, plan.half());
-        assert_eq!(plan.half(), sampled && plan.has(Step::UPSAMPLE));
+        assert_eq!(t.half, plan.half_resolution);
+        assert_eq!(plan.half_resolution, sampled && plan.has(Step::UPSAMPLE));
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
         assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
         assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
@@ -295,12 +295,12 @@ fn a_declaration_that_drops_a_read_fails_the_checks() {
     // The sampling pass of SSDO with lights reads the bounce; a list without it is caught, both
     // against the shader and by the plan (the bounce would be written and never read).
     let plan = Plan::new(Mode::Ssdo, SceneFeatures { lights: 8 }, PlanOptions::default());
-    let entry = PASSES.iter().find(|e| e.step == Step::OCCLUSION).unwrap();
+    let entry = PASSES.iter().find(|e| e.step == Step::SAMPLING).unwrap();
     let mut io = (entry.io)(&plan);
     declared_as_bound(entry, &io).unwrap();
     io.reads.retain(|r| *r != Read::Target(BOUNCE));
     let error = declared_as_bound(entry, &io).unwrap_err();
-    assert!(error.contains("occlusion.wgsl"), "{error}");
+    assert!(error.contains("points.wgsl"), "{error}");
     // A list that reads what no earlier step writes (the blur of a DO plan reading AO) fails
     // the plan's check.
     let mut io = plan.io();

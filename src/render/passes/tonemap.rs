@@ -9,8 +9,8 @@ use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{no_history, Entry};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
+use crate::render::settings::View;
 use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
-use crate::render::View;
 use crate::Result;
 
 impl Step {

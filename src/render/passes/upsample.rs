@@ -3,7 +3,7 @@
 //! surface, so silhouettes keep no halo. It writes the full-resolution raw target, which the blur
 //! and the temporal pass read as they would the sampling pass's own.
 
-use super::occlusion::Outputs;
+use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
@@ -17,7 +17,7 @@ impl Step {
 
 pub const ENTRY: Entry = Entry {
     step: Step::UPSAMPLE,
-    runs: |f| f.samples() && f.options.half,
+    runs: |f| f.samples() && f.options.half_resolution,
     io: UpsamplePass::io,
     histories: no_history,
     group_shaders: &["upsample.wgsl"],
@@ -37,7 +37,7 @@ impl UpsamplePass {
     pub fn io(plan: &Plan) -> PassIo {
         let d = plan.decl.directional_occlusion;
         let half = Read::Target(Stage::Half.target(d));
-        let reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Params, half];
+        let reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter, half];
         PassIo { reads, attached: vec![], writes: vec![Stage::Raw.target(d)] }
     }
 }

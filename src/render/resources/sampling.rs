@@ -1,16 +1,17 @@
 //! The sampling passes' parameters on the GPU: the kernel and the 4x4 rotations (regenerated only
 //! when the variant or the sample count changes), the radius, bias, strengths and the march's
-//! slices, steps, reach and thickness. Read by the sampling pass and the blur.
+//! slices, steps, reach and thickness, read by the sampling pass and the sender-sky march; and
+//! beside them the little the filters read (the radius and the temporal pass's frame counts).
 
 use super::super::kernel;
 use super::super::sampling::{Lengths, Sampling};
-use super::super::uniforms::OcclusionParams;
+use super::super::uniforms::{FilterParams, SamplingParams};
 use super::super::variant::Variant;
 
 /// Sampling parameters for one frame: the settings' [`Sampling`] with its counts clamped, the
 /// lengths it resolves to, and what the sky and the temporal pass add.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SamplingParams {
+pub struct SamplingFrame {
     pub sampling: Sampling,
     pub lengths: Lengths,
     pub sky_mip: f32,
@@ -27,27 +28,38 @@ pub struct SamplingParams {
     pub history_frames: u32,
 }
 
-/// The kernel and parameters uniform, shared by the sampling and blur passes.
-pub struct OcclusionData {
+/// The sampling passes' uniform and the filters' one, written every frame that samples (the
+/// schedule and the history move).
+pub struct SamplingData {
+    /// `SamplingParams`: the sampling pass and the sender-sky march.
     pub buffer: wgpu::Buffer,
-    uniforms: Box<OcclusionParams>,
+    /// `FilterParams`: the upsample, the blur and the temporal pass.
+    pub filter_buffer: wgpu::Buffer,
+    uniforms: Box<SamplingParams>,
     kernel_key: Option<(Variant, usize)>,
 }
 
-impl OcclusionData {
+impl SamplingData {
     pub fn new(device: &wgpu::Device) -> Self {
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("occlusion_params"),
-            size: std::mem::size_of::<OcclusionParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        Self { buffer, uniforms: Box::new(bytemuck::Zeroable::zeroed()), kernel_key: None }
+        let uniform = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            buffer: uniform("sampling_params", std::mem::size_of::<SamplingParams>() as u64),
+            filter_buffer: uniform("filter_params", std::mem::size_of::<FilterParams>() as u64),
+            uniforms: Box::new(bytemuck::Zeroable::zeroed()),
+            kernel_key: None,
+        }
     }
 
     /// Writes the parameters (their counts already clamped); the kernel is regenerated only when
     /// the variant or the sample count changes.
-    pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingParams) {
+    pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingFrame) {
         let (sampling, lengths) = (&params.sampling, &params.lengths);
         let (variant, samples) = (sampling.variant, sampling.samples);
         if self.kernel_key != Some((variant, samples)) {
@@ -58,14 +70,25 @@ impl OcclusionData {
             self.kernel_key = Some((variant, samples));
         }
         let u = self.uniforms.as_mut();
-        (u.radius, u.bias, u.sample_count, u.sky_mip) = (lengths.radius, lengths.bias, samples as u32, params.sky_mip);
+        (u.radius, u.bias_length, u.sample_count, u.sky_mip) =
+            (lengths.radius, lengths.bias_length, samples as u32, params.sky_mip);
         (u.sky_strength, u.indirect_strength) = (params.sky_strength, params.indirect_strength);
         u.sender_sky_strength = params.sender_sky_strength;
         u.schedule = params.schedule;
-        (u.accumulate, u.motion_accumulate, u.history_frames) =
-            (params.accumulate, params.motion_accumulate, params.history_frames);
         (u.slices, u.steps, u.reach, u.thickness) =
             (sampling.slices as u32, sampling.steps as u32, lengths.reach, lengths.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
+        let filter = FilterParams {
+            radius: lengths.radius,
+            accumulate: params.accumulate,
+            motion_accumulate: params.motion_accumulate,
+            history_frames: params.history_frames,
+        };
+        queue.write_buffer(&self.filter_buffer, 0, bytemuck::bytes_of(&filter));
+    }
+
+    /// The bytes of both uniforms.
+    pub fn bytes(&self) -> u64 {
+        self.buffer.size() + self.filter_buffer.size()
     }
 }

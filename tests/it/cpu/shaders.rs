@@ -2,7 +2,7 @@
 //! front end wgpu uses), every file under shaders/ is embedded, and the uniform structs have the
 //! same members at the same offsets in Rust and WGSL.
 
-use ssdo::render::uniforms::{FrameUniforms, GpuLight, MaterialParams, OcclusionParams};
+use ssdo::render::uniforms::{FilterParams, FrameUniforms, GpuLight, MaterialParams, SamplingParams};
 use ssdo::shaders;
 
 fn parse(name: &str) -> naga::Module {
@@ -115,13 +115,13 @@ fn uniform_structs_match_wgsl_member_for_member() {
     );
     same_layout!(&gbuffer, "MaterialParams", MaterialParams { albedo, specular, shininess, _pad0, _pad1, _pad2 });
     same_layout!(
-        &parse("occlusion.wgsl"),
-        "OcclusionParams",
-        OcclusionParams {
+        &parse("points.wgsl"),
+        "SamplingParams",
+        SamplingParams {
             kernel,
             rotations,
             radius,
-            bias,
+            bias_length,
             sample_count,
             sky_mip,
             sky_strength,
@@ -133,10 +133,11 @@ fn uniform_structs_match_wgsl_member_for_member() {
             reach,
             thickness,
             schedule,
-            accumulate,
-            motion_accumulate,
-            history_frames,
-            _pad1,
         }
+    );
+    same_layout!(
+        &parse("temporal.wgsl"),
+        "FilterParams",
+        FilterParams { radius, accumulate, motion_accumulate, history_frames }
     );
 }

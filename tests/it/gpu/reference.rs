@@ -197,7 +197,9 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
                 result
                     .rows
                     .iter()
-                    .find(|r| r.mode == mode && r.variant == variant && r.samples == samples && r.blur && !r.half)
+                    .find(|r| {
+                        r.mode == mode && r.variant == variant && r.samples == samples && r.blur && !r.half_resolution
+                    })
                     .unwrap()
                     .flip
             };
@@ -251,10 +253,9 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
         // One row per resolution, named by its settings: the rows come sorted by time, which
         // differs from run to run.
         let hdr_rmse = |half: bool| {
-            let mut rows = report
-                .rows
-                .iter()
-                .filter(|r| r.mode == Mode::Ssao && r.variant == Variant::Points && r.blur && r.half == half);
+            let mut rows = report.rows.iter().filter(|r| {
+                r.mode == Mode::Ssao && r.variant == Variant::Points && r.blur && r.half_resolution == half
+            });
             let row = rows.next().expect("the sweep has this row");
             assert!(rows.next().is_none(), "one row with half = {half}");
             row.hdr_rmse

@@ -1,4 +1,4 @@
-//! The sampling pass: SSAO, SSDO, or both from one set of samples (`shaders/occlusion.wgsl`,
+//! The sampling pass: SSAO, SSDO, or both from one set of samples (`shaders/points.wgsl`,
 //! or the march's `shaders/march.wgsl`). One shader, two entry points (`fs_ao` writes AO; `fs_do`
 //! writes DO + AO); the variant (default or classic) and whether there is a bounce buffer are
 //! override constants. The pipeline is built for what the plan needs and rebuilt only when that
@@ -16,16 +16,16 @@ use crate::{shaders, Result};
 
 impl Step {
     /// Named after what the mode computes: `ssao`, `ssdo` or `ssao_ssdo`.
-    pub const OCCLUSION: Step = Step::named_by_mode("occlusion");
+    pub const SAMPLING: Step = Step::named_by_mode("sampling");
 }
 
 pub const ENTRY: Entry = Entry {
-    step: Step::OCCLUSION,
+    step: Step::SAMPLING,
     runs: |f| f.samples(),
-    io: OcclusionPass::io,
+    io: SamplingPass::io,
     histories: no_history,
-    group_shaders: &["occlusion.wgsl", "march.wgsl"],
-    build: |cx| Ok(Box::new(OcclusionPass::new(cx)?)),
+    group_shaders: &["points.wgsl", "march.wgsl"],
+    build: |cx| Ok(Box::new(SamplingPass::new(cx)?)),
 };
 
 /// What a plan's sampling (and blur) pass produces.
@@ -61,7 +61,7 @@ struct Key {
     /// The march's far steps read the depth pyramid.
     pyramid: bool,
     /// Half width and height (an upsample follows).
-    half: bool,
+    half_resolution: bool,
 }
 
 impl Key {
@@ -72,7 +72,7 @@ impl Key {
             ("HAS_AO", f(o.ao)),
             ("HAS_DO", f(o.directional)),
             ("INDIRECT", f(o.indirect)),
-            ("HALF_RES", f(self.half)),
+            ("HALF_RES", f(self.half_resolution)),
         ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
@@ -83,15 +83,15 @@ impl Key {
     }
 }
 
-pub struct OcclusionPass {
-    /// The points' shader (`occlusion.wgsl`) and its state; the march's shader beside it.
+pub struct SamplingPass {
+    /// The points' shader (`points.wgsl`) and its state; the march's shader beside it.
     state: PassState<Key>,
     march_module: wgpu::ShaderModule,
 }
 
-impl OcclusionPass {
+impl SamplingPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let state = PassState::new(cx, "occlusion", "occlusion.wgsl", true)?;
+        let state = PassState::new(cx, "sampling", "points.wgsl", true)?;
         Ok(Self { state, march_module: shaders::module(cx.device, "march.wgsl")? })
     }
 
@@ -102,7 +102,7 @@ impl OcclusionPass {
             Read::Target(ALBEDO),
             Read::Target(NORMAL),
             Read::Target(DEPTH),
-            Read::Params,
+            Read::Sampling,
             Read::target_if(bounce, BOUNCE),
             Read::target_if(plan.pyramid, PYRAMID),
         ]
@@ -111,17 +111,17 @@ impl OcclusionPass {
     /// The sampling reads with the bounce where a lighting pass writes it; AO or DO + AO, at
     /// half size when an upsample follows.
     pub fn io(plan: &Plan) -> PassIo {
-        let stage = if plan.half { Stage::Half } else { Stage::Raw };
+        let stage = if plan.half_resolution { Stage::Half } else { Stage::Raw };
         let writes = vec![stage.target(plan.decl.directional_occlusion)];
         PassIo { reads: Self::reads(plan, plan.lighting), attached: vec![], writes }
     }
 }
 
-impl Pass for OcclusionPass {
+impl Pass for SamplingPass {
     /// Builds what the plan needs (nothing when it has no sampling step).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { plan, variant, .. } = *p;
-        if !self.state.runs(plan.has(Step::OCCLUSION)) {
+        if !self.state.runs(plan.has(Step::SAMPLING)) {
             return;
         }
         self.state.bind(device, &Self::io(plan), &p.inputs);
@@ -130,7 +130,7 @@ impl Pass for OcclusionPass {
             classic: variant.decl().estimator == Estimator::Classic,
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.pyramid,
-            half: plan.half,
+            half_resolution: plan.half_resolution,
         };
         let march_module = &self.march_module;
         self.state.ensure(key, |key, points_module, layouts| {
@@ -138,7 +138,7 @@ impl Pass for OcclusionPass {
             fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
-                    label: "occlusion_pipeline",
+                    label: "sampling_pipeline",
                     module: if key.march { march_module } else { points_module },
                     entry,
                     bind_group_layouts: layouts,

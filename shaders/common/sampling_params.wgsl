@@ -1,17 +1,19 @@
-// Sampling parameters shared by the occlusion pass (bind group 1, binding 3 there). Mirrors
-// `OcclusionParams` in src/render/uniforms.rs field for field (checked in tests/shaders.rs).
+// The sampling passes' parameters (the sampling pass and the sender-sky march, bind group 1,
+// binding 3). Mirrors `SamplingParams` in src/render/uniforms.rs field for field (checked in
+// tests/it/cpu/shaders.rs). The passes that filter the samples read `FilterParams` instead
+// (common/filter_params.wgsl).
 
 const MAX_SAMPLES: u32 = 256u;
 
-struct OcclusionParams {
+struct SamplingParams {
     // xyz: offset in tangent space (z along the normal), unit radius; w: unused
     kernel: array<vec4<f32>, 256>,
     // The 16 per-pixel rotations of a 4x4 tile: xy = (cos, sin) of the angle (default variant)
     // or a random tangent-plane vector (classic variant); zw unused.
     rotations: array<vec4<f32>, 16>,
-    // sampling radius and depth bias, in view units
+    // sampling radius and depth bias (a length: the bias fraction times the radius), in view units
     radius: f32,
-    bias: f32,
+    bias_length: f32,
     // samples per pixel (points and classic variants)
     sample_count: u32,
     // the sky cube map's mip level a sample's solid angle reads
@@ -34,12 +36,6 @@ struct OcclusionParams {
     // the march's slice and step offsets (mod 1), zw the (cos, sin) the points' rotation turns
     // by; (0, 0, 1, 0) on a frame that does not accumulate.
     schedule: vec4<f32>,
-    // The temporal pass (shaders/temporal.wgsl): the most frames a still pixel averages, the
-    // most a moving one does, and the frames its history holds (0: nothing to reuse).
-    accumulate: u32,
-    motion_accumulate: u32,
-    history_frames: u32,
-    _pad1: f32,
 }
 
 // The sampling passes run at half width and height (an upsample follows): their pixel (x, y)

@@ -29,10 +29,10 @@
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
-#include "common/occlusion_params.wgsl"
+#include "common/sampling_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: OcclusionParams;
+@group(1) @binding(3) var<uniform> occ: SamplingParams;
 @group(1) @binding(4) var bounce_map: texture_2d<f32>;
 // The sky's mip chain, read at one whole level per pass (the sampler's mip filter is nearest):
 // the level already matches a sample's solid angle, and bilinear costs half of trilinear.
@@ -89,7 +89,7 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
     let n = load_normal(pixel);
     let p = view_position(position, depth);
     let radius = occ.radius;
-    let bias = occ.bias;
+    let bias = occ.bias_length;
     let count = min(occ.sample_count, MAX_SAMPLES);
     let tbn = tangent_frame(n, tile);
     let size = vec2<i32>(frame.viewport.xy);

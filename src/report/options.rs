@@ -1,0 +1,101 @@
+//! What a report sweeps: the flags' values, each checked against its range.
+
+use std::path::PathBuf;
+
+use crate::{Error, Result};
+
+/// A sampling radius to sweep: a multiple of the scene's default, or a length in model units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RadiusChoice {
+    Times(f32),
+    Units(f32),
+}
+
+impl std::str::FromStr for RadiusChoice {
+    type Err = Error;
+    /// `2x` (twice the default radius) or `0.3` (model units).
+    fn from_str(s: &str) -> Result<Self> {
+        let bad = || Error::Setting(format!("--radius {s}: expected a length or a multiple of the default like 2x"));
+        let (text, times) = match s.trim().strip_suffix(['x', 'X']) {
+            Some(t) => (t, true),
+            None => (s.trim(), false),
+        };
+        let value: f32 = text.parse().map_err(|_| bad())?;
+        if !value.is_finite() || value <= 0.0 {
+            return Err(bad());
+        }
+        Ok(if times { Self::Times(value) } else { Self::Units(value) })
+    }
+}
+
+impl RadiusChoice {
+    pub fn resolve(self, default: f32) -> f32 {
+        match self {
+            Self::Times(k) => k * default,
+            Self::Units(r) => r,
+        }
+    }
+}
+
+/// What to sweep.
+pub struct ReportOptions {
+    pub scene: String,
+    /// Overrides the scene's model with an OBJ file.
+    pub model: Option<PathBuf>,
+    pub skybox: Option<PathBuf>,
+    pub size: (u32, u32),
+    /// Sample counts of the points and classic variants.
+    pub samples: Vec<usize>,
+    /// Slices × steps of the march variant.
+    pub march: Vec<(usize, usize)>,
+    pub radii: Vec<RadiusChoice>,
+    /// Reference rays per pixel in each of the two traces (at least 2).
+    pub samples_per_pixel: u32,
+    pub frames: usize,
+    /// Frames averaged, each count a row (1: a single frame).
+    pub accumulate: Vec<usize>,
+    /// Degrees the camera turns about the model each accumulated frame (0: still rows only).
+    pub orbit: f32,
+    pub lights: usize,
+    pub seed: u64,
+    pub out: PathBuf,
+}
+
+/// The most values one list of a sweep takes (`--samples`, `--march`, `--radius`, `--accumulate`).
+pub const MAX_SWEEP: usize = 16;
+
+impl ReportOptions {
+    /// Every value of the sweep within its range, every list given and within [`MAX_SWEEP`]; the
+    /// first that is not, as the setting error naming its flag.
+    pub fn check(&self) -> Result<()> {
+        use crate::render::{ACCUMULATE, SAMPLES, SLICES, STEPS};
+        for &n in &self.samples {
+            SAMPLES.check(n)?;
+        }
+        for &n in &self.accumulate {
+            ACCUMULATE.check(n)?;
+        }
+        crate::spec::in_range("orbit", self.orbit, -90.0, 90.0)?;
+        for &(slices, steps) in &self.march {
+            SLICES.check(slices)?;
+            STEPS.check(steps)?;
+        }
+        let lists = [
+            ("samples", self.samples.len()),
+            ("march", self.march.len()),
+            ("radius", self.radii.len()),
+            ("accumulate", self.accumulate.len()),
+        ];
+        if lists.iter().any(|&(_, count)| count == 0) {
+            return Err(Error::Setting(
+                "--samples, --march, --radius and --accumulate must each give at least one".into(),
+            ));
+        }
+        match lists.iter().find(|&&(_, count)| count > MAX_SWEEP) {
+            Some((name, count)) => {
+                Err(Error::Setting(format!("--{name}: {count} values; a sweep takes at most {MAX_SWEEP}")))
+            }
+            None => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! One measured configuration of the report, and the truth's noise floor beside the rows.
+
+use super::sweep::Config;
+use crate::render::{Mode, SenderSky, Variant};
+
+/// One measured configuration.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub mode: Mode,
+    pub variant: Variant,
+    /// Samples per pixel of the sampling pass (0 for Off, which has none); slices for the march.
+    pub samples: usize,
+    /// Steps per side of each slice (the march; 0 otherwise).
+    pub steps: usize,
+    /// The march's far steps read the depth pyramid.
+    pub pyramid: bool,
+    pub blur: bool,
+    /// What lights the bounce's senders (DO modes); `None`: no bounce (`--indirect-strength 0`).
+    pub bounce: Option<SenderSky>,
+    /// Sampling radius in model units (0 for Off).
+    pub radius: f32,
+    /// Frames averaged, and the camera's turn a frame over them, in degrees.
+    pub accumulate: usize,
+    pub orbit: f32,
+    /// The sampling pass at half resolution, upsampled.
+    pub half_resolution: bool,
+    /// Median GPU milliseconds of the whole frame (one frame, with accumulation running).
+    pub ms: f64,
+    /// AO against the within-R AO, its definition (a diagnostic).
+    pub ao_rmse: Option<f64>,
+    /// DO (sky light + bounce, before albedo) against the truth, and against the within-R image.
+    pub do_rmse: Option<f64>,
+    pub do_rmse_near: Option<f64>,
+    /// The mean of the DO's bounce over the measured pixels, over the truth's (1 is unbiased).
+    pub bounce_ratio: Option<f64>,
+    /// Linear HDR radiance against the truth, and against the within-R image.
+    pub hdr_rmse: f64,
+    pub hdr_rmse_near: f64,
+    pub hdr_psnr: f64,
+    /// FLIP of the displayed images, on the valid surface pixels.
+    pub flip: f64,
+    /// No other row is both as fast and as accurate (HDR RMSE against the truth).
+    pub pareto: bool,
+}
+
+/// The truth's own noise: RMSE of the mean of two independent traces (half their difference).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoiseFloor {
+    pub hdr: f64,
+    pub directional: f64,
+    pub ao: f64,
+}
+
+impl Row {
+    /// The row in one line, as the progress bar shows it.
+    pub(super) fn progress_line(&self, config: Config) -> String {
+        format!(
+            "{} {} {}{}, radius {:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
+            self.mode,
+            self.variant,
+            Row::count_label(self.variant, self.samples, self.steps, self.pyramid),
+            if self.half_resolution { " half" } else { "" },
+            self.radius,
+            self.blur,
+            Row::bounce_label(self.mode, config.bounce),
+            self.accumulate,
+            self.orbit,
+            self.ms,
+            self.hdr_rmse
+        )
+    }
+}

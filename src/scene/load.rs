@@ -1,0 +1,71 @@
+//! Which loader reads a file, the default model and sky (or, outside the repository, the same
+//! scenes built in memory), and the defaults a run starts from.
+
+use std::path::Path;
+
+use super::model::Model;
+use super::skybox::Skybox;
+use super::{builtin, gltf_model, obj_model, panorama};
+use crate::Result;
+
+/// The default model, relative to the repository root.
+pub const DEFAULT_MODEL: &str = "models/cornell/cornell.obj";
+/// The default sky folder, relative to the repository root.
+pub const DEFAULT_SKYBOX: &str = "skyboxes/day";
+/// Where sky folders live.
+pub const SKYBOX_ROOT: &str = "skyboxes";
+/// The default number of point lights, as in the SSDO course project.
+pub const DEFAULT_LIGHTS: usize = 8;
+
+/// Whether `path` names a model file this program loads: `.obj`, `.gltf` or `.glb`.
+pub fn is_model(path: &Path) -> bool {
+    path.extension().is_some_and(|e| ["obj", "gltf", "glb"].iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
+/// Loads a model file by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with
+/// its materials and textures, within the run's memory budget.
+pub fn load_model_file(path: &Path) -> Result<Model> {
+    if panorama::is_image(path) {
+        return Err(crate::Error::input(
+            path,
+            "an image, not a model: a panorama sky goes to --skybox; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)",
+        ));
+    }
+    if gltf_model::is_gltf(path) {
+        gltf_model::load(path, crate::budget::texture_room())
+    } else {
+        obj_model::load_obj(path)
+    }
+}
+
+/// Loads the model at `path`, or the default scene. When the default file is not there (the
+/// binary run outside the repository) the same scene is built in memory instead.
+pub fn load_model(path: Option<&Path>) -> Result<Model> {
+    load_or_builtin(path, DEFAULT_MODEL, load_model_file, || {
+        log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
+        builtin::cornell()
+    })
+}
+
+/// Loads the sky folder at `path`, or the default sky (built in memory if its folder is absent).
+pub fn load_skybox(path: Option<&Path>) -> Result<Skybox> {
+    load_or_builtin(path, DEFAULT_SKYBOX, Skybox::load, || {
+        log::info!("{DEFAULT_SKYBOX} not found; using the built-in daylight sky");
+        Ok(Skybox::from_fn("day", 128, builtin::day_sky))
+    })
+}
+
+/// `load(path)`; without a path, `load(default)` where the default is there and `builtin()`
+/// where it is not.
+fn load_or_builtin<T>(
+    path: Option<&Path>,
+    default: &str,
+    load: impl FnOnce(&Path) -> Result<T>,
+    builtin: impl FnOnce() -> Result<T>,
+) -> Result<T> {
+    match path {
+        Some(p) => load(p),
+        None if Path::new(default).exists() => load(Path::new(default)),
+        None => builtin(),
+    }
+}
