@@ -64,6 +64,7 @@ impl Viewer {
             Action::ToggleFly => {
                 self.controls.set_fly(!self.controls.fly);
                 self.panel.fly = self.controls.fly;
+                log::info!("fly camera {}", if self.controls.fly { "on" } else { "off" });
             }
             Action::CopyCommand => {
                 let command = self.command();

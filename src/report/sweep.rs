@@ -45,21 +45,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         // Off has no sampling: measured once for each composite, under the default variant's name
         // for the sky-lit one.
         if first_radius && (variant == default.variant || decl.composite != default.composite) {
-            let (samples, steps, blur, pyramid, bounce, accumulate, orbit) = (0, 0, false, false, None, 1, 0.0);
-            let mode = Mode::Off;
-            let off = Config {
-                mode,
-                variant,
-                samples,
-                steps,
-                blur,
-                pyramid,
-                bounce,
-                accumulate,
-                orbit,
-                half_resolution: false,
-            };
-            configs.push(off);
+            configs.push(Config::off(variant));
         }
         let counts: Vec<(usize, usize)> = match decl.sampler {
             Sampler::March => options.march.clone(),
@@ -70,18 +56,15 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
             let bounce = directional.then_some(base.sender_sky);
             for &(samples, steps) in &counts {
                 // The pyramid's and the other bounces' rows: one frame at the default resolution.
-                let (accumulate, orbit, half_resolution) = (1, 0.0, base.half_resolution);
                 let at = |blur, pyramid, bounce| Config {
                     mode,
-                    variant,
                     samples,
                     steps,
                     blur,
                     pyramid,
                     bounce,
-                    accumulate,
-                    orbit,
-                    half_resolution,
+                    half_resolution: base.half_resolution,
+                    ..Config::off(variant)
                 };
                 for (blur, half_resolution) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {
@@ -117,6 +100,22 @@ pub fn planned_configurations(options: &ReportOptions) -> usize {
 }
 
 impl Config {
+    /// Off under `variant`'s composite: no sampling pass, one still frame.
+    fn off(variant: Variant) -> Self {
+        Config {
+            mode: Mode::Off,
+            variant,
+            samples: 0,
+            steps: 0,
+            blur: false,
+            pyramid: false,
+            bounce: None,
+            accumulate: 1,
+            orbit: 0.0,
+            half_resolution: false,
+        }
+    }
+
     /// The renderer's settings for this configuration at `radius`. Every configuration renders
     /// the same lighting (the classic variant keeps its own composite, not its own ambient), so
     /// all meet one truth.

@@ -33,6 +33,30 @@ pub struct Entry {
     pub build: fn(&PassContext<'_>) -> Result<Box<dyn Pass>>,
 }
 
+impl Entry {
+    /// A pass's entry: its step, the rule for whether a plan has it, what it reads and writes,
+    /// and how it is built; it keeps no history and binds no group 1 of its own unless
+    /// [`Entry::binding`] and [`Entry::keeping`] say so.
+    pub const fn new(
+        step: Step,
+        runs: fn(&PlanFacts) -> bool,
+        io: fn(&Plan) -> io::PassIo,
+        build: fn(&PassContext<'_>) -> Result<Box<dyn Pass>>,
+    ) -> Self {
+        Self { step, runs, io, histories: no_history, group_shaders: &[], build }
+    }
+
+    /// The WGSL files whose bind group 1 is built from the pass's reads.
+    pub const fn binding(self, shaders: &'static [&'static str]) -> Self {
+        Self { group_shaders: shaders, ..self }
+    }
+
+    /// The histories the pass keeps in a mode.
+    pub const fn keeping(self, histories: fn(&ModeDecl) -> Vec<HistorySpec>) -> Self {
+        Self { histories, ..self }
+    }
+}
+
 /// For an [`Entry`] of a pass that keeps no history.
 pub fn no_history(_: &ModeDecl) -> Vec<HistorySpec> {
     Vec::new()
@@ -60,11 +84,20 @@ pub struct Recording<'a> {
     pub history: &'a History,
 }
 
-impl Recording<'_> {
+impl<'a> Recording<'a> {
     /// The viewport that places the image at its origin in the output.
     pub fn viewport(&self) -> [f32; 4] {
         let (w, h) = self.targets.size;
         [self.origin.0 as f32, self.origin.1 as f32, w as f32, h as f32]
+    }
+
+    /// A colour attachment for each of `writes` (see [`io::attachments`]), cleared or kept.
+    pub fn attachments(
+        &self,
+        writes: &[super::targets::TargetId],
+        clear: bool,
+    ) -> Vec<Option<wgpu::RenderPassColorAttachment<'a>>> {
+        io::attachments(writes, self.targets, self.history, self.output, clear)
     }
 }
 

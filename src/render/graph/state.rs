@@ -5,7 +5,8 @@
 //! pipeline, or clears both where the plan has no such step; `record` takes them ready.
 
 use super::io::{Inputs, Kind, PassIo};
-use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext};
+use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext, Preparation, Recording};
+use crate::render::modes::{Plan, Step};
 use crate::{shaders, Result};
 
 /// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
@@ -136,6 +137,23 @@ impl<K: PartialEq + Copy> PassState<K> {
         });
     }
 
+    /// A full-screen pass's whole `prepare`: nothing kept where the plan has no `step`;
+    /// otherwise the reads `io` declares bound as group 1 and the pipeline for the plan's key.
+    pub fn prepare_fullscreen(
+        &mut self,
+        device: &wgpu::Device,
+        p: &Preparation<'_>,
+        (step, io): (Step, fn(&Plan) -> PassIo),
+        key: impl FnOnce() -> K,
+        spec: impl FnOnce(K) -> PipelineSpec,
+    ) {
+        if !self.runs(p.plan.has(step)) {
+            return;
+        }
+        self.bind(device, &io(p.plan), &p.inputs);
+        self.ensure_fullscreen(device, key(), spec);
+    }
+
     /// Drops the pipeline and bind group: the plan has no step for this pass.
     pub fn clear(&mut self) {
         self.pipeline.clear();
@@ -163,6 +181,14 @@ impl<K: PartialEq + Copy> PassState<K> {
     ) {
         let (_, _, own) = self.ready();
         self.draw_with(rec, attachments, (groups.0, own, groups.1), viewport);
+    }
+
+    /// A full-screen pass's whole `record`: drawn over all of the targets `io` writes (cleared),
+    /// with the sky as group 2 where the pass reads it (`sky`).
+    pub fn record(&self, rec: Recording<'_>, io: fn(&Plan) -> PassIo, sky: bool) {
+        let attachments = rec.attachments(&io(rec.plan).writes, true);
+        let sky = sky.then_some(&rec.sky.bind_group);
+        self.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, sky), None);
     }
 
     /// [`PassState::draw`] with group 1 given: a pass that keeps one group per history parity.

@@ -1,12 +1,12 @@
 //! Denoise of the sampling pass's output (`shaders/blur.wgsl`): a 4x4 window, bilateral (plane
 //! distance and normal agreement) in the default variant, the classic box blur otherwise.
 
-use super::sampling::Outputs;
-use crate::render::graph::io::{PassIo, Read};
+use super::sampling::{filter_io, Outputs};
+use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::{Stage, ALBEDO, DEPTH, NORMAL};
+use crate::render::targets::Stage;
 use crate::render::variant::Blur;
 use crate::Result;
 
@@ -14,14 +14,9 @@ impl Step {
     pub const BLUR: Step = Step::new("blur");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::BLUR,
-    runs: |f| f.samples() && f.options.blur,
-    io: BlurPass::io,
-    histories: no_history,
-    group_shaders: &["blur.wgsl"],
-    build: |cx| Ok(Box::new(BlurPass::new(cx)?)),
-};
+pub const ENTRY: Entry =
+    Entry::new(Step::BLUR, |f| f.samples() && f.options.blur, BlurPass::io, |cx| Ok(Box::new(BlurPass::new(cx)?)))
+        .binding(&["blur.wgsl"]);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
@@ -40,22 +35,15 @@ impl BlurPass {
 
     /// The G-buffer, the parameters and the sampling output; the output blurred.
     pub fn io(plan: &Plan) -> PassIo {
-        let d = plan.decl.directional_occlusion;
-        let raw = Read::Target(Stage::Raw.target(d));
-        let reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter, raw];
-        PassIo { reads, attached: vec![], writes: vec![Stage::Blurred.target(d)] }
+        filter_io(plan, Stage::Raw, Stage::Blurred)
     }
 }
 
 impl Pass for BlurPass {
     /// Builds what the plan needs (nothing when it does not blur).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        if !self.state.runs(p.plan.has(Step::BLUR)) {
-            return;
-        }
-        self.state.bind(device, &Self::io(p.plan), &p.inputs);
-        let key = Key { outputs: Outputs::of(p.plan), bilateral: p.variant.decl().blur == Blur::Bilateral };
-        self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
+        let key = || Key { outputs: Outputs::of(p.plan), bilateral: p.variant.decl().blur == Blur::Bilateral };
+        self.state.prepare_fullscreen(device, p, (Step::BLUR, Self::io), key, |key| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(key.outputs.format().into())],
             constants: vec![("BILATERAL", flag(key.bilateral)), ("HAS_DO", flag(key.outputs.directional))],
@@ -63,13 +51,6 @@ impl Pass for BlurPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), None);
+        self.state.record(rec, Self::io, false);
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
-use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
@@ -19,14 +19,9 @@ impl Step {
     pub const COMPOSITE: Step = Step::new("composite");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::COMPOSITE,
-    runs: |_| true,
-    io: CompositePass::io,
-    histories: no_history,
-    group_shaders: &["composite.wgsl"],
-    build: |cx| Ok(Box::new(CompositePass::new(cx)?)),
-};
+pub const ENTRY: Entry =
+    Entry::new(Step::COMPOSITE, |_| true, CompositePass::io, |cx| Ok(Box::new(CompositePass::new(cx)?)))
+        .binding(&["composite.wgsl"]);
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -142,7 +137,7 @@ impl Pass for CompositePass {
         // Onto the lighting pass's direct light (kept), or cleared; a display plan at its origin.
         let keep = key.additive && !key.display;
         let writes = Self::io(rec.plan).writes;
-        let attachments = crate::render::graph::io::attachments(&writes, rec.targets, rec.history, rec.output, !keep);
+        let attachments = rec.attachments(&writes, !keep);
         let viewport = key.display.then(|| rec.viewport());
         self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), viewport);
     }

@@ -4,7 +4,7 @@
 
 use crate::render::graph::io::color_attachment;
 use crate::render::graph::io::{Kind, PassIo, Read};
-use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Place, TargetId, DEPTH};
@@ -14,15 +14,13 @@ impl Step {
     pub const DEPTH_PYRAMID: Step = Step::new("depth_pyramid");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::DEPTH_PYRAMID,
-    // The march's far steps read it, and only where DO is computed.
-    runs: |f| f.options.pyramid && f.decl.directional_occlusion,
-    io: DepthPyramidPass::io,
-    histories: no_history,
-    group_shaders: &[],
-    build: |cx| Ok(Box::new(DepthPyramidPass::new(cx)?)),
-};
+// The march's far steps read it, and only where DO is computed.
+pub const ENTRY: Entry = Entry::new(
+    Step::DEPTH_PYRAMID,
+    |f| f.options.pyramid && f.decl.directional_occlusion,
+    DepthPyramidPass::io,
+    |cx| Ok(Box::new(DepthPyramidPass::new(cx)?)),
+);
 
 /// The closest depth per block, as f32 bits, half the screen at level 0 and halving down: read
 /// by the march's far steps (the sampling pass and the sender-sky march).

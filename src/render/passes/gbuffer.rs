@@ -10,7 +10,7 @@ use wgpu::util::DeviceExt;
 use crate::gpu::Gpu;
 use crate::render::bindings::{sampler_entry, texture_entry, uniform_entry};
 use crate::render::graph::io::PassIo;
-use crate::render::graph::{no_history, Entry, Pass, PassContext, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::resources::scene::{upload_texture, Draw, SceneGpu};
 use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
@@ -23,14 +23,7 @@ impl Step {
     pub const GBUFFER: Step = Step::new("gbuffer");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::GBUFFER,
-    runs: |_| true,
-    io: GBufferPass::io,
-    histories: no_history,
-    group_shaders: &[],
-    build: |cx| Ok(Box::new(GBufferPass::new(cx)?)),
-};
+pub const ENTRY: Entry = Entry::new(Step::GBUFFER, |_| true, GBufferPass::io, |cx| Ok(Box::new(GBufferPass::new(cx)?)));
 
 pub struct GBufferPass {
     pub material_layout: wgpu::BindGroupLayout,

@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 
 use crate::render::graph::io::color_attachment;
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::{no_history, Entry};
+use crate::render::graph::Entry;
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT, OUTPUT};
@@ -18,14 +18,9 @@ impl Step {
     pub const LIGHT_CUBES: Step = Step::new("light_cubes");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::LIGHT_CUBES,
-    runs: |f| f.lights(),
-    io: LightCubesPass::io,
-    histories: no_history,
-    group_shaders: &["light_cubes.wgsl"],
-    build: |cx| Ok(Box::new(LightCubesPass::new(cx)?)),
-};
+pub const ENTRY: Entry =
+    Entry::new(Step::LIGHT_CUBES, |f| f.lights(), LightCubesPass::io, |cx| Ok(Box::new(LightCubesPass::new(cx)?)))
+        .binding(&["light_cubes.wgsl"]);
 
 /// The 36 corners of a unit cube's 12 triangles (±1 on each axis).
 fn cube_corners() -> Vec<[f32; 3]> {

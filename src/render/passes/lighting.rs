@@ -8,7 +8,7 @@
 use super::sender_sky::SENDER_SKY;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_FORMAT, DEPTH, HDR, HDR_FORMAT, NORMAL};
@@ -18,16 +18,15 @@ impl Step {
     pub const LIGHTING: Step = Step::new("lighting");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::LIGHTING,
-    // Where a DO mode bounces light and there is light to bounce: point lights, or the sky when
-    // the senders take it.
-    runs: |f| f.bounces() && (f.lights() || f.sender_sky() != SenderSky::Off),
-    io: LightingPass::io,
-    histories: no_history,
-    group_shaders: &["lighting.wgsl"],
-    build: |cx| Ok(Box::new(LightingPass::new(cx)?)),
-};
+// Where a DO mode bounces light and there is light to bounce: point lights, or the sky when
+// the senders take it.
+pub const ENTRY: Entry = Entry::new(
+    Step::LIGHTING,
+    |f| f.bounces() && (f.lights() || f.sender_sky() != SenderSky::Off),
+    LightingPass::io,
+    |cx| Ok(Box::new(LightingPass::new(cx)?)),
+)
+.binding(&["lighting.wgsl"]);
 
 /// The shader variant a plan needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,11 +67,8 @@ impl LightingPass {
 
 impl Pass for LightingPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        if !self.state.runs(p.plan.has(Step::LIGHTING)) {
-            return;
-        }
-        self.state.bind(device, &Self::io(p.plan), &p.inputs);
-        self.state.ensure_fullscreen(device, Key::of(p.plan), |key| {
+        let key = || Key::of(p.plan);
+        self.state.prepare_fullscreen(device, p, (Step::LIGHTING, Self::io), key, |key| {
             let hdr = key.lights.then(|| HDR_FORMAT.into());
             PipelineSpec {
                 entry: if key.lights { "fs_main" } else { "fs_bounce" },
@@ -83,13 +79,6 @@ impl Pass for LightingPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), None);
+        self.state.record(rec, Self::io, false);
     }
 }

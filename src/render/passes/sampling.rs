@@ -7,7 +7,7 @@
 use super::depth_pyramid::PYRAMID;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
-use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Stage, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
@@ -19,14 +19,9 @@ impl Step {
     pub const SAMPLING: Step = Step::named_by_mode("sampling");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::SAMPLING,
-    runs: |f| f.samples(),
-    io: SamplingPass::io,
-    histories: no_history,
-    group_shaders: &["points.wgsl", "march.wgsl"],
-    build: |cx| Ok(Box::new(SamplingPass::new(cx)?)),
-};
+pub const ENTRY: Entry =
+    Entry::new(Step::SAMPLING, |f| f.samples(), SamplingPass::io, |cx| Ok(Box::new(SamplingPass::new(cx)?)))
+        .binding(&["points.wgsl", "march.wgsl"]);
 
 /// What a plan's sampling (and blur) pass produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,6 +44,20 @@ impl Outputs {
             AO_FORMAT
         }
     }
+}
+
+/// What a filter of the sampling chain (the upsample, the blur) reads and writes: the G-buffer,
+/// the filter's parameters and the chain's stage `from`; the stage `to`.
+pub fn filter_io(plan: &Plan, from: Stage, to: Stage) -> PassIo {
+    let d = plan.decl.directional_occlusion;
+    let reads = vec![
+        Read::Target(ALBEDO),
+        Read::Target(NORMAL),
+        Read::Target(DEPTH),
+        Read::Filter,
+        Read::Target(from.target(d)),
+    ];
+    PassIo { reads, attached: vec![], writes: vec![to.target(d)] }
 }
 
 /// What distinguishes one sampling pipeline from another.
@@ -151,13 +160,6 @@ impl Pass for SamplingPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), None);
+        self.state.record(rec, Self::io, true);
     }
 }

@@ -6,7 +6,7 @@
 use super::sampling::SamplingPass;
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{no_history, Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{Place, TargetId, DO_FORMAT};
@@ -16,14 +16,13 @@ impl Step {
     pub const SENDER_SKY: Step = Step::new("sender_sky");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::SENDER_SKY,
-    runs: |f| f.sender_sky() == SenderSky::March,
-    io: SenderSkyPass::io,
-    histories: no_history,
-    group_shaders: &["march.wgsl"],
-    build: |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
-};
+pub const ENTRY: Entry = Entry::new(
+    Step::SENDER_SKY,
+    |f| f.sender_sky() == SenderSky::March,
+    SenderSkyPass::io,
+    |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
+)
+.binding(&["march.wgsl"]);
 
 /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a), at
 /// half resolution: read by the lighting pass.
@@ -47,11 +46,8 @@ impl SenderSkyPass {
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        if !self.state.runs(p.plan.has(Step::SENDER_SKY)) {
-            return;
-        }
-        self.state.bind(device, &Self::io(p.plan), &p.inputs);
-        self.state.ensure_fullscreen(device, p.plan.pyramid, |pyramid| PipelineSpec {
+        let key = || p.plan.pyramid;
+        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |pyramid| PipelineSpec {
             entry: "fs_sender",
             targets: vec![Some(DO_FORMAT.into())],
             constants: vec![("HAS_AO", 0.0), ("HAS_DO", 1.0), ("INDIRECT", 0.0), ("USE_PYRAMID", flag(pyramid))],
@@ -59,13 +55,6 @@ impl Pass for SenderSkyPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), None);
+        self.state.record(rec, Self::io, true);
     }
 }

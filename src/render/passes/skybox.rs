@@ -2,7 +2,7 @@
 //! composite draws the sky itself). The sky's GPU resources are `resources/sky.rs`.
 
 use crate::render::graph::io::PassIo;
-use crate::render::graph::{fullscreen_pipeline, no_history, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
 use crate::render::graph::{Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT};
@@ -12,15 +12,9 @@ impl Step {
     pub const SKYBOX: Step = Step::new("skybox");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::SKYBOX,
-    // A display plan's composite draws the sky itself.
-    runs: |f| !f.options.display,
-    io: SkyboxPass::io,
-    histories: no_history,
-    group_shaders: &[],
-    build: |cx| Ok(Box::new(SkyboxPass::new(cx)?)),
-};
+// A display plan's composite draws the sky itself.
+pub const ENTRY: Entry =
+    Entry::new(Step::SKYBOX, |f| !f.options.display, SkyboxPass::io, |cx| Ok(Box::new(SkyboxPass::new(cx)?)));
 
 pub struct SkyboxPass {
     pipeline: wgpu::RenderPipeline,
@@ -58,13 +52,7 @@ impl SkyboxPass {
 
 impl Pass for SkyboxPass {
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            false,
-        );
+        let attachments = rec.attachments(&Self::io(rec.plan).writes, false);
         FullscreenPass {
             label: "skybox_pass",
             attachments: &attachments,

@@ -17,14 +17,14 @@ impl Step {
     pub const TEMPORAL: Step = Step::new("temporal");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::TEMPORAL,
-    runs: |f| f.samples() && f.options.accumulate,
-    io: TemporalPass::io,
-    histories: TemporalPass::histories,
-    group_shaders: &["temporal.wgsl"],
-    build: |cx| Ok(Box::new(TemporalPass::new(cx)?)),
-};
+pub const ENTRY: Entry = Entry::new(
+    Step::TEMPORAL,
+    |f| f.samples() && f.options.accumulate,
+    TemporalPass::io,
+    |cx| Ok(Box::new(TemporalPass::new(cx)?)),
+)
+.binding(&["temporal.wgsl"])
+.keeping(TemporalPass::histories);
 
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
@@ -108,13 +108,7 @@ impl Pass for TemporalPass {
         let parity = occlusion.parity();
         debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
         let groups = self.groups.as_ref().expect("the temporal pass recorded before `prepare`");
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
+        let attachments = rec.attachments(&Self::io(rec.plan).writes, true);
         let state = if self.camera_moved { &self.state } else { &self.still };
         state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, &groups[parity], None), None);
     }

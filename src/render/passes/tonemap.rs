@@ -6,7 +6,7 @@
 use super::composite::occlusion_reads;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{no_history, Entry};
+use crate::render::graph::Entry;
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
@@ -17,15 +17,10 @@ impl Step {
     pub const TONEMAP: Step = Step::new("tonemap");
 }
 
-pub const ENTRY: Entry = Entry {
-    step: Step::TONEMAP,
-    // A display plan's composite tone-maps itself.
-    runs: |f| !f.options.display,
-    io: TonemapPass::io,
-    histories: no_history,
-    group_shaders: &["tonemap.wgsl"],
-    build: |cx| Ok(Box::new(TonemapPass::new(cx)?)),
-};
+// A display plan's composite tone-maps itself.
+pub const ENTRY: Entry =
+    Entry::new(Step::TONEMAP, |f| !f.options.display, TonemapPass::io, |cx| Ok(Box::new(TonemapPass::new(cx)?)))
+        .binding(&["tonemap.wgsl"]);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
@@ -71,32 +66,27 @@ impl Pass for TonemapPass {
     /// Builds the pipeline for the plan and view (if it changed) and the bind group for `targets`.
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { plan, view, .. } = *p;
-        if !self.state.runs(plan.has(Step::TONEMAP)) {
-            return;
-        }
-        self.state.bind(device, &Self::io(plan), &p.inputs);
-        let key = Key::of(plan, view);
         let output = self.output;
-        self.state.ensure_fullscreen(device, key, |key| PipelineSpec {
-            entry: "fs_main",
-            targets: vec![Some(output.into())],
-            constants: vec![
-                ("OUTPUT_SRGB", flag(output.is_srgb())),
-                ("VIEW", key.view as f64),
-                ("HAS_AO", flag(key.ao)),
-                ("HAS_DO", flag(key.directional)),
-            ],
-        });
+        self.state.prepare_fullscreen(
+            device,
+            p,
+            (Step::TONEMAP, Self::io),
+            || Key::of(plan, view),
+            |key| PipelineSpec {
+                entry: "fs_main",
+                targets: vec![Some(output.into())],
+                constants: vec![
+                    ("OUTPUT_SRGB", flag(output.is_srgb())),
+                    ("VIEW", key.view as f64),
+                    ("HAS_AO", flag(key.ao)),
+                    ("HAS_DO", flag(key.directional)),
+                ],
+            },
+        );
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = crate::render::graph::io::attachments(
-            &Self::io(rec.plan).writes,
-            rec.targets,
-            rec.history,
-            rec.output,
-            true,
-        );
+        let attachments = rec.attachments(&Self::io(rec.plan).writes, true);
         let viewport = Some(rec.viewport());
         self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), viewport);
     }

@@ -174,7 +174,9 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     });
     // The fly camera: F, then W held for a moment and a drag to look around; F12 writes the
     // screenshot and logs the `ssdo capture` command of that view, which must render the same.
+    // Each step waits for the viewer to have taken the last: the keys go to a busy window.
     xdotool(&display, &["key", "--clearmodifiers", "f"]);
+    wait_for("the fly camera to be on", Duration::from_secs(60), || log(shots2.path()).contains("fly camera on"));
     xdotool(&display, &["keydown", "w"]);
     std::thread::sleep(Duration::from_millis(400));
     xdotool(&display, &["keyup", "w"]);
@@ -222,7 +224,11 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     assert!(status.success());
 
     // The logged command of the flown view renders the flown screenshot.
-    assert!(command.contains("--eye ") && command.contains("--look-at ") && !command.contains('\''), "{command}");
+    assert!(
+        command.contains("--eye ") && command.contains("--look-at ") && !command.contains('\''),
+        "{command}\nthe viewer's stderr:\n{}",
+        log(shots2.path())
+    );
     let flown_out = tempfile::tempdir().unwrap();
     let args: Vec<&str> = command.split_whitespace().collect();
     let status = ssdo().args(&args).args(["--out", flown_out.path().to_str().unwrap()]).status().unwrap();

@@ -53,13 +53,20 @@ fn march(radius: f32) -> Settings {
     }
 }
 
-#[test]
-fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
-    let Some(gpu) = gpu() else { return };
+/// A builder holding a white floor 40 wide at y = 0, and its material.
+fn white_floor() -> (MeshBuilder, usize) {
     let v = Vec3::new;
     let mut b = MeshBuilder::default();
     let m = b.material(Material::plain("white", [0.8; 3]));
     b.quad(m, [v(-20.0, 0.0, 20.0), v(20.0, 0.0, 20.0), v(20.0, 0.0, -20.0), v(-20.0, 0.0, -20.0)]);
+    (b, m)
+}
+
+#[test]
+fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
+    let Some(gpu) = gpu() else { return };
+    let v = Vec3::new;
+    let (mut b, m) = white_floor();
     // A wall in the plane z = 0, 3 high and 20 wide, facing +z.
     let (h, d, radius) = (3.0f32, 0.9f32, 0.3f32);
     b.quad(m, [v(-10.0, 0.0, 0.0), v(10.0, 0.0, 0.0), v(10.0, h, 0.0), v(-10.0, h, 0.0)]);
@@ -90,9 +97,7 @@ fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
 fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
     let Some(gpu) = gpu() else { return };
     let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let m = b.material(Material::plain("white", [0.8; 3]));
-    b.quad(m, [v(-20.0, 0.0, 20.0), v(20.0, 0.0, 20.0), v(20.0, 0.0, -20.0), v(-20.0, 0.0, -20.0)]);
+    let (mut b, m) = white_floor();
     b.cuboid(m, v(-0.03, 0.0, -0.03), v(0.03, 2.0, 0.03), false);
     let scene = Scene::new(b.build("pole").unwrap(), 0, 1);
     let sky = Skybox::constant(Vec3::ONE);

@@ -4,7 +4,7 @@ use crate::common;
 
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
-use ssdo::reference::{ReferenceScene, TraceSettings};
+use ssdo::reference::{Estimate, ReferenceScene, Surface, TraceSettings};
 use ssdo::render::{Mode, Variant};
 use ssdo::report::{self, RadiusChoice, ReportOptions};
 use ssdo::scene::builtin::{self, MeshBuilder};
@@ -16,7 +16,7 @@ fn settings(radius: f32, spp: u32) -> TraceSettings {
 
 /// The surface the reference sees looking down at `point` from above. The probe is tilted a
 /// little: a ray parallel to two axes can slip past a perfectly flat BVH box (obvhs's slab test).
-fn floor_point(scene: &ReferenceScene, point: Vec3) -> ssdo::reference::Surface {
+fn floor_point(scene: &ReferenceScene, point: Vec3) -> Surface {
     let dir = Vec3::new(1e-3, -1.0, 1.3e-3).normalize();
     scene.trace(point - dir, dir, 10.0).expect("the floor is there")
 }
@@ -51,14 +51,7 @@ fn floor_at_the_foot_of_a_large_wall_has_ao_one_half() {
     b.quad(m, [v(0.0, 0.0, -100.0), v(0.0, 0.0, 100.0), v(0.0, 100.0, 100.0), v(0.0, 100.0, -100.0)]);
     let scene = ReferenceScene::new(&b.build("wall").unwrap());
     let surface = floor_point(&scene, v(1e-4, 0.0, 0.0));
-    let e = scene.estimate(
-        &surface,
-        &[],
-        &rig(),
-        &Skybox::constant(Vec3::ONE),
-        &settings(10.0, 4096),
-        &mut StdRng::seed_from_u64(3),
-    );
+    let e = under_a_white_sky(&scene, &surface, 10.0, 3);
     assert!(e.ao_error > 0.0 && e.ao_error < 0.01, "standard error {}", e.ao_error);
     assert!((e.ao - 0.5).abs() <= 3.0 * e.ao_error, "AO {} vs 0.5 ± 3σ (σ = {})", e.ao, e.ao_error);
     // Half the cosine-weighted hemisphere sees the sky.
@@ -68,14 +61,7 @@ fn floor_at_the_foot_of_a_large_wall_has_ao_one_half() {
     // A receiver 3 units from the wall, with a radius of 1: the truth still sees the wall (any
     // distance), the within-R diagnostic does not.
     let far = floor_point(&scene, v(3.0, 0.0, 0.0));
-    let e = scene.estimate(
-        &far,
-        &[],
-        &rig(),
-        &Skybox::constant(Vec3::ONE),
-        &settings(1.0, 4096),
-        &mut StdRng::seed_from_u64(4),
-    );
+    let e = under_a_white_sky(&scene, &far, 1.0, 4);
     // The form factor from a floor point at distance d to an infinitely long wall of height h
     // (Hottel's crossed strings): (1 − d/√(d² + h²))/2; d = 3, h = 100 hides 0.485 of the sky.
     let hidden = 0.5 * (1.0 - 3.0 / (9.0f32 + 100.0 * 100.0).sqrt());
@@ -114,19 +100,12 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     let out = tempfile::tempdir().unwrap();
     let options = ReportOptions {
         scene: "open".into(),
-        model: None,
-        skybox: None,
         size: (160, 120),
         samples: vec![8, 64],
         march: vec![(1, 4), (4, 16)],
-        radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 64,
-        frames: 1,
-        accumulate: vec![1],
-        orbit: 0.0,
         lights: 8,
-        seed: 1,
-        out: out.path().to_path_buf(),
+        ..tiny_report(out.path(), None, None)
     };
     let result = report::run(&gpu, &options, &|_| {}).unwrap();
     assert!(result.reference.mismatched < 300, "silhouette pixels left out: {}", result.reference.mismatched);
@@ -234,20 +213,12 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
     builtin::write_skybox(&Skybox::constant(Vec3::new(0.4, 0.5, 0.6)), &sky_dir, true).unwrap();
     let error = |lights: usize| {
         let options = ReportOptions {
-            scene: "cornell".into(),
-            model: Some(dir.path().join("plane.obj")),
-            skybox: Some(sky_dir.clone()),
             size: (96, 72),
             samples: vec![16],
             march: vec![(2, 8)],
-            radii: vec![RadiusChoice::Times(1.0)],
             samples_per_pixel: 8,
-            frames: 1,
-            accumulate: vec![1],
-            orbit: 0.0,
             lights,
-            seed: 1,
-            out: dir.path().join("out"),
+            ..tiny_report(&dir.path().join("out"), Some(dir.path().join("plane.obj")), Some(sky_dir.clone()))
         };
         let report = report::run(&gpu, &options, &|_| {}).unwrap();
         // One row per resolution, named by its settings: the rows come sorted by time, which
@@ -279,6 +250,18 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
             );
         }
     }
+}
+
+/// The truth at `surface` under a white sky, no lights, within `radius`, from 4096 rays.
+fn under_a_white_sky(scene: &ReferenceScene, surface: &Surface, radius: f32, seed: u64) -> Estimate {
+    scene.estimate(
+        surface,
+        &[],
+        &rig(),
+        &Skybox::constant(Vec3::ONE),
+        &settings(radius, 4096),
+        &mut StdRng::seed_from_u64(seed),
+    )
 }
 
 fn tiny_report(
