@@ -2,7 +2,8 @@
 //! adapter has timestamp queries), reduced to medians, and its report.
 
 use crate::gpu::Gpu;
-use crate::render::{Mode, Renderer, Settings};
+use crate::render::graph::Role;
+use crate::render::{passes, Mode, Renderer, Settings};
 use crate::scene::OrbitCamera;
 use crate::Result;
 
@@ -15,6 +16,20 @@ pub struct Measurement {
     pub wall_ms: f64,
     /// GPU milliseconds per pass, by name; empty without timestamp queries.
     pub passes: Vec<(&'static str, f64)>,
+    /// The passes' medians summed by what they are for (sampling, denoise, rest), every role
+    /// listed; empty without timestamp queries.
+    pub split: Vec<(Role, f64)>,
+}
+
+impl Measurement {
+    /// The denoise passes' time over the sampling passes' (`None` without both, as in Off).
+    pub fn denoise_over_sampling(&self) -> Option<f64> {
+        let of = |role| self.split.iter().find(|(r, _)| *r == role).map(|(_, ms)| *ms);
+        match (of(Role::Denoise), of(Role::Sampling)) {
+            (Some(denoise), Some(sampling)) if sampling > 0.0 => Some(denoise / sampling),
+            _ => None,
+        }
+    }
 }
 
 /// What `ssdo bench` measured: every mode's frame and pass times with what they were measured
@@ -47,10 +62,13 @@ impl BenchReport {
             .map(|(mode, r)| {
                 let passes: serde_json::Map<String, serde_json::Value> =
                     r.passes.iter().map(|(n, ms)| (n.to_string(), serde_json::json!(ms))).collect();
-                (
-                    mode.name().to_string(),
-                    serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes }),
-                )
+                let mut split: serde_json::Map<String, serde_json::Value> =
+                    r.split.iter().map(|(role, ms)| (role.name().to_string(), serde_json::json!(ms))).collect();
+                if !r.split.is_empty() {
+                    split.insert("denoise_over_sampling".into(), serde_json::json!(r.denoise_over_sampling()));
+                }
+                let m = serde_json::json!({ "frame_ms": r.frame_ms, "wall_ms": r.wall_ms, "passes": passes, "split": split });
+                (mode.name().to_string(), m)
             })
             .collect();
         let (ssdo_over_ssao, both_over_ssdo) = self.ratios();
@@ -95,6 +113,11 @@ impl BenchReport {
                 r.wall_ms,
                 passes.join(", ")
             );
+            if !r.split.is_empty() {
+                let split: Vec<String> = r.split.iter().map(|(role, ms)| format!("{} {ms:.2}", role.name())).collect();
+                let ratio = r.denoise_over_sampling().map_or("—".to_string(), |x| format!("{x:.2}"));
+                let _ = writeln!(out, "       split: {}; denoise/sampling {ratio}", split.join(", "));
+            }
         }
         let (ssdo_over_ssao, both_over_ssdo) = self.ratios();
         let _ = writeln!(out, "SSDO/SSAO frame-time ratio {ssdo_over_ssao:.3}; Both/SSDO {both_over_ssdo:.3}");
@@ -150,10 +173,18 @@ pub fn measure(
         }
     }
     gpu.check()?;
-    let passes = if per_pass.iter().all(|p| p.is_empty()) {
+    let passes: Vec<(&'static str, f64)> = if per_pass.iter().all(|p| p.is_empty()) {
         Vec::new()
     } else {
         names.into_iter().zip(per_pass).map(|(n, mut v)| (n, median(&mut v))).collect()
     };
-    Ok(Measurement { frame_ms: median(&mut totals), wall_ms: median(&mut walls), passes })
+    let roles: Vec<Role> = renderer.plan().steps.iter().map(|s| passes::role(*s)).collect();
+    let split = if passes.is_empty() {
+        Vec::new()
+    } else {
+        let time =
+            |role| passes.iter().zip(&roles).filter(|(_, r)| **r == role).fold(0.0, |sum, ((_, ms), _)| sum + ms);
+        Role::ALL.iter().map(|&role| (role, time(role))).collect()
+    };
+    Ok(Measurement { frame_ms: median(&mut totals), wall_ms: median(&mut walls), passes, split })
 }

@@ -31,6 +31,30 @@ pub struct Entry {
     /// makes its own groups): a test holds the two against each other.
     pub group_shaders: &'static [&'static str],
     pub build: fn(&PassContext<'_>) -> Result<Box<dyn Pass>>,
+    /// What the pass is for, as `bench` splits a frame.
+    pub role: Role,
+}
+
+/// What a pass is for, as `bench` splits a frame's time: making the occlusion samples (the
+/// sampling pass and what only it reads: the depth pyramid, the senders' sky), cleaning them
+/// (upsample, blur, temporal accumulation), or the rest (geometry, lighting, compositing, display).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    Sampling,
+    Denoise,
+    Rest,
+}
+
+impl Role {
+    pub const ALL: [Role; 3] = [Role::Sampling, Role::Denoise, Role::Rest];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Role::Sampling => "sampling",
+            Role::Denoise => "denoise",
+            Role::Rest => "rest",
+        }
+    }
 }
 
 impl Entry {
@@ -43,7 +67,12 @@ impl Entry {
         io: fn(&Plan) -> io::PassIo,
         build: fn(&PassContext<'_>) -> Result<Box<dyn Pass>>,
     ) -> Self {
-        Self { step, runs, io, histories: no_history, group_shaders: &[], build }
+        Self { step, runs, io, histories: no_history, group_shaders: &[], build, role: Role::Rest }
+    }
+
+    /// What the pass is for, when it is not [`Role::Rest`].
+    pub const fn role(self, role: Role) -> Self {
+        Self { role, ..self }
     }
 
     /// The WGSL files whose bind group 1 is built from the pass's reads.

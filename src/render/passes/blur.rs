@@ -4,7 +4,7 @@
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::Stage;
 use crate::render::variant::Blur;
@@ -16,7 +16,8 @@ impl Step {
 
 pub const ENTRY: Entry =
     Entry::new(Step::BLUR, |f| f.samples() && f.options.blur, BlurPass::io, |cx| Ok(Box::new(BlurPass::new(cx)?)))
-        .binding(&["blur.wgsl"]);
+        .binding(&["blur.wgsl"])
+        .role(Role::Denoise);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {

@@ -4,7 +4,7 @@
 
 use crate::render::graph::io::color_attachment;
 use crate::render::graph::io::{Kind, PassIo, Read};
-use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass, Role};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Place, TargetId, DEPTH};
@@ -20,7 +20,8 @@ pub const ENTRY: Entry = Entry::new(
     |f| f.options.pyramid && f.decl.directional_occlusion,
     DepthPyramidPass::io,
     |cx| Ok(Box::new(DepthPyramidPass::new(cx)?)),
-);
+)
+.role(Role::Sampling);
 
 /// The closest depth per block, as f32 bits, half the screen at level 0 and halving down: read
 /// by the march's far steps (the sampling pass and the sender-sky march).

@@ -20,7 +20,7 @@ pub mod upsample;
 
 use crate::gpu::Gpu;
 use crate::render::graph::io::PassIo;
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Mode, Plan, PlanFacts, PlanOptions, SceneFeatures, Step};
 use crate::render::resources::scene::SceneGpu;
 use crate::render::targets::TargetId;
@@ -55,6 +55,11 @@ pub const PASSES: [Entry; 12] = [
     // HDR to display (HDR plans).
     tonemap::ENTRY,
 ];
+
+/// What `step`'s pass is for, as `bench` splits a frame.
+pub fn role(step: Step) -> Role {
+    entry(step).role
+}
 
 fn entry(step: Step) -> &'static Entry {
     PASSES.iter().find(|e| e.step == step).unwrap_or_else(|| panic!("no pass for step {}", step.name()))

@@ -7,7 +7,7 @@
 use super::depth_pyramid::PYRAMID;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
-use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
+use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, Role};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Stage, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
@@ -21,7 +21,8 @@ impl Step {
 
 pub const ENTRY: Entry =
     Entry::new(Step::SAMPLING, |f| f.samples(), SamplingPass::io, |cx| Ok(Box::new(SamplingPass::new(cx)?)))
-        .binding(&["points.wgsl", "march.wgsl"]);
+        .binding(&["points.wgsl", "march.wgsl"])
+        .role(Role::Sampling);
 
 /// What a plan's sampling (and blur) pass produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,7 +6,7 @@
 use super::sampling::SamplingPass;
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{Place, TargetId, DO_FORMAT};
@@ -22,7 +22,8 @@ pub const ENTRY: Entry = Entry::new(
     SenderSkyPass::io,
     |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
 )
-.binding(&["march.wgsl"]);
+.binding(&["march.wgsl"])
+.role(Role::Sampling);
 
 /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a), at
 /// half resolution: read by the lighting pass.

@@ -7,7 +7,7 @@
 use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{ModeDecl, Plan, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
 use crate::render::targets::{Stage, ALBEDO, DEPTH, NORMAL};
@@ -24,7 +24,8 @@ pub const ENTRY: Entry = Entry::new(
     |cx| Ok(Box::new(TemporalPass::new(cx)?)),
 )
 .binding(&["temporal.wgsl"])
-.keeping(TemporalPass::histories);
+.keeping(TemporalPass::histories)
+.role(Role::Denoise);
 
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame

@@ -310,3 +310,55 @@ fn a_declaration_that_drops_a_read_fails_the_checks() {
     let error = reads_are_written_first(&io).unwrap_err();
     assert!(error.contains("blur reads ao_raw"), "{error}");
 }
+
+/// `bench`'s split follows the data: in every plan the other sampling passes come before the
+/// sampling pass and feed it (directly, or through the lighting pass's bounce), a denoise pass reads what a sampling or denoise pass wrote (it
+/// cleans samples, not the G-buffer alone), and a plan without a sampling pass has neither.
+#[test]
+fn each_pass_role_is_what_its_reads_and_writes_make_it() {
+    for plan in all_plans() {
+        let io = plan.io();
+        let mut chain: Vec<TargetId> = Vec::new();
+        let mut seen_sampling = false;
+        // What the sampling pass reads, directly or through the steps before it.
+        let mut feeds_sampling = Step::SAMPLING.io(&plan).reads;
+        for (_, step_io) in io.iter().rev().skip_while(|(s, _)| *s != Step::SAMPLING).skip(1) {
+            if step_io.writes.iter().any(|w| feeds_sampling.contains(w)) {
+                feeds_sampling.extend(&step_io.reads);
+            }
+        }
+        for (step, step_io) in &io {
+            match role(*step) {
+                Role::Sampling => {
+                    assert!(plan.has(Step::SAMPLING), "{}: {} in a plan without sampling", plan.mode, step.name());
+                    if *step != Step::SAMPLING {
+                        assert!(
+                            !seen_sampling && step_io.writes.iter().any(|w| feeds_sampling.contains(w)),
+                            "{}: {} does not feed the sampling pass",
+                            plan.mode,
+                            step.name()
+                        );
+                    }
+                    seen_sampling |= *step == Step::SAMPLING;
+                    chain.extend(&step_io.writes);
+                }
+                Role::Denoise => {
+                    assert!(seen_sampling, "{}: {} before the sampling pass", plan.mode, step.name());
+                    assert!(
+                        step_io.reads.iter().any(|r| chain.contains(r)),
+                        "{}: {} reads no samples: {:?}",
+                        plan.mode,
+                        step.name(),
+                        step_io.reads
+                    );
+                    chain.extend(&step_io.writes);
+                }
+                Role::Rest => {}
+            }
+        }
+    }
+    assert_eq!(
+        PASSES.iter().filter(|e| e.role == Role::Denoise).map(|e| e.step.name()).collect::<Vec<_>>(),
+        ["upsample", "blur", "temporal"]
+    );
+}

@@ -6,7 +6,7 @@
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::Stage;
 use crate::Result;
@@ -21,7 +21,8 @@ pub const ENTRY: Entry = Entry::new(
     UpsamplePass::io,
     |cx| Ok(Box::new(UpsamplePass::new(cx)?)),
 )
-.binding(&["upsample.wgsl"]);
+.binding(&["upsample.wgsl"])
+.role(Role::Denoise);
 
 pub struct UpsamplePass {
     state: PassState<Outputs>,

@@ -114,6 +114,22 @@ fn bench_json_has_every_mode_and_pass() {
         assert!(m["frame_ms"].as_f64().is_some_and(|ms| ms > 0.0), "{mode}: {m}");
         if json["timing"] == "timestamp" {
             assert!(m["passes"]["gbuffer"].as_f64().is_some(), "{mode}: {m}");
+            // The split adds up to the passes: the sampling passes, the denoise passes, the rest.
+            let sum = |v: &serde_json::Value| v.as_object().unwrap().values().filter_map(|x| x.as_f64()).sum::<f64>();
+            let split = &m["split"];
+            let parts = ["sampling", "denoise", "rest"].map(|k| split[k].as_f64().expect("every role"));
+            assert!((parts.iter().sum::<f64>() - sum(&m["passes"])).abs() < 1e-6, "{mode}: {m}");
+            assert!(parts[2] >= m["passes"]["gbuffer"].as_f64().unwrap(), "{mode}: the G-buffer is in the rest: {m}");
+            let denoise = m["passes"]["blur"].as_f64().unwrap_or(0.0)
+                + m["passes"]["upsample"].as_f64().unwrap_or(0.0)
+                + m["passes"]["temporal"].as_f64().unwrap_or(0.0);
+            assert!((parts[1] - denoise).abs() < 1e-6, "{mode}: denoise is blur + upsample + temporal: {m}");
+            if mode == "off" {
+                assert!(parts[0] == 0.0 && split["denoise_over_sampling"].is_null(), "{m}");
+            } else {
+                let ratio = split["denoise_over_sampling"].as_f64().expect("a sampled mode has the ratio");
+                assert!((ratio - parts[1] / parts[0]).abs() < 1e-9, "{mode}: {m}");
+            }
         }
     }
     assert!(json["modes"]["both"]["passes"].get("ssao_ssdo").is_some() || json["timing"] != "timestamp");
