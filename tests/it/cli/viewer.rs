@@ -174,9 +174,24 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
     });
     // The fly camera: F, then W held for a moment and a drag to look around; F12 writes the
     // screenshot and logs the `ssdo capture` command of that view, which must render the same.
-    // Each step waits for the viewer to have taken the last: the keys go to a busy window.
-    xdotool(&display, &["key", "--clearmodifiers", "f"]);
-    wait_for("the fly camera to be on", Duration::from_secs(60), || log(shots2.path()).contains("fly camera on"));
+    // Each step waits for the viewer to have taken the last: the keys go to a busy window. F is
+    // pressed until the viewer's log says the fly camera is on (each toggle is logged), so a
+    // press that comes late or not at all is seen rather than assumed.
+    let toggles = || {
+        log(shots2.path()).lines().filter(|l| l.contains("fly camera o")).map(|l| l.ends_with("on")).collect::<Vec<_>>()
+    };
+    for attempt in 0.. {
+        assert!(attempt < 4, "the fly camera did not turn on; the viewer's stderr:\n{}", log(shots2.path()));
+        let before = toggles().len();
+        xdotool(&display, &["key", "--clearmodifiers", "f"]);
+        let start = Instant::now();
+        while toggles().len() == before && start.elapsed() < Duration::from_secs(20) {
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        if toggles().last() == Some(&true) {
+            break;
+        }
+    }
     xdotool(&display, &["keydown", "w"]);
     std::thread::sleep(Duration::from_millis(400));
     xdotool(&display, &["keyup", "w"]);
