@@ -222,8 +222,8 @@ fn the_targets_counted_before_allocation_are_the_targets_allocated() {
     for mode in Mode::ALL {
         for keep_hdr in [false, true] {
             let settings = Settings { mode, ..Settings::default() };
-            let mut renderer = common::renderer(&gpu, &scene, &sky, (97, 61), settings);
-            renderer.keep_hdr(&gpu, keep_hdr);
+            let mut renderer = common::renderer(gpu, &scene, &sky, (97, 61), settings);
+            renderer.keep_hdr(gpu, keep_hdr);
             let allocated: u64 = renderer.targets().allocations().iter().map(|(_, b)| b).sum();
             let counted = ssdo::render::targets::Targets::bytes_for((97, 61), &renderer.plan().targets());
             assert_eq!(counted, allocated, "{mode:?}, HDR kept: {keep_hdr}");

@@ -26,33 +26,33 @@ fn resizes_and_sky_swaps_leave_memory_flat() {
     let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
     let skies = [Skybox::from_fn("day", 32, builtin::day_sky), Skybox::constant(Vec3::new(0.2, 0.3, 0.9))];
     let mut renderer =
-        common::renderer(&gpu, &scene, &skies[0], (64, 48), Settings { mode: Mode::Both, ..Settings::default() });
+        common::renderer(gpu, &scene, &skies[0], (64, 48), Settings { mode: Mode::Both, ..Settings::default() });
     let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
     let sizes = [(0, 0), (1, 1), (64, 48), (3, 2), (97, 61), (0, 0), (40, 30), (64, 48)];
     let total = |r: &ssdo::render::Renderer| r.allocations().iter().map(|(_, b)| b).sum::<u64>();
-    let output = ssdo::headless::capture::output_texture(&gpu, (128, 96));
+    let output = ssdo::headless::capture::output_texture(gpu, (128, 96));
     let view = output.create_view(&wgpu::TextureViewDescriptor::default());
 
     let mut round = |resizes: usize, swaps: usize| {
         for i in 0..resizes {
             let (w, h) = sizes[i % sizes.len()];
-            renderer.resize(&gpu, w, h).unwrap();
+            renderer.resize(gpu, w, h).unwrap();
             let mut encoder =
                 gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("resource_test") });
-            renderer.encode(&gpu, &mut encoder, &camera, &view);
+            renderer.encode(gpu, &mut encoder, &camera, &view);
             gpu.queue.submit([encoder.finish()]);
             gpu.wait().unwrap();
         }
         for i in 0..swaps {
-            renderer.set_sky(&gpu, &skies[i % 2]).unwrap();
+            renderer.set_sky(gpu, &skies[i % 2]).unwrap();
             let mut encoder =
                 gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("resource_test") });
-            renderer.encode(&gpu, &mut encoder, &camera, &view);
+            renderer.encode(gpu, &mut encoder, &camera, &view);
             gpu.queue.submit([encoder.finish()]);
             gpu.wait().unwrap();
         }
-        renderer.set_sky(&gpu, &skies[0]).unwrap();
-        renderer.resize(&gpu, 64, 48).unwrap();
+        renderer.set_sky(gpu, &skies[0]).unwrap();
+        renderer.resize(gpu, 64, 48).unwrap();
         gpu.wait().unwrap();
         (total(&renderer), resident_bytes())
     };
@@ -121,29 +121,29 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
     let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
     let sky = Skybox::constant(Vec3::ONE);
     let size = (40, 30);
-    let mut renderer = common::renderer(&gpu, &scene, &sky, size, Settings { mode: Mode::Both, ..Settings::default() });
+    let mut renderer = common::renderer(gpu, &scene, &sky, size, Settings { mode: Mode::Both, ..Settings::default() });
     let a = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
     let b = ssdo::scene::OrbitCamera { yaw_deg: a.yaw_deg + 10.0, ..a };
     let clip = |c: &ssdo::scene::OrbitCamera| {
         (c.view_to_clip(size.0 as f32 / size.1 as f32) * c.world_to_view()).to_cols_array_2d()
     };
     let previous = |r: &ssdo::render::Renderer| r.frame_uniforms().previous_world_to_clip;
-    common::shoot(&gpu, &mut renderer, &a);
+    common::shoot(gpu, &mut renderer, &a);
     assert_eq!(previous(&renderer), clip(&a), "a first frame's previous camera is its own");
-    common::shoot(&gpu, &mut renderer, &b);
+    common::shoot(gpu, &mut renderer, &b);
     assert_eq!(previous(&renderer), clip(&a), "the second frame remembers the first's camera");
     assert_ne!(previous(&renderer), clip(&b));
     renderer.reset_history();
-    common::shoot(&gpu, &mut renderer, &b);
+    common::shoot(gpu, &mut renderer, &b);
     assert_eq!(previous(&renderer), clip(&b), "after a reset the previous camera is the frame's own");
     // A plan that accumulates keeps the temporal pass's two pairs, counted among the
     // allocations; one that does not (Off, or one frame) allocates none.
     for accumulate in [1, 16] {
         renderer.settings.accumulate = accumulate;
         for mode in Mode::ALL {
-            renderer.set_mode(&gpu, mode);
-            renderer.resize(&gpu, 41, 30).unwrap();
-            common::shoot(&gpu, &mut renderer, &a);
+            renderer.set_mode(gpu, mode);
+            renderer.resize(gpu, 41, 30).unwrap();
+            common::shoot(gpu, &mut renderer, &a);
             let kept = accumulate > 1 && mode != Mode::Off;
             let names: Vec<String> = renderer.allocations().into_iter().map(|(n, _)| n).collect();
             let histories: Vec<&String> = names.iter().filter(|n| n.starts_with("history_")).collect();
@@ -152,7 +152,7 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
             let per_pixel = if mode == Mode::Ssao { 2 + 8 } else { 8 + 8 };
             let want = if kept { 2 * per_pixel * 41 * 30 } else { 0 };
             assert_eq!(renderer.history().bytes(), want, "{mode}, {accumulate} frames");
-            renderer.resize(&gpu, 40, 30).unwrap();
+            renderer.resize(gpu, 40, 30).unwrap();
         }
     }
 }

@@ -361,7 +361,10 @@ impl Viewer {
                 event: KeyEvent { physical_key: PhysicalKey::Code(key), state, repeat, .. },
                 ..
             } if !self.egui.egui_ctx().text_edit_focused() => {
-                if !self.controls.fly_key(key, state) && state == ElementState::Pressed && !repeat {
+                // Every key goes through the fly controls first (they track what is held); the
+                // rest act on a fresh press. Not a match guard: `fly_key` changes state.
+                let taken = self.controls.fly_key(key, state);
+                if !taken && state == ElementState::Pressed && !repeat {
                     self.key(event_loop, key);
                 }
             }

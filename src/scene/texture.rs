@@ -24,9 +24,13 @@ impl TextureImage {
     pub fn checker() -> Self {
         let size = 8u32;
         let rgba = (0..size * size)
-            .flat_map(
-                |i| if ((i % size) / 2 + (i / size) / 2) % 2 == 0 { [200, 40, 200, 255] } else { [90, 90, 90, 255] },
-            )
+            .flat_map(|i| {
+                if ((i % size) / 2 + (i / size) / 2).is_multiple_of(2) {
+                    [200, 40, 200, 255]
+                } else {
+                    [90, 90, 90, 255]
+                }
+            })
             .collect();
         Self { width: size, height: size, rgba: std::sync::Arc::new(rgba) }
     }

@@ -228,7 +228,7 @@ pub fn one_node() -> serde_json::Value {
 /// Writes a `.glb`: the JSON chunk and the binary chunk, each padded to 4 bytes.
 pub fn write_glb(path: &std::path::Path, document: &serde_json::Value, bin: &[u8]) {
     let mut json = serde_json::to_vec(document).unwrap();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();

@@ -129,8 +129,8 @@ fn a_redblue_panorama_renders_like_the_redblue_folder() {
     let settings = ssdo::render::Settings { ambient: 0.0, ..Default::default() };
     let mut images = Vec::new();
     for sky in [&folder, &from_panorama] {
-        let mut renderer = common::renderer(&gpu, &scene, sky, size, settings);
-        images.push(common::shoot(&gpu, &mut renderer, &camera));
+        let mut renderer = common::renderer(gpu, &scene, sky, size, settings);
+        images.push(common::shoot(gpu, &mut renderer, &camera));
     }
     let (a, b) = (&images[0], &images[1]);
     let differences: Vec<f32> = a

@@ -259,7 +259,7 @@ fn panoramas_below_two_by_one_and_skies_that_overflow_are_handled_at_load() {
         let path = dir.path().join(format!("p{w}x{h}.hdr"));
         std::fs::write(&path, format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {h} +X {w}\n")).unwrap();
         let before = ssdo::guard::caught();
-        let message = Skybox::load(&path).err().expect("refused").to_string();
+        let message = Skybox::load(&path).expect_err("refused").to_string();
         assert!(message.contains("at least 2x1") || message.contains("not a readable image"), "{w}x{h}: {message}");
         assert_eq!(ssdo::guard::caught(), before);
     }

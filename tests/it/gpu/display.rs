@@ -36,18 +36,18 @@ fn compare(a: &image::RgbaImage, b: &image::RgbaImage, tolerance: u8) -> (u8, us
 fn display_frames_match_the_hdr_path_in_every_mode_and_variant() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = default_scene();
-    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings::default());
+    let mut r = renderer(gpu, &scene, &sky, SIZE, Settings::default());
     for variant in Variant::ALL {
         for mode in Mode::ALL {
             r.settings = Settings { mode, sampling: Sampling { variant, ..Default::default() }, ..Settings::default() };
-            r.keep_hdr(&gpu, true);
+            r.keep_hdr(gpu, true);
             // Both frames the first of their average, so that they hold the same samples.
             r.reset_history();
-            let hdr = shoot(&gpu, &mut r, &camera);
+            let hdr = shoot(gpu, &mut r, &camera);
             assert!(r.plan().has(Step::TONEMAP) && r.targets().hdr().is_ok());
-            r.keep_hdr(&gpu, false);
+            r.keep_hdr(gpu, false);
             r.reset_history();
-            let display = shoot(&gpu, &mut r, &camera);
+            let display = shoot(gpu, &mut r, &camera);
             let plan = r.plan();
             assert!(!plan.has(Step::TONEMAP) && !plan.has(Step::SKYBOX), "{variant} {mode}: {:?}", plan.steps);
             assert_eq!(r.targets().hdr().is_ok(), plan.has(Step::LIGHTING), "{variant} {mode}: HDR only for lighting");
@@ -64,19 +64,19 @@ fn display_frames_match_the_hdr_path_in_every_mode_and_variant() {
 fn display_frames_land_at_their_origin_in_a_larger_output() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = default_scene();
-    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings { mode: Mode::Both, ..Settings::default() });
-    r.keep_hdr(&gpu, false);
-    let alone = shoot(&gpu, &mut r, &camera);
+    let mut r = renderer(gpu, &scene, &sky, SIZE, Settings { mode: Mode::Both, ..Settings::default() });
+    r.keep_hdr(gpu, false);
+    let alone = shoot(gpu, &mut r, &camera);
     let origin = (37u32, 21u32);
     let big = (SIZE.0 + 60, SIZE.1 + 30);
-    let texture = output_texture(&gpu, big);
+    let texture = output_texture(gpu, big);
     let view = texture.create_view(&Default::default());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     r.reset_history();
-    r.encode_at(&gpu, &mut encoder, &camera, &view, origin);
+    r.encode_at(gpu, &mut encoder, &camera, &view, origin);
     gpu.queue.submit([encoder.finish()]);
     assert_eq!(texture.format(), CAPTURE_FORMAT);
-    let bytes = read_texture(&gpu, &texture).unwrap();
+    let bytes = read_texture(gpu, &texture).unwrap();
     let placed = image::RgbaImage::from_raw(big.0, big.1, bytes).unwrap();
     let inside = image::imageops::crop_imm(&placed, origin.0, origin.1, SIZE.0, SIZE.1).to_image();
     let (worst, over) = compare(&alone, &inside, 1);
@@ -98,11 +98,11 @@ fn a_nearer_light_cube_covers_a_farther_one_in_both_paths() {
     let far = eye + towards * (0.45 * camera.distance);
     let light = |position, color| scene::PointLight { position, color, intensity: 0.5 };
     scene.lights = vec![light(near, glam::Vec3::X), light(far, glam::Vec3::Y)];
-    let mut r = renderer(&gpu, &scene, &sky, SIZE, Settings { mode: Mode::Off, ..Settings::default() });
+    let mut r = renderer(gpu, &scene, &sky, SIZE, Settings { mode: Mode::Off, ..Settings::default() });
     let (x, y) = common::project_to(&camera, SIZE, near);
     for keep_hdr in [true, false] {
-        r.keep_hdr(&gpu, keep_hdr);
-        let image = shoot(&gpu, &mut r, &camera);
+        r.keep_hdr(gpu, keep_hdr);
+        let image = shoot(gpu, &mut r, &camera);
         let [red, green, _, _] = image.get_pixel(x as u32, y as u32).0;
         assert!(red > 200 && green < 60, "HDR path {keep_hdr}: the pixel is ({red}, {green}), not the near red cube");
     }

@@ -85,9 +85,9 @@ fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
         view: View::DoDirect,
         ..s
     };
-    let got = directional(&gpu, &scene, &sky, &camera, s, &[receiver])[0].x;
+    let got = directional(gpu, &scene, &sky, &camera, s, &[receiver])[0].x;
     let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
-    let old = directional(&gpu, &scene, &sky, &camera, points, &[receiver])[0].x;
+    let old = directional(gpu, &scene, &sky, &camera, points, &[receiver])[0].x;
     eprintln!("sky fraction at 3R from the wall: analytic {want:.4}, march {got:.4}, points {old:.4}");
     assert!((got - want).abs() <= 0.05 * want, "march sees {got}, the closed form {want}");
     assert!(old > want + 0.2, "the point estimator cannot see the wall beyond R ({old})");
@@ -117,7 +117,7 @@ fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
         ..s.sampling
     };
     let s = Settings { sampling, view: View::DoDirect, ..s };
-    let d = directional(&gpu, &scene, &sky, &camera, s, &[foot, behind, open]);
+    let d = directional(gpu, &scene, &sky, &camera, s, &[foot, behind, open]);
     let (foot, behind, open) = (d[0].x, d[1].x, d[2].x);
     eprintln!("pole: foot {foot:.4}, floor behind {behind:.4}, open floor {open:.4}");
     assert!(open > 0.97, "open floor sees the sky: {open}");
@@ -137,9 +137,9 @@ fn a_red_wall_beyond_the_radius_still_bounces_red_onto_the_floor() {
     let receiver = project(&camera, v(0.4, 0.0, 0.0));
     let s = march(0.1);
     let s = Settings { sampling: Sampling { reach: Some(3.0), thickness: Some(0.3), ..s.sampling }, ..s };
-    let bounce = directional(&gpu, &scene, &sky, &camera, s, &[receiver])[0];
+    let bounce = directional(gpu, &scene, &sky, &camera, s, &[receiver])[0];
     let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
-    let old = directional(&gpu, &scene, &sky, &camera, points, &[receiver])[0];
+    let old = directional(gpu, &scene, &sky, &camera, points, &[receiver])[0];
     eprintln!("bounce at 4R from a red wall: march {bounce}, points {old}");
     assert!(bounce.x > 0.01 && bounce.x > 5.0 * bounce.y, "red bounce from beyond R: {bounce}");
     assert!(old.x < 0.1 * bounce.x, "the point estimator sees no wall beyond R: {old}");

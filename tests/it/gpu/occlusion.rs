@@ -77,8 +77,8 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
             // Points take `samples` points; the march takes `samples` slices.
             let sampling = Sampling { variant, samples, slices: samples, radius: Some(0.5), ..Default::default() };
             let s = Settings { sampling, blur, ..settings(Mode::Ssdo) };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-            let b = render(&gpu, &mut r, &camera, true);
+            let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+            let b = render(gpu, &mut r, &camera, true);
             let direct = b.directional.unwrap();
             for p in Furnace::PIXELS {
                 let got = rgb(at(&direct, p));
@@ -97,8 +97,8 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
     for ambient in [0.0, 0.2] {
         for mode in Mode::ALL {
             let s = Settings { sampling: radius(0.5), ambient, ..settings(mode) };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-            let hdr = render(&gpu, &mut r, &camera, true).hdr;
+            let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+            let hdr = render(gpu, &mut r, &camera, true).hdr;
             let want = albedo * (sky_radiance + Vec3::splat(ambient));
             for p in Furnace::PIXELS {
                 let got = rgb(at(&hdr, p));
@@ -118,8 +118,8 @@ fn open_plane_ao_is_one_everywhere_including_the_edges() {
     for variant in Variant::ALL {
         let sampling = Sampling { variant, samples: 32, radius: Some(0.4), ..Default::default() };
         let s = Settings { sampling, blur: false, ..settings(Mode::Ssao) };
-        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-        let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
+        let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+        let ao = render(gpu, &mut r, &camera, false).ao.unwrap();
         let low = ao.iter().copied().fold(1.0, f32::min);
         assert!(low >= 0.99, "{variant}: lowest AO on an open plane {low}");
         assert!(ao.iter().all(|a| *a <= 1.0));
@@ -139,8 +139,8 @@ fn inside_corner_is_more_occluded_than_open_floor() {
             sampling: Sampling { variant, samples: 32, radius: Some(0.5), ..Default::default() },
             ..settings(Mode::Ssao)
         };
-        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-        let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
+        let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+        let ao = render(gpu, &mut r, &camera, true).ao.unwrap();
         let corner = at(&ao, project(&camera, Vec3::new(0.1, 0.0, 0.0)));
         let open = at(&ao, project(&camera, Vec3::new(1.8, 0.0, 1.0)));
         assert!(open > 0.95, "{variant}: open floor AO {open}");
@@ -160,16 +160,16 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let ratio = |c: Vec3| c.x / c.y.max(1e-6);
 
     let s = Settings { sampling: Sampling { samples: 32, ..radius(0.5) }, ..settings(Mode::Ssdo) };
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-    let b = render(&gpu, &mut r, &camera, true);
+    let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+    let b = render(gpu, &mut r, &camera, true);
     // The sky is black: DO is the indirect bounce alone.
     let indirect = mean_rgb(&b.directional.unwrap(), near, 1);
     assert!(indirect.x > 0.01 && indirect.x > 5.0 * indirect.y, "red bounce near the wall: {indirect}");
     let ssdo_near = mean_rgb(&b.hdr, near, 1);
     let ssdo_far = mean_rgb(&b.hdr, far, 1);
 
-    r.set_mode(&gpu, Mode::Ssao);
-    let b = render(&gpu, &mut r, &camera, true);
+    r.set_mode(gpu, Mode::Ssao);
+    let b = render(gpu, &mut r, &camera, true);
     let ssao_near = mean_rgb(&b.hdr, near, 1);
     assert!((ratio(ssao_near) - 1.0).abs() < 0.02, "SSAO floor stays white: {ssao_near}");
     assert!(
@@ -197,20 +197,20 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
     let bottom = project(&camera, Vec3::new(0.0, 1.2, 0.6));
     let blueness = |c: Vec3| c.z - c.x;
 
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { ambient: 0.3, ..settings(Mode::Ssdo) });
-    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { ambient: 0.3, ..settings(Mode::Ssdo) });
+    let hdr = render(gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "SSDO: top {up}, bottom {down}");
 
     // Off sees the same sky, unoccluded (its irradiance per normal): also blue on top.
-    r.set_mode(&gpu, Mode::Off);
-    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    r.set_mode(gpu, Mode::Off);
+    let hdr = render(gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
 
     // The classic variant keeps the SSDO course project's constant grey ambient in Off: no sky.
     r.settings.sampling.variant = Variant::Classic;
-    let hdr = render(&gpu, &mut r, &camera, true).hdr;
+    let hdr = render(gpu, &mut r, &camera, true).hdr;
     let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
     assert!((up - down).abs().max_element() < 1e-3, "classic Off has no directional sky: top {up}, bottom {down}");
 }
@@ -223,10 +223,10 @@ fn ssao_and_ssdo_differ_only_where_the_sky_is_occluded() {
     let (scene, sky, camera) = redblue_ball();
     let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
     let s = Settings { sampling: Sampling { samples: 64, ..Default::default() }, ..settings(Mode::Ssao) };
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-    let ssao = mean_rgb(&render(&gpu, &mut r, &camera, true).hdr, top, 1);
-    r.set_mode(&gpu, Mode::Ssdo);
-    let ssdo = mean_rgb(&render(&gpu, &mut r, &camera, true).hdr, top, 1);
+    let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+    let ssao = mean_rgb(&render(gpu, &mut r, &camera, true).hdr, top, 1);
+    r.set_mode(gpu, Mode::Ssdo);
+    let ssdo = mean_rgb(&render(gpu, &mut r, &camera, true).hdr, top, 1);
     assert!((ssao - ssdo).abs().max_element() < 0.05 * ssao.max_element(), "open top: SSAO {ssao}, SSDO {ssdo}");
 }
 
@@ -238,13 +238,13 @@ fn both_is_one_pass_with_the_same_ao_and_do_as_the_separate_modes() {
     let camera = OrbitCamera::framing(&scene.model.bounds);
     for variant in Variant::ALL {
         let s = Settings { sampling: Sampling { variant, ..Default::default() }, blur: false, ..settings(Mode::Ssao) };
-        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-        let ao = render(&gpu, &mut r, &camera, false).ao.unwrap();
-        r.set_mode(&gpu, Mode::Ssdo);
-        let ssdo = render(&gpu, &mut r, &camera, false);
-        r.set_mode(&gpu, Mode::Both);
+        let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+        let ao = render(gpu, &mut r, &camera, false).ao.unwrap();
+        r.set_mode(gpu, Mode::Ssdo);
+        let ssdo = render(gpu, &mut r, &camera, false);
+        r.set_mode(gpu, Mode::Both);
         assert_eq!(r.plan().step_names().iter().filter(|n| ["ssao", "ssdo", "ssao_ssdo"].contains(n)).count(), 1);
-        let both = render(&gpu, &mut r, &camera, false);
+        let both = render(gpu, &mut r, &camera, false);
         // Compared pixel by pixel; the count of differing pixels is what a failure reports.
         let ao_off = both.ao.unwrap().iter().zip(&ao).filter(|(a, b)| a != b).count();
         assert_eq!(ao_off, 0, "{variant}: AO differs at {ao_off} pixels");
@@ -259,7 +259,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     let Some(gpu) = gpu() else { return };
     let sky = Skybox::constant(Vec3::ONE);
     let lit = Scene::new(builtin::cornell().unwrap(), 4, 1);
-    let mut r = renderer(&gpu, &lit, &sky, (32, 24), settings(Mode::Off));
+    let mut r = renderer(gpu, &lit, &sky, (32, 24), settings(Mode::Off));
     // The DO modes' steps, around their sampling step.
     let directional = |sampling: &'static str| {
         let after = ["blur", "temporal", "composite", "skybox", "light_cubes", "tonemap"];
@@ -273,23 +273,23 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     ];
     let names = |r: &Renderer| r.allocations().into_iter().map(|(n, _)| n).collect::<Vec<_>>();
     for (mode, steps) in &expect {
-        r.set_mode(&gpu, *mode);
+        r.set_mode(gpu, *mode);
         assert_eq!(&r.plan().step_names(), steps, "{mode}");
     }
-    r.set_mode(&gpu, Mode::Off);
+    r.set_mode(gpu, Mode::Off);
     let off = names(&r);
     assert!(
         !off.iter()
             .any(|n| n.starts_with("ao") || n.starts_with("do_") || n.starts_with("bounce") || n == "occlusion_params"),
         "{off:?}"
     );
-    r.set_mode(&gpu, Mode::Ssao);
+    r.set_mode(gpu, Mode::Ssao);
     let ssao = names(&r);
     assert!(
         ssao.contains(&"ao_raw".into()) && !ssao.iter().any(|n| n.starts_with("do_") || n.starts_with("bounce")),
         "{ssao:?}"
     );
-    r.set_mode(&gpu, Mode::Both);
+    r.set_mode(gpu, Mode::Both);
     let both = names(&r);
     for wanted in ["do_raw", "do_blurred", "bounce_radiance", "sender_sky"] {
         assert!(both.contains(&wanted.to_string()), "{wanted} in {both:?}");
@@ -298,7 +298,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     assert!(!r.uses_texture_path(), "an untextured model takes no texture path");
 
     // No lights: no cubes, but the sky still bounces (the senders' sky light).
-    r.set_lights(&gpu, Vec::new());
+    r.set_lights(gpu, Vec::new());
     assert_eq!(
         r.plan().step_names(),
         vec!["gbuffer", "sender_sky", "lighting", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
@@ -306,7 +306,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     assert!(names(&r).iter().any(|n| n.starts_with("bounce")));
     // No lights and senders lit by the point lights alone: nothing to bounce, no lighting pass.
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
-    r.apply(&gpu);
+    r.apply(gpu);
     assert_eq!(
         r.plan().step_names(),
         vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
@@ -315,7 +315,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     // A bounce of strength 0 runs none of it either, whatever lights the senders.
     r.settings.sender_sky = ssdo::render::SenderSky::March;
     r.settings.indirect_strength = 0.0;
-    r.apply(&gpu);
+    r.apply(gpu);
     assert_eq!(
         r.plan().step_names(),
         vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
@@ -324,12 +324,12 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     r.settings.sender_sky = ssdo::render::SenderSky::Off;
     // No blur: no blur pass and no blurred targets.
     r.settings.blur = false;
-    r.apply(&gpu);
+    r.apply(gpu);
     assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "temporal", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.ends_with("blurred")));
     // One frame: no temporal pass, no accumulated target, no history.
     r.settings.accumulate = 1;
-    r.apply(&gpu);
+    r.apply(gpu);
     assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.ends_with("accumulated") || n.starts_with("history_")));
 }
@@ -343,14 +343,14 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
     for variant in Variant::ALL {
         for mode in Mode::ALL {
             let mut r = renderer(
-                &gpu,
+                gpu,
                 &scene,
                 &sky,
                 (W, H),
                 Settings { mode, sampling: Sampling { variant, ..Default::default() }, ..Settings::default() },
             );
             for blurred in [false, true] {
-                let b = render(&gpu, &mut r, &camera, blurred);
+                let b = render(gpu, &mut r, &camera, blurred);
                 let finite = |v: &[[f32; 4]]| v.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0));
                 assert!(finite(&b.hdr), "{mode} {variant}: HDR");
                 if let Some(ao) = &b.ao {
@@ -362,7 +362,7 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
                     assert!(buffer.iter().any(|p| p[0] > 0.0), "{mode} {variant}: DO not all zero");
                 }
             }
-            let normals = ssdo::headless::readback::read_surfaces(&gpu, &r.targets().normal().texture).unwrap();
+            let normals = ssdo::headless::readback::read_surfaces(gpu, &r.targets().normal().texture).unwrap();
             assert!(normals.iter().all(|p| p.iter().all(|c| c.is_finite())));
         }
     }
@@ -384,8 +384,8 @@ fn blur_does_not_bleed_across_silhouettes() {
     let sky = Skybox::constant(Vec3::ONE);
     let camera = looking(v(0.0, 0.5, 0.0), 0.0, 30.0, 4.0);
     let s = Settings { sampling: Sampling { samples: 32, ..radius(0.3) }, ..settings(Mode::Ssao) };
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-    let ao = render(&gpu, &mut r, &camera, true).ao.unwrap();
+    let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+    let ao = render(gpu, &mut r, &camera, true).ao.unwrap();
     // The top face of the block is open: its AO must stay 1 up to the silhouette edge.
     let top_edge = project(&camera, v(0.0, 1.5, -0.45));
     assert!(at(&ao, top_edge) > 0.97, "block top near its back edge: {}", at(&ao, top_edge));

@@ -107,7 +107,7 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
         lights: 8,
         ..tiny_report(out.path(), None, None)
     };
-    let result = report::run(&gpu, &options, &|_| {}).unwrap();
+    let result = report::run(gpu, &options, &|_| {}).unwrap();
     assert!(result.reference.mismatched < 300, "silhouette pixels left out: {}", result.reference.mismatched);
     for (mode, variant, small, large) in [Mode::Ssao, Mode::Ssdo, Mode::Both]
         .into_iter()
@@ -220,7 +220,7 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
             lights,
             ..tiny_report(&dir.path().join("out"), Some(dir.path().join("plane.obj")), Some(sky_dir.clone()))
         };
-        let report = report::run(&gpu, &options, &|_| {}).unwrap();
+        let report = report::run(gpu, &options, &|_| {}).unwrap();
         // One row per resolution, named by its settings: the rows come sorted by time, which
         // differs from run to run.
         let hdr_rmse = |half: bool| {
@@ -236,7 +236,7 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
     // The test means something only if the brighter scenes are pre-exposed.
     let scene = Scene::new(model.clone(), 32, 1);
     let sky = Skybox::constant(Vec3::new(0.4, 0.5, 0.6));
-    let r = common::renderer(&gpu, &scene, &sky, (96, 72), ssdo::render::Settings::default());
+    let r = common::renderer(gpu, &scene, &sky, (96, 72), ssdo::render::Settings::default());
     assert!(r.pre_exposure() < 0.5, "32 lights are pre-exposed: {}", r.pre_exposure());
     let base = error(8);
     for lights in [16, 32] {
@@ -303,7 +303,7 @@ fn the_report_copes_with_any_finite_sky_and_refuses_what_it_cannot_measure() {
     let bright = tempfile::tempdir().unwrap();
     constant_exr_sky(bright.path(), 1e19);
     let options = tiny_report(out.path(), None, Some(bright.path().to_path_buf()));
-    let result = report::run(&gpu, &options, &|_| {}).unwrap();
+    let result = report::run(gpu, &options, &|_| {}).unwrap();
     assert!(result.rows.iter().all(|r| r.hdr_rmse.is_finite()), "finite errors under a 1e19 sky");
     result.write(&options).unwrap();
     assert!(image::open(out.path().join("report.png")).is_ok());
@@ -315,18 +315,18 @@ fn the_report_copes_with_any_finite_sky_and_refuses_what_it_cannot_measure() {
     assert_eq!(sky.max_value(), ssdo::scene::skybox::MAX_SKY_RADIANCE);
     assert!(sky.warnings.iter().any(|w| w.contains("clamped")), "{:?}", sky.warnings);
     let options = tiny_report(out.path(), None, Some(blinding.path().to_path_buf()));
-    let result = report::run(&gpu, &options, &|_| {}).unwrap();
+    let result = report::run(gpu, &options, &|_| {}).unwrap();
     assert!(result.rows.iter().all(|r| r.hdr_rmse.is_finite()), "finite errors under a clamped 3e38 sky");
     // A model 1e-20 across (fitted to a radius of 1 as it loads) is measured like any other.
     let model = out.path().join("tiny.obj");
     std::fs::write(&model, "v 0 0 0\nv 1e-20 0 0\nv 0 1e-20 0\nf 1 2 3\n").unwrap();
-    let result = report::run(&gpu, &tiny_report(out.path(), Some(model), None), &|_| {}).unwrap();
+    let result = report::run(gpu, &tiny_report(out.path(), Some(model), None), &|_| {}).unwrap();
     assert!(result.rows.iter().all(|r| r.hdr_rmse.is_finite() && r.hdr_psnr.is_finite()));
     // A sliver far thinner than a pixel covers no pixel centre: nothing to measure is an error,
     // not a table of zeros and PSNR inf.
     let sliver = out.path().join("sliver.obj");
     std::fs::write(&sliver, "v 0 0 0\nv 1 0 0\nv 0.5 1e-7 0\nf 1 2 3\n").unwrap();
-    match report::run(&gpu, &tiny_report(out.path(), Some(sliver), None), &|_| {}) {
+    match report::run(gpu, &tiny_report(out.path(), Some(sliver), None), &|_| {}) {
         Err(e) => assert!(e.to_string().contains("no surface pixel") && e.exit_code() == 2, "{e}"),
         Ok(r) => panic!("a report of nothing: {} rows", r.rows.len()),
     }

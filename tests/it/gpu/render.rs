@@ -19,15 +19,15 @@ fn plane_normal_and_depth_come_out_as_expected() {
     let Some(gpu) = gpu() else { return };
     let scene = Scene::new(builtin::plane(10.0, builtin::WHITE).unwrap(), 0, 1);
     let sky = Skybox::constant(Vec3::splat(0.5));
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
+    let mut r = renderer(gpu, &scene, &sky, (W, H), Settings::default());
     let camera = looking(Vec3::ZERO, 20.0, 30.0, 4.0);
-    shoot(&gpu, &mut r, &camera);
-    let normals = read_surfaces(&gpu, &r.targets().normal().texture).unwrap();
+    shoot(gpu, &mut r, &camera);
+    let normals = read_surfaces(gpu, &r.targets().normal().texture).unwrap();
     let expected = (camera.world_to_view() * Vec3::Y.extend(0.0)).xyz();
     let centre = normals[60 * 160 + 80];
     assert!((Vec3::new(centre[0], centre[1], centre[2]) - expected).length() < 2e-3, "{centre:?} vs {expected}");
     assert!((centre[3] - 32.0).abs() < 0.04 * 32.0, "shininess travels with the normal: {}", centre[3]);
-    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
+    let depth = read_depth(gpu, &r.targets().depth().texture).unwrap();
     // Reverse-Z, infinite far: depth = near / (distance along the view axis). Intersect the ray
     // through the centre of pixel (80, 60) with the plane y = 0.
     let p = camera.view_to_clip(160.0 / 120.0);
@@ -46,11 +46,11 @@ fn readback_is_correct_at_an_odd_size() {
     // in the readback shears it.
     let scene = Scene::new(builtin::plane(1e4, builtin::WHITE).unwrap(), 0, 1);
     let sky = Skybox::constant(Vec3::new(0.2, 0.4, 0.8));
-    let mut r = renderer(&gpu, &scene, &sky, (161, 97), Settings::default());
+    let mut r = renderer(gpu, &scene, &sky, (161, 97), Settings::default());
     let camera = looking(Vec3::new(0.0, 1.0, 0.0), 0.0, 0.0, 1.0);
-    let image = shoot(&gpu, &mut r, &camera);
+    let image = shoot(gpu, &mut r, &camera);
     assert_eq!(image.dimensions(), (161, 97));
-    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
+    let depth = read_depth(gpu, &r.targets().depth().texture).unwrap();
     assert_eq!(depth.len(), 161 * 97);
     let horizon = |x: usize| (0..97).find(|&y| depth[y * 161 + x] > 0.0).expect("floor visible");
     let first = horizon(0);
@@ -70,15 +70,15 @@ fn background_shows_the_sky_through_tone_mapping() {
     let radiance = Vec3::new(0.1, 0.3, 0.9);
     let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
     let sky = Skybox::constant(radiance);
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
+    let mut r = renderer(gpu, &scene, &sky, (W, H), Settings::default());
     // Looking up: only sky in view.
-    let image = shoot(&gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0));
+    let image = shoot(gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0));
     let got = mean_rgb(&image, 10, 10, 140, 100);
     let want = Vec3::new(displayed(radiance.x), displayed(radiance.y), displayed(radiance.z));
     assert!((got - want).abs().max_element() < 2.5, "sky {got} vs {want}");
     // sky_scale multiplies it.
     r.settings.sky_scale = 0.5;
-    let half = mean_rgb(&shoot(&gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0)), 10, 10, 140, 100);
+    let half = mean_rgb(&shoot(gpu, &mut r, &looking(Vec3::new(0.0, 5.0, 0.0), 0.0, -80.0, 1.0)), 10, 10, 140, 100);
     assert!((half.z - displayed(0.45)).abs() < 2.5, "{half}");
 }
 
@@ -89,11 +89,11 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     let intensity = 1.0;
     scene.lights = vec![PointLight { position: Vec3::new(-1.0, 0.3, 0.0), color: Vec3::new(1.0, 0.0, 0.0), intensity }];
     let sky = Skybox::constant(Vec3::ZERO);
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings { ambient: 0.2, ..Settings::default() });
+    let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { ambient: 0.2, ..Settings::default() });
     assert!(r.plan().has(Step::LIGHT_CUBES));
     // Straight down on the plane: x maps to columns, the light sits left of centre.
     let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
-    let image = shoot(&gpu, &mut r, &camera);
+    let image = shoot(gpu, &mut r, &camera);
     let project = |p: Vec3| {
         let clip = camera.view_to_clip(160.0 / 120.0) * camera.world_to_view() * p.extend(1.0);
         ((clip.x / clip.w * 0.5 + 0.5) * 160.0, (0.5 - clip.y / clip.w * 0.5) * 120.0)
@@ -107,7 +107,7 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     assert!(under.x > far.x + 40.0, "redder than far away: {under} vs {far}");
     assert!((far.x - far.y).abs() < 12.0, "grey far from it: {far}");
     // Irradiance falls as 1/d²: check the HDR value straight against the formula.
-    let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
+    let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
     let (hx, hy) = project(Vec3::new(1.5, 0.0, 0.0));
     let got = hdr[hy as usize * 160 + hx as usize][0];
     let to_light = Vec3::new(-1.0, 0.3, 0.0) - Vec3::new(1.5, 0.0, 0.0);
@@ -124,15 +124,15 @@ fn light_cubes_show_their_colour_and_leave_with_the_lights() {
     scene.lights =
         vec![PointLight { position: Vec3::new(0.0, 1.0, 0.0), color: Vec3::new(0.0, 1.0, 0.0), intensity: 0.01 }];
     let sky = Skybox::constant(Vec3::ZERO);
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), no_ambient());
+    let mut r = renderer(gpu, &scene, &sky, (W, H), no_ambient());
     let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
-    let image = shoot(&gpu, &mut r, &camera);
+    let image = shoot(gpu, &mut r, &camera);
     let centre = mean_rgb(&image, 78, 58, 4, 4);
     assert!(centre.y > 200.0 && centre.x < 30.0, "green cube in the middle: {centre}");
 
-    r.set_lights(&gpu, Vec::new());
+    r.set_lights(gpu, Vec::new());
     assert!(!r.plan().has(Step::LIGHT_CUBES), "no lights, no cube pass");
-    let image = shoot(&gpu, &mut r, &camera);
+    let image = shoot(gpu, &mut r, &camera);
     assert!(mean_rgb(&image, 78, 58, 4, 4).max_element() < 3.0, "nothing lights the floor now");
 }
 
@@ -142,10 +142,10 @@ fn default_scene_renders_finite_with_every_part_visible() {
     let model = ssdo::scene::load_model(None).unwrap();
     let scene = Scene::new(model, 8, 1);
     let sky = ssdo::scene::load_skybox(None).unwrap();
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), Settings::default());
+    let mut r = renderer(gpu, &scene, &sky, (W, H), Settings::default());
     let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
-    let image = shoot(&gpu, &mut r, &camera);
-    let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
+    let image = shoot(gpu, &mut r, &camera);
+    let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
     assert!(hdr.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)), "HDR finite and non-negative");
     // Clearly red and clearly blue (the sky's light pales both walls a little).
     let (r8, g8, b8) =
@@ -153,7 +153,7 @@ fn default_scene_renders_finite_with_every_part_visible() {
     let red = image.pixels().filter(|p| r8(p) > 120 && r8(p) > g8(p) + 60 && r8(p) > b8(p) + 60).count();
     let blue = image.pixels().filter(|p| b8(p) > 120 && b8(p) > r8(p) + 60 && b8(p) > g8(p) + 40).count();
     assert!(red > 500 && blue > 500, "both walls visible: red {red}, blue {blue}");
-    let depth = read_depth(&gpu, &r.targets().depth().texture).unwrap();
+    let depth = read_depth(gpu, &r.targets().depth().texture).unwrap();
     let background = depth.iter().filter(|d| **d == 0.0).count();
     assert!(background > 1000, "sky visible around the room: {background}");
 }
@@ -178,10 +178,10 @@ fn textured_model_renders_its_texture() {
     let model = ssdo::scene::obj_model::load_obj(&dir.path().join("m.obj")).unwrap();
     let scene = Scene::new(model, 0, 1);
     let mut r =
-        renderer(&gpu, &scene, &Skybox::constant(Vec3::ZERO), (W, H), Settings { ambient: 1.0, ..Settings::default() });
+        renderer(gpu, &scene, &Skybox::constant(Vec3::ZERO), (W, H), Settings { ambient: 1.0, ..Settings::default() });
     // Looking down with -Z up on screen: texel centres (u, v = 0.25, 0.75) land 24 px from the
     // middle of the 160x120 view.
-    let image = shoot(&gpu, &mut r, &looking(Vec3::ZERO, 0.0, 89.9, 3.0));
+    let image = shoot(gpu, &mut r, &looking(Vec3::ZERO, 0.0, 89.9, 3.0));
     let at = |x: u32, y: u32| mean_rgb(&image, x - 1, y - 1, 3, 3);
     let (top_left, top_right, bottom_left, bottom_right) = (at(56, 36), at(104, 36), at(56, 84), at(104, 84));
     assert!(top_left.x > 150.0 && top_left.y < 60.0 && top_left.z < 60.0, "top left red: {top_left}");

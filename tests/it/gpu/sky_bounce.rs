@@ -70,12 +70,12 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
     let redness = |c: Vec3| c.x / c.y.max(1e-6);
 
     for mode in [Mode::Off, Mode::Ssao] {
-        let (hdr, _) = frame(&gpu, &scene, &sky, &camera, settings(mode));
+        let (hdr, _) = frame(gpu, &scene, &sky, &camera, settings(mode));
         let c = window(&hdr, near, 1);
         assert!((redness(c) - 1.0).abs() < 0.02, "{mode}: the floor by the wall stays white: {c}");
     }
     for mode in [Mode::Ssdo, Mode::Both] {
-        let (hdr, _) = frame(&gpu, &scene, &sky, &camera, settings(mode));
+        let (hdr, _) = frame(gpu, &scene, &sky, &camera, settings(mode));
         let (by_wall, open) = (window(&hdr, near, 1), window(&hdr, far, 1));
         assert!(redness(by_wall) > 1.15, "{mode}: the floor by the wall turns red: {by_wall}");
         assert!(redness(by_wall) > redness(open) + 0.1, "{mode}: the red fades away from the wall: {open}");
@@ -83,7 +83,7 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
 
     // The bounce alone, against the truth's at the same floor point.
     let s = Settings { view: View::DoIndirect, ..settings(Mode::Ssdo) };
-    let (_, directional) = frame(&gpu, &scene, &sky, &camera, s);
+    let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
     let got = window(&directional, near, 1);
     let (want, sigma) = traced_bounce(&scene, &sky, near_point, 8192);
     eprintln!("bounce 0.15 from the red wall under a white sky: GPU {got}, truth {want} ± {sigma}");
@@ -92,9 +92,9 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
 
     // Senders lit by the point lights alone: no light, so no bounce at all.
     let s = Settings { sender_sky: SenderSky::Off, view: View::DoIndirect, ..settings(Mode::Ssdo) };
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-    shoot(&gpu, &mut r, &camera);
-    let d = read_rgba16f(&gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
+    let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+    shoot(gpu, &mut r, &camera);
+    let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
     assert!(d.iter().all(|p| p[..3] == [0.0; 3]), "no lights and no sky for the senders: no bounce");
 }
 
@@ -147,14 +147,14 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
     let base = settings(Mode::Ssdo);
     let sampling = Sampling { slices: 8, steps: 32, reach: Some(10.0), thickness: Some(1.0), ..base.sampling };
     let s = Settings { view: View::DoIndirect, sampling, ..base };
-    let (_, directional) = frame(&gpu, &scene, &sky, &camera, s);
+    let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
     let got = window(&directional, project(&camera, receiver), 1).x;
     eprintln!("wall on a floor strip at d = {d}: GPU bounce {got:.4}, truth {:.4} ± {sigma:.4}", want.x);
     assert!((got / want.x - 1.0).abs() < 0.1, "GPU bounce {got} against the truth {} (±10%)", want.x);
 
     // The senders' unoccluded irradiance ignores the floor below the wall: measurably too bright.
     let s = Settings { sender_sky: SenderSky::Irradiance, ..s };
-    let (_, directional) = frame(&gpu, &scene, &sky, &camera, s);
+    let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
     let unoccluded = window(&directional, project(&camera, receiver), 1).x;
     assert!(unoccluded > 1.25 * want.x, "unoccluded senders {unoccluded} against the truth {}", want.x);
 }
@@ -165,7 +165,7 @@ fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
     let scene = red_wall_scene();
     let sky = Skybox::constant(Vec3::ZERO);
     let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
-    let lit = |sender_sky| frame(&gpu, &scene, &sky, &camera, Settings { sender_sky, ..settings(Mode::Both) }).1;
+    let lit = |sender_sky| frame(gpu, &scene, &sky, &camera, Settings { sender_sky, ..settings(Mode::Both) }).1;
     let before = lit(SenderSky::Off);
     for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
         let now = lit(sender_sky);
@@ -187,7 +187,7 @@ fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
     for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
         let bounce = |sky_strength| {
             let s = Settings { sender_sky, sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) };
-            window(&frame(&gpu, &scene, &sky, &camera, s).1, near, 1).x
+            window(&frame(gpu, &scene, &sky, &camera, s).1, near, 1).x
         };
         let (one, two) = (bounce(1.0), bounce(2.0));
         assert!(one > 0.01 && (two / one - 2.0).abs() < 0.02, "{sender_sky:?}: bounce {one} at 1, {two} at 2");

@@ -222,16 +222,16 @@ fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
     let mut failures = Vec::new();
     println!("| case | cli | mode | variant | AO min..max | DO min..max | HDR min..max | non-finite |");
     println!("|---|---|---|---|---|---|---|---|");
-    for case in cases(&gpu, dir.path()) {
+    for case in cases(gpu, dir.path()) {
         let mut renderer =
-            Renderer::new(&gpu, &case.scene, &case.sky, case.size, CAPTURE_FORMAT, case.settings).unwrap();
-        renderer.keep_hdr(&gpu, true);
+            Renderer::new(gpu, &case.scene, &case.sky, case.size, CAPTURE_FORMAT, case.settings).unwrap();
+        renderer.keep_hdr(gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::ALL {
                 renderer.settings = case.settings;
                 (renderer.settings.mode, renderer.settings.sampling.variant) = (mode, variant);
                 let stats =
-                    frame_stats(&gpu, &mut renderer, &case.camera).unwrap_or_else(|e| panic!("{}: {e}", case.name));
+                    frame_stats(gpu, &mut renderer, &case.camera).unwrap_or_else(|e| panic!("{}: {e}", case.name));
                 let find = |n: &str| stats.iter().find(|s| s.name == n);
                 let range = |n: &str| find(n).map_or("—".to_string(), |s| format!("{:.3e}..{:.3e}", s.min, s.max));
                 let non_finite: usize = stats.iter().map(|s| s.non_finite).sum();
@@ -270,15 +270,15 @@ fn sizes_beyond_the_adapter_are_a_clear_error() {
     let max = gpu.device.limits().max_texture_dimension_2d;
     let scene = Scene::new(builtin::plane(1.0, builtin::WHITE).unwrap(), 0, 1);
     let error =
-        Renderer::new(&gpu, &scene, &Skybox::constant(Vec3::ONE), (max + 1, 2), CAPTURE_FORMAT, Settings::default())
+        Renderer::new(gpu, &scene, &Skybox::constant(Vec3::ONE), (max + 1, 2), CAPTURE_FORMAT, Settings::default())
             .err()
             .expect("too large");
     assert!(error.to_string().contains("exceeds") && error.exit_code() == 2, "{error}");
     let mut renderer =
-        Renderer::new(&gpu, &scene, &Skybox::constant(Vec3::ONE), (8, 8), CAPTURE_FORMAT, Settings::default()).unwrap();
-    assert!(renderer.resize(&gpu, max + 1, 8).is_err());
+        Renderer::new(gpu, &scene, &Skybox::constant(Vec3::ONE), (8, 8), CAPTURE_FORMAT, Settings::default()).unwrap();
+    assert!(renderer.resize(gpu, max + 1, 8).is_err());
     assert_eq!(renderer.size(), (8, 8), "a refused resize keeps the old size");
-    renderer.resize(&gpu, 0, 0).unwrap();
+    renderer.resize(gpu, 0, 0).unwrap();
     assert_eq!(renderer.size(), (8, 8), "0x0 (minimised) is ignored");
 }
 
@@ -312,25 +312,25 @@ fn accumulation_stays_finite_at_any_size_while_moving_and_across_a_resize() {
     let mut failures = Vec::new();
     for size in [(1, 1), (2, 3), (33, 17), (48, 36)] {
         let settings = Settings { accumulate: 16, ..Settings::default() };
-        let mut r = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings).unwrap();
-        r.keep_hdr(&gpu, true);
+        let mut r = Renderer::new(gpu, &scene, &sky, size, CAPTURE_FORMAT, settings).unwrap();
+        r.keep_hdr(gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::sampled() {
                 r.settings = settings;
                 (r.settings.mode, r.settings.sampling.variant) = (mode, variant);
-                r.resize(&gpu, size.0, size.1).unwrap();
+                r.resize(gpu, size.0, size.1).unwrap();
                 // Twelve frames turning 5° and tilting; half way through the window grows.
                 for k in 0..12 {
                     if k == 6 {
-                        r.resize(&gpu, size.0 + 7, size.1 + 5).unwrap();
+                        r.resize(gpu, size.0 + 7, size.1 + 5).unwrap();
                     }
                     let turned = OrbitCamera {
                         yaw_deg: camera.yaw_deg + 5.0 * k as f32,
                         pitch_deg: camera.pitch_deg + 2.0 * (k % 3) as f32,
                         ..camera
                     };
-                    ssdo::headless::capture::render_frames(&gpu, &mut r, [turned]).unwrap();
-                    if let Err(e) = check_frame(&gpu, &r) {
+                    ssdo::headless::capture::render_frames(gpu, &mut r, [turned]).unwrap();
+                    if let Err(e) = check_frame(gpu, &r) {
                         failures.push(format!("{size:?} {mode} {variant} frame {k}: {e}"));
                     }
                 }

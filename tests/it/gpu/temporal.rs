@@ -71,17 +71,17 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
         for blur in [true, false] {
             let sampling = Sampling { variant, slices: 1, samples: 8, radius: Some(0.5), ..Default::default() };
             let s = Settings { sampling, blur, ..settings(Mode::Both, 16) };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+            let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             assert!(r.plan().has(Step::TEMPORAL));
             for frames in [1, 16] {
                 if frames == 1 {
-                    shoot(&gpu, &mut r, &camera);
+                    shoot(gpu, &mut r, &camera);
                 } else {
-                    capture_converged(&gpu, &mut r, &camera).unwrap();
+                    capture_converged(gpu, &mut r, &camera).unwrap();
                 }
                 assert_eq!(r.frames_accumulated(), frames);
-                let (d, a) = (directional(&gpu, &r), ao(&gpu, &r));
-                let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
+                let (d, a) = (directional(gpu, &r), ao(gpu, &r));
+                let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
                 for (x, y) in Furnace::PIXELS {
                     let i = y * W as usize + x;
                     let got = d[i];
@@ -106,13 +106,13 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
             // At full resolution, so that each pixel's own samples are compared.
             let sampling = Sampling { slices, ..Default::default() };
             let s = Settings { sampling, blur: false, half_resolution: false, ..settings(mode, accumulate) };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-            capture_converged(&gpu, &mut r, &camera).unwrap();
-            let depth = ssdo::headless::readback::read_depth(&gpu, &r.targets().depth().texture).unwrap();
+            let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+            capture_converged(gpu, &mut r, &camera).unwrap();
+            let depth = ssdo::headless::readback::read_depth(gpu, &r.targets().depth().texture).unwrap();
             let values: Vec<f32> = if mode == Mode::Ssao {
-                ao(&gpu, &r)
+                ao(gpu, &r)
             } else {
-                directional(&gpu, &r).iter().map(|v| v.dot(Vec3::splat(1.0 / 3.0))).collect()
+                directional(gpu, &r).iter().map(|v| v.dot(Vec3::splat(1.0 / 3.0))).collect()
             };
             (values, depth.iter().map(|&d| d > 0.0).collect::<Vec<bool>>())
         };
@@ -134,13 +134,13 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
 fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = cornell();
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
-    capture_converged(&gpu, &mut r, &camera).unwrap();
+    let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
+    capture_converged(gpu, &mut r, &camera).unwrap();
     let moved = OrbitCamera { yaw_deg: camera.yaw_deg + 35.0, ..camera };
-    render_frames(&gpu, &mut r, [moved]).unwrap();
+    render_frames(gpu, &mut r, [moved]).unwrap();
     let pair = r.history().get(SURFACE_HISTORY).unwrap();
     // After the frame, the read side is what it wrote; the write side what the frame before did.
-    let (now, before) = (surfaces(&gpu, &pair.read().texture), surfaces(&gpu, &pair.write().texture));
+    let (now, before) = (surfaces(gpu, &pair.read().texture), surfaces(gpu, &pair.write().texture));
     let aspect = W as f32 / H as f32;
     let clip = |c: &OrbitCamera| c.view_to_clip(aspect) * c.world_to_view();
     let (to_world, to_before) = (clip(&moved).inverse(), clip(&camera));
@@ -181,9 +181,9 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     assert!(kept * 2 > surface, "most surfaces stay in view and keep their history: {kept} of {surface}");
     // A jump the caller announces keeps nothing anywhere.
     r.reset_history();
-    render_frames(&gpu, &mut r, [camera]).unwrap();
+    render_frames(gpu, &mut r, [camera]).unwrap();
     let pair = r.history().get(SURFACE_HISTORY).unwrap();
-    assert!(surfaces(&gpu, &pair.read().texture).iter().all(|&(d, frames)| d <= 0.0 || frames == 1));
+    assert!(surfaces(gpu, &pair.read().texture).iter().all(|&(d, frames)| d <= 0.0 || frames == 1));
 }
 
 #[test]
@@ -193,18 +193,18 @@ fn a_moving_camera_keeps_ao_in_range_and_every_value_finite() {
     for mode in [Mode::Ssao, Mode::Both] {
         for variant in [Variant::March, Variant::Points] {
             let s = Settings { sampling: Sampling { variant, ..Default::default() }, ..settings(mode, 16) };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
+            let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             for frame in 0..24 {
                 let turned = OrbitCamera {
                     yaw_deg: camera.yaw_deg + 3.0 * frame as f32,
                     pitch_deg: camera.pitch_deg + (frame as f32 * 0.7).sin() * 10.0,
                     ..camera
                 };
-                shoot(&gpu, &mut r, &turned);
-                let a = ao(&gpu, &r);
+                shoot(gpu, &mut r, &turned);
+                let a = ao(gpu, &r);
                 assert!(a.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v)), "{mode} {variant} frame {frame}");
                 if mode == Mode::Both {
-                    assert!(directional(&gpu, &r).iter().all(|v| v.is_finite() && v.min_element() >= 0.0));
+                    assert!(directional(gpu, &r).iter().all(|v| v.is_finite() && v.min_element() >= 0.0));
                 }
             }
             assert!(r.frames_accumulated() >= 24, "a moving camera keeps accumulating");
@@ -217,41 +217,41 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = cornell();
     // One frame averages nothing: no temporal pass, no history, nothing allocated for it.
-    let mut r = renderer(&gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 1));
-    shoot(&gpu, &mut r, &camera);
+    let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 1));
+    shoot(gpu, &mut r, &camera);
     assert!(!r.plan().has(Step::TEMPORAL) && r.history().all().count() == 0);
     assert!(r.allocations().iter().all(|(name, _)| !name.contains("history") && !name.contains("accumulated")));
 
     r.settings.accumulate = 8;
-    render_frames(&gpu, &mut r, [camera; 3]).unwrap();
+    render_frames(gpu, &mut r, [camera; 3]).unwrap();
     assert_eq!(r.frames_accumulated(), 3);
     let generation = r.history().get(OCCLUSION_HISTORY).unwrap().generation;
     // More frames, or another exposure: the same average goes on.
     r.settings.accumulate = 16;
     r.settings.exposure = 2.0;
-    render_frames(&gpu, &mut r, [camera]).unwrap();
+    render_frames(gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.frames_accumulated(), 4);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);
     // Another radius starts it anew in the same textures.
     r.settings.sampling.radius = Some(0.2);
-    render_frames(&gpu, &mut r, [camera]).unwrap();
+    render_frames(gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.frames_accumulated(), 1);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);
     // Another mode means other channels: new textures. A resize drops them too.
-    r.set_mode(&gpu, Mode::Both);
-    render_frames(&gpu, &mut r, [camera; 2]).unwrap();
+    r.set_mode(gpu, Mode::Both);
+    render_frames(gpu, &mut r, [camera; 2]).unwrap();
     let both = r.history().get(OCCLUSION_HISTORY).unwrap().generation;
     assert!(both > generation);
     assert_eq!(r.frames_accumulated(), 2);
-    r.resize(&gpu, 97, 61).unwrap();
+    r.resize(gpu, 97, 61).unwrap();
     assert_eq!(r.frames_accumulated(), 0);
-    render_frames(&gpu, &mut r, [camera]).unwrap();
+    render_frames(gpu, &mut r, [camera]).unwrap();
     let pair = r.history().get(OCCLUSION_HISTORY).unwrap();
     assert_eq!((pair.size, pair.frames), ((97, 61), 1));
     assert!(pair.generation > both);
     // Accumulation off again: the histories go.
     r.settings.accumulate = 1;
-    render_frames(&gpu, &mut r, [camera]).unwrap();
+    render_frames(gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.history().all().count(), 0);
 }
 
@@ -280,14 +280,14 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
     let (scene, sky, camera) = pillar_scene();
     for mode in [Mode::Ssao, Mode::Both] {
         let s = Settings { half_resolution: true, blur: false, ..settings(mode, 1) };
-        let mut r = renderer(&gpu, &scene, &sky, (W, H), s);
-        shoot(&gpu, &mut r, &camera);
+        let mut r = renderer(gpu, &scene, &sky, (W, H), s);
+        shoot(gpu, &mut r, &camera);
         assert!(r.plan().has(Step::UPSAMPLE));
         let t = r.targets();
-        let depth = ssdo::headless::readback::read_depth(&gpu, &t.depth().texture).unwrap();
+        let depth = ssdo::headless::readback::read_depth(gpu, &t.depth().texture).unwrap();
         // AO alone as the first of four channels, beside DO + AO's four.
         let read = |set: ssdo::render::targets::OcclusionTargets| -> Vec<[f32; 4]> {
-            let values = read_occlusion(&gpu, set, false).unwrap();
+            let values = read_occlusion(gpu, set, false).unwrap();
             values.directional.unwrap_or_else(|| values.ao.unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect())
         };
         let (half, full) = (read(t.stage(ssdo::render::targets::Stage::Half)), read(t.raw()));

@@ -122,16 +122,16 @@ fn both_windings_render_the_same_in_every_mode() {
         (Mode::Both, View::Final),
     ];
     for (mode, view) in cases {
-        let reference = buffers(&gpu, &scenes[0].1, &sky, &camera, mode, view);
+        let reference = buffers(gpu, &scenes[0].1, &sky, &camera, mode, view);
         for (winding, scene) in &scenes[1..] {
-            let other = buffers(&gpu, scene, &sky, &camera, mode, view);
+            let other = buffers(gpu, scene, &sky, &camera, mode, view);
             let d = max_difference(&reference, &other);
             eprintln!("{mode} {}: {winding:?} vs counter-clockwise, max |Δ| {d:e}", view.name());
             assert!(d < 1e-3, "{mode} {}: {winding:?} differs from counter-clockwise by {d}", view.name());
         }
     }
     // And the sphere is sky-lit, not dark: blue from above, on average, in SSDO's sky light.
-    let direct = buffers(&gpu, &scenes[1].1, &sky, &camera, Mode::Ssdo, View::DoDirect);
+    let direct = buffers(gpu, &scenes[1].1, &sky, &camera, Mode::Ssdo, View::DoDirect);
     assert!(mean(&direct, 2) > 0.02, "clockwise sphere gets sky light: mean blue {}", mean(&direct, 2));
 }
 
@@ -157,9 +157,9 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
         for pitch in [40.0, -40.0] {
             let camera = looking(Vec3::ZERO, 30.0, pitch, 4.0);
             let settings = Settings { mode: Mode::Ssdo, ambient: 0.0, blur: false, ..Settings::default() };
-            let mut r = renderer(&gpu, &scene, &sky, (W, H), settings);
-            shoot(&gpu, &mut r, &camera);
-            let hdr = read_rgba16f(&gpu, &r.targets().hdr().unwrap().texture).unwrap();
+            let mut r = renderer(gpu, &scene, &sky, (W, H), settings);
+            shoot(gpu, &mut r, &camera);
+            let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
             let p = hdr[(H as usize / 2) * W as usize + W as usize / 2];
             let got = Vec3::new(p[0], p[1], p[2]);
             let want = albedo * sky_radiance;
