@@ -7,6 +7,7 @@
 use super::io::{Inputs, Kind, PassIo};
 use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
+use crate::render::targets::TargetId;
 use crate::{shaders, Result};
 
 /// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
@@ -36,6 +37,9 @@ pub struct PassState<K> {
     sky_layout: Option<wgpu::BindGroupLayout>,
     pub pipeline: KeyedPipeline<K>,
     pub bind_group: Option<wgpu::BindGroup>,
+    /// The targets the pass writes in the plan it was last bound for, so a frame's `record`
+    /// does not build its declaration again.
+    writes: Vec<TargetId>,
 }
 
 impl<K: PartialEq + Copy> PassState<K> {
@@ -50,6 +54,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             sky_layout: sky.then(|| cx.sky_layout.clone()),
             pipeline: KeyedPipeline::new(),
             bind_group: None,
+            writes: Vec::new(),
         })
     }
 
@@ -66,6 +71,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             sky_layout: self.sky_layout.clone(),
             pipeline: KeyedPipeline::new(),
             bind_group: None,
+            writes: Vec::new(),
         }
     }
 
@@ -88,6 +94,7 @@ impl<K: PartialEq + Copy> PassState<K> {
     /// reads).
     pub fn group(&mut self, device: &wgpu::Device, io: &PassIo, inputs: &Inputs<'_>, parity: usize) -> wgpu::BindGroup {
         let label = format!("{}_bind_group", self.name);
+        self.writes.clone_from(&io.writes);
         let layout = self.layout_for(device, io);
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&label),
@@ -158,6 +165,12 @@ impl<K: PartialEq + Copy> PassState<K> {
     pub fn clear(&mut self) {
         self.pipeline.clear();
         self.bind_group = None;
+        self.writes.clear();
+    }
+
+    /// The targets the pass writes, as declared when its reads were last bound.
+    pub fn writes(&self) -> &[TargetId] {
+        &self.writes
     }
 
     /// Whether the plan runs the pass: `runs`, with the pipeline and bind group dropped first
@@ -183,11 +196,11 @@ impl<K: PartialEq + Copy> PassState<K> {
         self.draw_with(rec, attachments, (groups.0, own, groups.1), viewport);
     }
 
-    /// A full-screen pass's whole `record`: drawn over all of the targets `io` writes (cleared),
-    /// with the sky as group 2 where the pass reads it (`sky`).
-    pub fn record(&self, rec: Recording<'_>, io: fn(&Plan) -> PassIo, sky: bool) {
-        let attachments = rec.attachments(&io(rec.plan).writes, true);
-        let sky = sky.then_some(&rec.sky.bind_group);
+    /// A full-screen pass's whole `record`: drawn over all of the targets it writes (cleared),
+    /// with the sky as group 2 where the pass was made with it.
+    pub fn record(&self, rec: Recording<'_>) {
+        let attachments = rec.attachments(&self.writes, true);
+        let sky = self.sky_layout.is_some().then_some(&rec.sky.bind_group);
         self.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, sky), None);
     }
 

@@ -52,6 +52,6 @@ impl Pass for BlurPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec, Self::io, false);
+        self.state.record(rec);
     }
 }

@@ -136,8 +136,7 @@ impl Pass for CompositePass {
         let (key, _, _) = self.state.ready();
         // Onto the lighting pass's direct light (kept), or cleared; a display plan at its origin.
         let keep = key.additive && !key.display;
-        let writes = Self::io(rec.plan).writes;
-        let attachments = rec.attachments(&writes, !keep);
+        let attachments = rec.attachments(self.state.writes(), !keep);
         let viewport = key.display.then(|| rec.viewport());
         self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), viewport);
     }

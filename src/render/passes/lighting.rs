@@ -79,6 +79,6 @@ impl Pass for LightingPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec, Self::io, false);
+        self.state.record(rec);
     }
 }

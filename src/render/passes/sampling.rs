@@ -161,6 +161,6 @@ impl Pass for SamplingPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec, Self::io, true);
+        self.state.record(rec);
     }
 }

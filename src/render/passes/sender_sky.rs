@@ -56,6 +56,6 @@ impl Pass for SenderSkyPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec, Self::io, true);
+        self.state.record(rec);
     }
 }

@@ -109,7 +109,7 @@ impl Pass for TemporalPass {
         let parity = occlusion.parity();
         debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
         let groups = self.groups.as_ref().expect("the temporal pass recorded before `prepare`");
-        let attachments = rec.attachments(&Self::io(rec.plan).writes, true);
+        let attachments = rec.attachments(self.state.writes(), true);
         let state = if self.camera_moved { &self.state } else { &self.still };
         state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, &groups[parity], None), None);
     }

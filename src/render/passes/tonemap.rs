@@ -86,7 +86,7 @@ impl Pass for TonemapPass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let attachments = rec.attachments(&Self::io(rec.plan).writes, true);
+        let attachments = rec.attachments(self.state.writes(), true);
         let viewport = Some(rec.viewport());
         self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), viewport);
     }

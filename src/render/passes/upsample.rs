@@ -50,6 +50,6 @@ impl Pass for UpsamplePass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec, Self::io, false);
+        self.state.record(rec);
     }
 }
