@@ -45,7 +45,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then
-    echo "scripts/test.sh: cargo not found; install Rust 1.85 or newer from https://rustup.rs" >&2
+    echo "scripts/test.sh: cargo not found; install Rust 1.95 or newer from https://rustup.rs" >&2
     exit 1
 fi
 
