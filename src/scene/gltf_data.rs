@@ -258,6 +258,7 @@ fn file_image(
 pub(super) type Kind = (::gltf::accessor::Dimensions, ::gltf::accessor::DataType);
 
 pub(super) const VEC3_KINDS: &[Kind] = &[(::gltf::accessor::Dimensions::Vec3, ::gltf::accessor::DataType::F32)];
+pub(super) const VEC4_KINDS: &[Kind] = &[(::gltf::accessor::Dimensions::Vec4, ::gltf::accessor::DataType::F32)];
 pub(super) const UV_KINDS: &[Kind] = &[
     (::gltf::accessor::Dimensions::Vec2, ::gltf::accessor::DataType::F32),
     (::gltf::accessor::Dimensions::Vec2, ::gltf::accessor::DataType::U8),

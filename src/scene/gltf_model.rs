@@ -13,8 +13,15 @@
 //! * shininess = 2/α² − 2 with α = roughness² (the Blinn-Phong exponent of the same highlight
 //!   width as a Beckmann lobe of that roughness), clamped to 1-1024.
 //!
-//! Normal, metallic-roughness, occlusion and emissive textures are not read; a model that has
-//! them says so once.
+//! The normal texture (tangent space, with its `scale`) is read in the frame of the `TANGENT`
+//! attribute, or of MikkTSpace tangents where a primitive has none, as glTF asks. `alphaMode`
+//! `MASK` cuts texels whose base colour alpha (texture × factor) is below `alphaCutoff` (0.5 by
+//! default); `BLEND` is drawn as a mask at 0.5, with a warning (a deferred G-buffer holds one
+//! surface a pixel). Every face is drawn two-sided, lit on the side the camera sees, whatever
+//! `doubleSided` says.
+//!
+//! Metallic-roughness, occlusion and emissive textures are not read; a model that has them says
+//! so once.
 
 use std::path::Path;
 use std::rc::Rc;
@@ -24,9 +31,9 @@ use glam::{Mat3, Mat4, Vec3};
 use super::files::{read_bounded, ModelFolder};
 use super::gltf_data::{
     accessor_fits, check_references, read_images, BufferPlan, Kind, Picture, INDEX_KINDS, MAX_GLTF_BYTES, UV_KINDS,
-    VEC3_KINDS,
+    VEC3_KINDS, VEC4_KINDS,
 };
-use super::model::{finish, Material, Model, Vertex};
+use super::model::{finish, Cutout, Material, Model, NormalMap, Vertex};
 use super::texture::{TextureCache, TextureImage};
 use super::triangle::{push_triangle, Triangle};
 use crate::budget::{self, Share};
@@ -76,11 +83,14 @@ fn load_unguarded(path: &Path, texture_room: u64) -> Result<Model> {
     let lengths: Vec<usize> = document.buffers().map(|b| b.length()).collect();
     let buffers = plan.read(&folder, blob, &lengths).map_err(input)?;
 
-    // The base colour pictures, read once each and planned together within the texture room.
+    // The base colour and normal pictures, read once each and planned together within the
+    // texture room.
     let used: std::collections::BTreeSet<usize> = document
         .materials()
-        .filter_map(|m| m.pbr_metallic_roughness().base_color_texture())
-        .map(|info| info.texture().source().index())
+        .flat_map(|m| {
+            let base = m.pbr_metallic_roughness().base_color_texture().map(|info| info.texture().source().index());
+            base.into_iter().chain(m.normal_texture().map(|info| info.texture().source().index()))
+        })
         .collect();
     let pictures = read_images(&document, &used, &folder, &buffers);
     let mut cache = TextureCache::plan_pictures(
@@ -92,9 +102,9 @@ fn load_unguarded(path: &Path, texture_room: u64) -> Result<Model> {
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
 
-    let groups = build_groups(&instances, &buffers, default_material, materials.len(), &mut warnings)
+    let (groups, tangents) = build_groups(&instances, &buffers, default_material, materials.len(), &mut warnings)
         .map_err(|problem| with_notes(input(problem), &warnings))?;
-    finish(path, materials, groups, warnings)
+    finish(path, materials, groups, Some(tangents.concat()), warnings)
 }
 
 /// The document, its references checked before the crate validates it (its validation indexes
@@ -144,21 +154,39 @@ fn convert_material(
     let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_string);
     let pbr = m.pbr_metallic_roughness();
     let finite = |x: f32, default: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { default };
-    let [r, g, b, _] = pbr.base_color_factor().map(|c| finite(c, 1.0));
+    let [r, g, b, alpha] = pbr.base_color_factor().map(|c| finite(c, 1.0));
     let base = Vec3::new(r, g, b);
     let metallic = finite(pbr.metallic_factor(), 1.0);
     let roughness = finite(pbr.roughness_factor(), 1.0);
     let specular = 0.04 + (base.element_sum() / 3.0 - 0.04) * metallic;
-    let diffuse_map = pbr.base_color_texture().map(|info| match &pictures[info.texture().source().index()] {
-        Some((what, Ok(bytes))) => cache.decode(what, bytes, warnings).unwrap_or_else(TextureImage::checker),
+    let mut picture = |index: usize, what_for: &str, fallback: &str| match &pictures[index] {
+        Some((what, Ok(bytes))) => cache.decode_or(what, bytes, fallback, warnings),
         Some((_, Err(problem))) => {
-            warnings.push(format!("material '{name}': base colour texture: {problem}; using a checker"));
-            TextureImage::checker()
+            warnings.push(format!("material '{name}': {what_for}: {problem}; {fallback}"));
+            None
         }
-        None => unreachable!("every base colour picture was read"),
+        None => unreachable!("every picture a material names was read"),
+    };
+    let diffuse_map = pbr.base_color_texture().map(|info| {
+        picture(info.texture().source().index(), "base colour texture", "using a checker")
+            .unwrap_or_else(TextureImage::checker)
     });
+    let normal_map = m.normal_texture().and_then(|info| {
+        let image = picture(info.texture().source().index(), "normal texture", "the surface keeps its vertex normals")?;
+        Some(NormalMap { image, scale: Some(info.scale()).filter(|s| s.is_finite()).unwrap_or(1.0) })
+    });
+    let cutoff = m.alpha_cutoff().filter(|c| c.is_finite()).unwrap_or(0.5);
+    let cutout = match m.alpha_mode() {
+        ::gltf::material::AlphaMode::Opaque => None,
+        ::gltf::material::AlphaMode::Mask => Some(Cutout { mask: diffuse_map.clone(), factor: alpha, cutoff }),
+        ::gltf::material::AlphaMode::Blend => {
+            warnings.push(format!(
+                "material '{name}': alphaMode BLEND is drawn as a mask at 0.5 (the G-buffer holds one surface a pixel)"
+            ));
+            Some(Cutout { mask: diffuse_map.clone(), factor: alpha, cutoff: 0.5 })
+        }
+    };
     let unread: Vec<&str> = [
-        (m.normal_texture().is_some(), "normal map"),
         (pbr.metallic_roughness_texture().is_some(), "metallic-roughness texture"),
         (m.occlusion_texture().is_some(), "occlusion texture"),
         (m.emissive_texture().is_some() || m.emissive_factor() != [0.0; 3], "emission"),
@@ -176,6 +204,8 @@ fn convert_material(
         shininess: shininess(roughness),
         diffuse_map,
         specular_map: None,
+        normal_map,
+        cutout,
     }
 }
 
@@ -280,15 +310,19 @@ fn refusal(bytes: &[u8], error: &::gltf::Error) -> String {
     }
 }
 
-/// The triangles of every instance's primitives, grouped by material.
+/// The triangles of every instance's primitives, grouped by material, and beside each group's
+/// vertices their tangents from the file (w = 0 where it gives none).
+type Groups = (Vec<Vec<Vertex>>, Vec<Vec<[f32; 4]>>);
+
 fn build_groups(
     instances: &[(::gltf::Mesh, Mat4)],
     buffers: &[Rc<Vec<u8>>],
     default_material: usize,
     material_count: usize,
     warnings: &mut Vec<String>,
-) -> std::result::Result<Vec<Vec<Vertex>>, String> {
+) -> std::result::Result<Groups, String> {
     let mut groups: Vec<Vec<Vertex>> = vec![Vec::new(); material_count];
+    let mut tangents: Vec<Vec<[f32; 4]>> = vec![Vec::new(); material_count];
     let mut tally = Tally::default();
     for (mesh, world) in instances {
         if !world.is_finite() {
@@ -297,6 +331,7 @@ fn build_groups(
         }
         let place = Placement {
             world: *world,
+            tangents: Mat3::from_mat4(*world),
             normals: normal_matrix(world),
             // A mirroring transform turns the winding around (glTF's rule for negative determinants).
             mirrored: world.determinant() < 0.0,
@@ -304,7 +339,9 @@ fn build_groups(
         for primitive in mesh.primitives() {
             let material = primitive.material().index().filter(|&i| i < default_material).unwrap_or(default_material);
             match read_primitive(&primitive, &place, buffers) {
-                Read::Triangles(primitive) => primitive.push_into(&mut groups[material], &mut tally),
+                Read::Triangles(primitive) => {
+                    primitive.push_into(&mut groups[material], &mut tangents[material], &mut tally)
+                }
                 Read::Empty => {}
                 Read::NotTriangles => tally.skipped += 1,
                 Read::Unreadable => tally.unreadable += 1,
@@ -327,7 +364,7 @@ fn build_groups(
             warnings.push(format!("{n} {what}"));
         }
     }
-    Ok(groups)
+    Ok((groups, tangents))
 }
 
 /// What became of the triangles and primitives read, for the warnings.
@@ -343,6 +380,8 @@ struct Tally {
 /// whether it mirrors.
 struct Placement {
     world: Mat4,
+    /// Carries tangents (directions on the surface).
+    tangents: Mat3,
     normals: Mat3,
     mirrored: bool,
 }
@@ -352,6 +391,8 @@ struct Primitive {
     positions: Vec<Vec3>,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<[f32; 2]>>,
+    /// `TANGENT`, in world space (w = 0 for one that is not finite).
+    tangents: Option<Vec<[f32; 4]>>,
     triangles: Vec<[u32; 3]>,
     mirrored: bool,
 }
@@ -387,6 +428,7 @@ fn read_primitive(primitive: &::gltf::Primitive, place: &Placement, buffers: &[R
     }
     let has_normals = fits(primitive.get(&::gltf::Semantic::Normals), VEC3_KINDS);
     let has_uvs = fits(primitive.get(&::gltf::Semantic::TexCoords(uv_set)), UV_KINDS);
+    let has_tangents = fits(primitive.get(&::gltf::Semantic::Tangents), VEC4_KINDS);
     let reader = primitive.reader(|b| buffers.get(b.index()).map(|data| data.as_slice()));
     let Some(positions) = reader.read_positions() else { return Read::Unreadable };
     let positions: Vec<Vec3> = positions.map(|p| place.world.transform_point3(Vec3::from(p))).collect();
@@ -401,18 +443,35 @@ fn read_primitive(primitive: &::gltf::Primitive, place: &Placement, buffers: &[R
         .flatten()
         .map(|t| t.into_f32().collect::<Vec<_>>())
         .filter(|t| t.len() == count);
+    // A mirroring transform turns the bitangent's handedness around with the winding.
+    let handedness = if place.mirrored { -1.0 } else { 1.0 };
+    let tangents: Option<Vec<[f32; 4]>> = has_tangents
+        .then(|| reader.read_tangents())
+        .flatten()
+        .map(|t| {
+            t.map(|[x, y, z, w]| {
+                let t = place.tangents * Vec3::new(x, y, z);
+                match t.try_normalize() {
+                    Some(t) if w.is_finite() && w != 0.0 => [t.x, t.y, t.z, w.signum() * handedness],
+                    _ => [0.0; 4],
+                }
+            })
+            .collect::<Vec<_>>()
+        })
+        .filter(|t| t.len() == count);
     let indices: Vec<u32> = match reader.read_indices() {
         Some(indices) => indices.into_u32().collect(),
         None if primitive.indices().is_some() => return Read::Unreadable,
         None => (0..count as u32).collect(),
     };
     let triangles = triangle_list(primitive.mode(), &indices);
-    Read::Triangles(Primitive { positions, normals, uvs, triangles, mirrored: place.mirrored })
+    Read::Triangles(Primitive { positions, normals, uvs, tangents, triangles, mirrored: place.mirrored })
 }
 
 impl Primitive {
-    /// Appends its triangles to `group` (those with an index out of range dropped).
-    fn push_into(&self, group: &mut Vec<Vertex>, tally: &mut Tally) {
+    /// Appends its triangles to `group`, and their tangents to `tangents` (those with an index out
+    /// of range dropped).
+    fn push_into(&self, group: &mut Vec<Vertex>, tangents: &mut Vec<[f32; 4]>, tally: &mut Tally) {
         let count = self.positions.len();
         for tri in &self.triangles {
             let mut idx = tri.map(|i| i as usize);
@@ -425,9 +484,13 @@ impl Primitive {
             }
             let normals = self.normals.as_ref().map(|n| idx.map(|i| n[i]));
             let uv = idx.map(|i| self.uvs.as_ref().map_or([0.0; 2], |t| t[i]));
+            let given = idx.map(|i| self.tangents.as_ref().map_or([0.0; 4], |t| t[i]));
             match push_triangle(idx.map(|i| self.positions[i]), normals, uv, group) {
-                Triangle::Kept => {}
-                Triangle::Flipped => tally.flipped += 1,
+                Triangle::Kept => tangents.extend(given),
+                Triangle::Flipped => {
+                    tally.flipped += 1;
+                    tangents.extend([given[0], given[2], given[1]]);
+                }
                 Triangle::Dropped => tally.dropped += 1,
             }
         }

@@ -19,7 +19,8 @@ pub struct Vertex {
     pub uv: [f32; 2],
 }
 
-/// Surface description: Blinn-Phong with optional diffuse and specular maps.
+/// Surface description: Blinn-Phong with optional diffuse and specular maps, a tangent-space
+/// normal map and an alpha cutout.
 #[derive(Clone, Debug)]
 pub struct Material {
     pub name: String,
@@ -30,13 +31,56 @@ pub struct Material {
     pub shininess: f32,
     pub diffuse_map: Option<TextureImage>,
     pub specular_map: Option<TextureImage>,
+    pub normal_map: Option<NormalMap>,
+    pub cutout: Option<Cutout>,
+}
+
+/// A tangent-space normal map (linear RGB, OpenGL's convention: x along the texture's u, y up
+/// the image, z out of the surface), read in the frame of the model's tangents
+/// ([`Model::tangents`]).
+#[derive(Clone, Debug)]
+pub struct NormalMap {
+    pub image: TextureImage,
+    /// Multiplies the map's x and y (glTF's `scale`, OBJ's `-bm`): 0 is flat, 1 the map as drawn.
+    pub scale: f32,
+}
+
+/// An alpha cutout: a texel whose coverage is below `cutoff` is a hole in every pass that
+/// writes depth, and in the truth.
+#[derive(Clone, Debug)]
+pub struct Cutout {
+    /// Coverage in the alpha channel (often the colour map itself); `None`: `factor` alone.
+    pub mask: Option<TextureImage>,
+    /// Multiplies the mask's coverage (glTF's base colour alpha).
+    pub factor: f32,
+    pub cutoff: f32,
+}
+
+impl Cutout {
+    /// The coverage at texel `(x, y)` of the mask (or the factor alone without one).
+    pub fn coverage_at(&self, uv: [f32; 2]) -> f32 {
+        match &self.mask {
+            Some(mask) => self.factor * mask.texel(uv)[3] as f32 / 255.0,
+            None => self.factor,
+        }
+    }
 }
 
 impl Material {
     pub fn plain(name: &str, diffuse: [f32; 3]) -> Self {
-        Self { name: name.into(), diffuse, specular: [0.0; 3], shininess: 32.0, diffuse_map: None, specular_map: None }
+        Self {
+            name: name.into(),
+            diffuse,
+            specular: [0.0; 3],
+            shininess: 32.0,
+            diffuse_map: None,
+            specular_map: None,
+            normal_map: None,
+            cutout: None,
+        }
     }
 
+    /// Whether it reads a colour map (diffuse or specular).
     pub fn is_textured(&self) -> bool {
         self.diffuse_map.is_some() || self.specular_map.is_some()
     }
@@ -66,6 +110,10 @@ pub const MAX_OFFSET_RADII: f32 = 1e6;
 pub struct Model {
     pub name: String,
     pub vertices: Vec<Vertex>,
+    /// One per vertex where a material has a normal map, else empty: the tangent along the
+    /// texture's u in xyz and in w the bitangent's sign (bitangent = w · normal × tangent, up the
+    /// image), from the file or MikkTSpace ([`Model::generate_tangents`]).
+    pub tangents: Vec<[f32; 4]>,
     pub indices: Vec<u32>,
     pub parts: Vec<Part>,
     pub materials: Vec<Material>,
@@ -94,7 +142,16 @@ impl Model {
         }
         let bounds = Bounds::from_points(vertices.iter().map(|v| Vec3::from(v.position)))
             .ok_or_else(|| Error::input(name, "no triangles with finite vertices"))?;
-        Ok(Self { name: name.into(), vertices, indices, parts, materials, bounds, warnings: Vec::new() })
+        Ok(Self {
+            name: name.into(),
+            vertices,
+            indices,
+            parts,
+            materials,
+            bounds,
+            tangents: Vec::new(),
+            warnings: Vec::new(),
+        })
     }
 
     pub fn triangle_count(&self) -> usize {
@@ -105,6 +162,39 @@ impl Model {
         self.materials.iter().any(Material::is_textured)
     }
 
+    /// Leaves out the normal maps and alpha cutouts (`--no-surface-maps`): the surfaces as their
+    /// vertex normals and triangles make them.
+    pub fn drop_surface_maps(&mut self) {
+        for m in &mut self.materials {
+            m.normal_map = None;
+            m.cutout = None;
+        }
+        self.tangents.clear();
+    }
+
+    /// Whether a drawn material has a normal map (the model then has tangents).
+    pub fn is_normal_mapped(&self) -> bool {
+        self.parts.iter().any(|p| self.materials[p.material].normal_map.is_some())
+    }
+
+    /// Fills [`Model::tangents`] where a material has a normal map: `given` (one per vertex, in
+    /// the vertices' order; a w of 0 where the file gave none) where it holds one, MikkTSpace's
+    /// (as glTF asks where a mesh has none) elsewhere. A model without normal maps keeps none.
+    pub fn generate_tangents(&mut self, given: Option<Vec<[f32; 4]>>) {
+        if !self.is_normal_mapped() {
+            self.tangents.clear();
+            return;
+        }
+        let given = given.filter(|g| g.len() == self.vertices.len());
+        let mut tangents = given.unwrap_or_else(|| vec![[0.0; 4]; self.vertices.len()]);
+        if tangents.iter().any(|t| t[3] == 0.0) {
+            let mut mikk = Mikk { model: self, tangents: &mut tangents };
+            // It fails only without faces; a triangle it cannot frame keeps w = 0 (the G-buffer
+            // then reads the vertex normal there).
+            let _ = bevy_mikktspace::generate_tangents(&mut mikk);
+        }
+        self.tangents = tangents;
+    }
     /// World-space triangle `i` as three positions.
     pub fn triangle(&self, i: usize) -> [Vec3; 3] {
         let p = |k: usize| Vec3::from(self.vertices[self.indices[3 * i + k] as usize].position);
@@ -187,6 +277,54 @@ impl Model {
     }
 }
 
+/// The model's triangles as MikkTSpace sees them. Texture v is turned back to point up the image
+/// (the vertices keep it pointing down, as the rows are stored), so the bitangent it gives points
+/// up, as normal maps are drawn. Only tangents the file did not give (w = 0) are written.
+struct Mikk<'a> {
+    model: &'a Model,
+    tangents: &'a mut Vec<[f32; 4]>,
+}
+
+impl Mikk<'_> {
+    fn vertex(&self, face: usize, vert: usize) -> usize {
+        self.model.indices[3 * face + vert] as usize
+    }
+}
+
+impl bevy_mikktspace::Geometry for Mikk<'_> {
+    fn num_faces(&self) -> usize {
+        self.model.triangle_count()
+    }
+
+    fn num_vertices_of_face(&self, _face: usize) -> usize {
+        3
+    }
+
+    fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+        self.model.vertices[self.vertex(face, vert)].position
+    }
+
+    fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
+        self.model.vertices[self.vertex(face, vert)].normal
+    }
+
+    fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
+        let [u, v] = self.model.vertices[self.vertex(face, vert)].uv;
+        [u, 1.0 - v]
+    }
+
+    fn set_tangent(&mut self, space: Option<bevy_mikktspace::TangentSpace>, face: usize, vert: usize) {
+        let Some(space) = space else { return };
+        let tangent = space.tangent_encoded();
+        let i = self.vertex(face, vert);
+        if self.tangents[i][3] == 0.0 && tangent.iter().all(|x| x.is_finite()) {
+            // MikkTSpace's sign is +1 or -1; a zero w would read as "none given".
+            let w = if tangent[3] < 0.0 { -1.0 } else { 1.0 };
+            self.tangents[i] = [tangent[0], tangent[1], tangent[2], w];
+        }
+    }
+}
+
 /// The end of every loader: the model named after its file from triangles grouped by material
 /// (an error when there are none), brought into f32's range, with the loader's warnings logged
 /// and kept on it.
@@ -194,6 +332,7 @@ pub(super) fn finish(
     path: &Path,
     materials: Vec<Material>,
     groups: Vec<Vec<Vertex>>,
+    given_tangents: Option<Vec<[f32; 4]>>,
     mut warnings: Vec<String>,
 ) -> Result<Model> {
     if groups.iter().all(Vec::is_empty) {
@@ -205,6 +344,7 @@ pub(super) fn finish(
     let mut model = Model::from_groups(&name, materials, groups)
         .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
     warnings.extend(model.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
+    model.generate_tangents(given_tangents);
     for w in &warnings {
         log::warn!("{}: {w}", path.display());
     }

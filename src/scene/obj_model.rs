@@ -14,9 +14,9 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::files::{check_file, other_model_kind, read_bounded, ModelFolder};
-use super::model::{finish, Material, Model, Vertex, NO_TRIANGLES};
+use super::model::{finish, Cutout, Material, Model, NormalMap, Vertex, NO_TRIANGLES};
 use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
-use super::texture::{load_texture, TextureCache};
+use super::texture::{load_texture, texture_option, try_load_texture, TextureCache, TextureImage};
 use super::triangle::{push_triangle, Triangle};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
@@ -41,7 +41,68 @@ fn convert_material(
         shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
         diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
         specular_map: m.specular_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
+        normal_map: normal_map(m, folder, cache, warnings),
+        cutout: cutout(m, folder, cache, warnings),
     }
+}
+
+/// The statements that may name a normal map, the explicit one first: `norm`, then `map_Bump`
+/// or `bump` (which tobj keeps as one), which exporters use for normal and height maps alike.
+fn normal_statements(m: &tobj::Material) -> Vec<(&'static str, &str)> {
+    let norm = m.unknown_param.get("norm").map(|a| ("norm", a.as_str()));
+    let bump = m.normal_texture.as_deref().map(|a| ("map_Bump", a));
+    norm.into_iter().chain(bump).collect()
+}
+
+/// The material's tangent-space normal map: the first statement that names a readable picture
+/// in colour. A grey picture is a height map (Sponza ships both kinds under `map_Bump`), which
+/// is not read; it is said which statement was taken and what was left out. `-bm` is the scale.
+fn normal_map(
+    m: &tobj::Material,
+    folder: &ModelFolder,
+    cache: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Option<NormalMap> {
+    let statements = normal_statements(m);
+    let mut taken: Option<(&str, &str, NormalMap)> = None;
+    for (key, argument) in statements {
+        if let Some((taken_key, taken_argument, _)) = &taken {
+            warnings.push(format!(
+                "material '{}': {key} {argument} left out: the normal map is {taken_key} {taken_argument}",
+                m.name
+            ));
+            continue;
+        }
+        let fallback = "the surface keeps its vertex normals";
+        let Some(image) = try_load_texture(folder, argument, cache, fallback, warnings) else { continue };
+        if image.is_greyscale() {
+            warnings.push(format!(
+                "material '{}': {key} {argument} is a height map (a grey picture), not a normal map: height maps \
+                 are not read",
+                m.name
+            ));
+            continue;
+        }
+        let scale = texture_option(argument, "-bm").unwrap_or(1.0);
+        log::info!("material '{}': normal map from {key} {argument} (scale {scale})", m.name);
+        taken = Some((key, argument, NormalMap { image, scale }));
+    }
+    taken.map(|(_, _, map)| map)
+}
+
+/// The material's alpha cutout from `map_d`: coverage from the picture's alpha where it has one
+/// (often the colour map's own RGBA file, then shared with it), else from its luminance (a grey
+/// mask). Coverage below one half is a hole. A mask that cannot be read leaves the surface opaque.
+fn cutout(
+    m: &tobj::Material,
+    folder: &ModelFolder,
+    cache: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Option<Cutout> {
+    let argument = m.dissolve_texture.as_deref()?;
+    let image = try_load_texture(folder, argument, cache, "the surface stays opaque", warnings)?;
+    let mask = if image.has_alpha() { image } else { TextureImage::luminance_as_alpha(&image) };
+    Some(Cutout { mask: Some(mask), factor: 1.0, cutoff: 0.5 })
 }
 
 /// The largest OBJ read (a 5M-triangle model is about 400 MB) and the largest MTL.
@@ -75,14 +136,17 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         }
         Vec::new()
     });
-    let maps = tobj_materials.iter().flat_map(|m| [m.diffuse_texture.as_deref(), m.specular_texture.as_deref()]);
-    let mut cache = TextureCache::plan(&folder, maps.flatten(), texture_room);
+    let maps = tobj_materials.iter().flat_map(|m| {
+        let colour = [m.diffuse_texture.as_deref(), m.specular_texture.as_deref(), m.dissolve_texture.as_deref()];
+        colour.into_iter().flatten().chain(normal_statements(m).into_iter().map(|(_, argument)| argument))
+    });
+    let mut cache = TextureCache::plan(&folder, maps, texture_room);
     let mut materials: Vec<Material> =
         tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, &mut warnings)).collect();
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
     let groups = build_groups(&models, default_material, &mut warnings);
-    finish(path, materials, groups, warnings)
+    finish(path, materials, groups, None, warnings)
 }
 
 /// Sizes the file before it is read: the triangles its faces make, counted from a stream of

@@ -163,6 +163,7 @@ pub fn figure(triangles: usize) -> Result<Model> {
         vertices,
         indices,
         bounds,
+        tangents: Vec::new(),
         warnings: Vec::new(),
     })
 }
@@ -182,6 +183,10 @@ pub fn in_room(mut model: Model) -> Result<Model> {
         v.position = (scale * lay(v.position) + offset).into();
         v.normal = lay(v.normal).into();
     }
+    for t in &mut model.tangents {
+        let [x, y, z] = lay([t[0], t[1], t[2]]).into();
+        *t = [x, y, z, t[3]];
+    }
 
     let mut room = MeshBuilder::default();
     let walls = room.material(Material::plain("room", ROOM_ALBEDO));
@@ -192,6 +197,10 @@ pub fn in_room(mut model: Model) -> Result<Model> {
     let base = model.vertices.len() as u32;
     let first_index = model.indices.len() as u32;
     model.vertices.extend_from_slice(&room.vertices);
+    if !model.tangents.is_empty() {
+        // The room's walls have no normal map: no tangents (w = 0).
+        model.tangents.resize(model.vertices.len(), [0.0; 4]);
+    }
     model.indices.extend(room.indices.iter().map(|i| i + base));
     model.parts.push(Part { first_index, index_count: room.indices.len() as u32, material: model.materials.len() });
     model.materials.extend(room.materials);

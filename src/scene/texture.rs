@@ -19,6 +19,36 @@ pub struct TextureImage {
 }
 
 impl TextureImage {
+    /// The texel under `uv` (nearest, wrapping; v down the image, as the vertices store it).
+    pub fn texel(&self, uv: [f32; 2]) -> [u8; 4] {
+        let wrap = |t: f32, n: u32| {
+            let t = if t.is_finite() { t.rem_euclid(1.0) } else { 0.0 };
+            ((t * n as f32) as u32).min(n - 1)
+        };
+        let i = 4 * (wrap(uv[1], self.height) * self.width + wrap(uv[0], self.width)) as usize;
+        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2], self.rgba[i + 3]]
+    }
+
+    /// Whether every texel is grey (red, green and blue within a few steps of each other, as a
+    /// compressed grey picture keeps them): a height map, not a normal map, whose flat texels
+    /// are (128, 128, 255).
+    pub fn is_greyscale(&self) -> bool {
+        let grey = self.rgba.chunks_exact(4).filter(|t| t[0].abs_diff(t[1]) <= 8 && t[1].abs_diff(t[2]) <= 8).count();
+        grey * 100 >= 99 * (self.rgba.len() / 4)
+    }
+
+    /// Whether some texel is less than opaque.
+    pub fn has_alpha(&self) -> bool {
+        self.rgba.chunks_exact(4).any(|t| t[3] < 255)
+    }
+
+    /// The same picture with its luminance as coverage in alpha (a mask drawn in grey).
+    pub fn luminance_as_alpha(&self) -> Self {
+        let luminance = |t: &[u8]| (0.2126 * t[0] as f32 + 0.7152 * t[1] as f32 + 0.0722 * t[2] as f32).round() as u8;
+        let rgba = self.rgba.chunks_exact(4).flat_map(|t| [255, 255, 255, luminance(t)]).collect();
+        Self { width: self.width, height: self.height, rgba: std::sync::Arc::new(rgba) }
+    }
+
     /// The fallback for a texture that is missing or unreadable: a magenta/grey checker, so the
     /// problem is visible on screen as well as in the log.
     pub fn checker() -> Self {
@@ -94,8 +124,15 @@ impl TextureCache {
     }
 
     /// The texture for the picture in `bytes` (called `path` in warnings): decoded once per
-    /// content at its planned size; `None`, with a warning, when it cannot be.
-    pub(super) fn decode(&mut self, path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Option<TextureImage> {
+    /// content at its planned size; `None`, with a warning ending in `fallback` (what the surface
+    /// does instead), when it cannot be.
+    pub(super) fn decode_or(
+        &mut self,
+        path: &Path,
+        bytes: &[u8],
+        fallback: &str,
+        warnings: &mut Vec<String>,
+    ) -> Option<TextureImage> {
         let key = content_key(bytes);
         if let Some(image) = self.by_content.get(&key) {
             return Some(image.clone());
@@ -117,7 +154,7 @@ impl TextureCache {
                 texture
             }
             Err(e) => {
-                warnings.push(format!("{e}; using a checker"));
+                warnings.push(format!("{e}; {fallback}"));
                 return None;
             }
         };
@@ -201,15 +238,31 @@ fn decode_limits(max_side: u32) -> image::Limits {
 /// Largest texture side accepted when loading (textures are also checked against the device).
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
 
+/// What a colour map that cannot be read becomes.
+const CHECKER: &str = "using a checker";
+
 pub(super) fn load_texture(
     folder: &ModelFolder,
     argument: &str,
     cache: &mut TextureCache,
     warnings: &mut Vec<String>,
 ) -> TextureImage {
+    try_load_texture(folder, argument, cache, CHECKER, warnings).unwrap_or_else(TextureImage::checker)
+}
+
+/// The picture a texture statement names, or `None` with a warning that ends with `fallback`
+/// (what the surface does instead: a normal map that cannot be read leaves it flat, not
+/// checkered).
+pub(super) fn try_load_texture(
+    folder: &ModelFolder,
+    argument: &str,
+    cache: &mut TextureCache,
+    fallback: &str,
+    warnings: &mut Vec<String>,
+) -> Option<TextureImage> {
     let Some(name) = texture_file_name(argument) else {
-        warnings.push(format!("texture statement '{argument}' names no file; using a checker"));
-        return TextureImage::checker();
+        warnings.push(format!("texture statement '{argument}' names no file; {fallback}"));
+        return None;
     };
     let path = match folder.find(&name) {
         Ok((path, note)) => {
@@ -217,24 +270,32 @@ pub(super) fn load_texture(
             path
         }
         Err(problem) => {
-            warnings.push(format!("texture {problem}; using a checker"));
-            return TextureImage::checker();
+            warnings.push(format!("texture {problem}; {fallback}"));
+            return None;
         }
     };
     let canonical = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
     if let Some(image) = cache.by_path.get(&canonical) {
-        return image.clone();
+        return Some(image.clone());
     }
     let bytes = match folder.read_found(&path, file_limit()) {
         Ok(bytes) => bytes,
         Err(problem) => {
-            warnings.push(format!("{problem}; using a checker"));
-            return TextureImage::checker();
+            warnings.push(format!("{problem}; {fallback}"));
+            return None;
         }
     };
-    let Some(texture) = cache.decode(&path, &bytes, warnings) else { return TextureImage::checker() };
+    let texture = cache.decode_or(&path, &bytes, fallback, warnings)?;
     cache.by_path.insert(canonical, texture.clone());
-    texture
+    Some(texture)
+}
+
+/// The number after option `name` in a texture statement (`-bm 0.5 bricks.png`), if it is
+/// there and finite.
+pub fn texture_option(argument: &str, name: &str) -> Option<f32> {
+    let words: Vec<&str> = argument.split_whitespace().collect();
+    let at = words.iter().position(|w| *w == name)?;
+    words.get(at + 1)?.parse::<f32>().ok().filter(|x| x.is_finite())
 }
 
 /// Decodes a picture at its own size, then resizes it to `planned` (filtered) and turns it into

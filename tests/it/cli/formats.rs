@@ -249,7 +249,9 @@ fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
     // Metallic 1: no diffuse, and the base colour's mean as the specular strength.
     assert_eq!(m.materials[0].diffuse, [0.0; 3]);
     assert!((m.materials[0].specular[0] - 0.5).abs() < 1e-6 && m.materials[0].shininess == 1.0);
-    assert!(m.warnings.iter().any(|w| w.contains("not rendered: normal map")), "{:?}", m.warnings);
+    // The normal texture is read (here the same picture), in MikkTSpace tangents (no TANGENT).
+    assert!(m.materials[0].normal_map.is_some() && m.tangents.len() == m.vertices.len());
+    assert!(m.warnings.iter().all(|w| !w.contains("not rendered")), "{:?}", m.warnings);
     let uvs: Vec<[f32; 2]> = m.vertices.iter().map(|v| v.uv).collect();
     assert!(uvs.contains(&[1.0, 1.0]) && uvs.contains(&[0.0, 0.0]), "{uvs:?}");
 
@@ -259,6 +261,9 @@ fn gltf_textures_load_and_what_is_missing_is_a_checker_and_a_warning() {
     let checker = ssdo::scene::model::TextureImage::checker();
     assert_eq!(m.materials[0].diffuse_map.as_ref().unwrap().rgba, checker.rgba);
     assert!(m.warnings.iter().any(|w| w.contains("nowhere.png") && w.contains("checker")), "{:?}", m.warnings);
+    // The same missing picture as the normal texture: the vertex normals, no tangents.
+    assert!(m.materials[0].normal_map.is_none() && m.tangents.is_empty());
+    assert!(m.warnings.iter().any(|w| w.contains("keeps its vertex normals")), "{:?}", m.warnings);
 }
 
 #[test]
