@@ -1,11 +1,16 @@
 // G-buffer pass: rasterises the model once and stores what every mode shares.
 //   albedo target (Rgba8UnormSrgb): rgb diffuse albedo, a specular strength
-//   normal target (R32Uint):        view-space unit normal and Blinn-Phong shininess, packed
+//   normal target (R32Uint):        view-space unit shading normal (the normal map's, where the
+//                                   material has one) and Blinn-Phong shininess, packed
 //                                   (common/surface_pack.wgsl)
 //   depth (Depth32Float, reverse-Z): position is reconstructed from it, not stored.
 // Faces are two-sided: the normal that reaches the G-buffer is turned to the side of the surface
 // the camera sees, whatever the triangle's winding (see `camera_side`), so single-sided walls,
 // leaves seen from behind and meshes wound against their normals are lit from the visible side.
+// A normal-mapped surface turns its whole tangent frame with it.
+// Cut-out materials discard the texels whose coverage is below their cutoff: this pass is the
+// only one that writes depth (the depth pyramid is built from its depth), so every screen-space
+// pass sees the holes.
 
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
@@ -18,18 +23,28 @@ struct MaterialParams {
     specular: f32,
     // Blinn-Phong exponent
     shininess: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
+    // multiplies the normal map's x and y
+    normal_scale: f32,
+    // coverage below this is a hole
+    alpha_cutoff: f32,
+    // multiplies the mask's coverage
+    alpha_factor: f32,
 }
 
 @group(1) @binding(0) var<uniform> material: MaterialParams;
 @group(1) @binding(1) var diffuse_map: texture_2d<f32>;
 @group(1) @binding(2) var specular_map: texture_2d<f32>;
 @group(1) @binding(3) var material_sampler: sampler;
+// Tangent-space normals, linear (x along u, y up the image, z out).
+@group(1) @binding(4) var normal_map: texture_2d<f32>;
+// Coverage in alpha (sRGB view: alpha is linear; often the colour map itself).
+@group(1) @binding(5) var coverage_map: texture_2d<f32>;
 
-// False for untextured materials: their pipeline never touches the maps.
+// Each is false where a material does not need it: its pipeline never touches that map, and an
+// opaque untextured material draws with none of them (no texture read, no discard).
 override TEXTURED: bool = false;
+override NORMAL_MAPPED: bool = false;
+override CUT_OUT: bool = false;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -42,33 +57,64 @@ struct VertexOut {
     @location(0) normal: vec3<f32>,
     @location(1) uv: vec2<f32>,
     @location(2) view_position: vec3<f32>,
+    // View-space tangent and bitangent sign (0 where there is none); vs_main leaves it 0.
+    @location(3) tangent: vec4<f32>,
 }
 
-@vertex
-fn vs_main(v: VertexIn) -> VertexOut {
+fn transform(v: VertexIn) -> VertexOut {
     let view = frame.world_to_view * vec4<f32>(v.position, 1.0);
     var out: VertexOut;
     out.clip = frame.view_to_clip * view;
     out.normal = (frame.world_to_view * vec4<f32>(v.normal, 0.0)).xyz;
     out.uv = v.uv;
     out.view_position = view.xyz;
+    out.tangent = vec4<f32>(0.0);
     return out;
 }
 
-// Turns the shading normal `n` to the camera's side of the triangle at view-space position `p`.
-// The triangle's plane comes from the screen-space derivatives of `p` (exact for a flat triangle,
-// independent of its winding), oriented towards the camera; `n` is flipped when it lies on the
-// other side of that plane. At a silhouette a smooth normal may point slightly away from the
-// camera while still on the visible side: it is kept. Only a degenerate plane (no derivatives)
-// falls back to the rasteriser's facing.
-fn camera_side(n: vec3<f32>, p: vec3<f32>, plane: vec3<f32>, front: bool) -> vec3<f32> {
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    return transform(v);
+}
+
+// The vertex stage of normal-mapped materials: the tangents come in a second buffer, which only
+// a model with normal maps has.
+@vertex
+fn vs_mapped(v: VertexIn, @location(3) tangent: vec4<f32>) -> VertexOut {
+    var out = transform(v);
+    out.tangent = vec4<f32>((frame.world_to_view * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w);
+    return out;
+}
+
+// +1 or -1: the sign that turns the normal `n` to the camera's side of the triangle at
+// view-space position `p`. The triangle's plane comes from the screen-space derivatives of `p`
+// (exact for a flat triangle, independent of its winding), oriented towards the camera; `n` is
+// flipped when it lies on the other side of that plane. At a silhouette a smooth normal may
+// point slightly away from the camera while still on the visible side: it is kept. Only a
+// degenerate plane (no derivatives) falls back to the rasteriser's facing.
+fn camera_side(n: vec3<f32>, p: vec3<f32>, plane: vec3<f32>, front: bool) -> f32 {
     var facing = select(-1.0, 1.0, front);
     let towards_camera = dot(plane, -p);
     if towards_camera != 0.0 && dot(plane, plane) > 0.0 {
         // Signs apart: their product could underflow on a tiny model.
         facing = sign(dot(n, plane)) * sign(towards_camera);
     }
-    return select(n, -n, facing < 0.0);
+    return select(1.0, -1.0, facing < 0.0);
+}
+
+// The normal map's normal at `uv` in the frame of the unit vertex normal `n` and the
+// interpolated tangent `t` (w the bitangent's sign); `n` itself where there is no frame.
+fn mapped_normal(n: vec3<f32>, t: vec4<f32>, uv: vec2<f32>) -> vec3<f32> {
+    // Gram-Schmidt: the interpolated tangent is no longer quite perpendicular to the normal.
+    let tangent = t.xyz - n * dot(n, t.xyz);
+    if t.w == 0.0 || dot(tangent, tangent) < 1e-12 {
+        return n;
+    }
+    let tu = normalize(tangent);
+    let bv = cross(n, tu) * sign(t.w);
+    var m = textureSample(normal_map, material_sampler, uv).xyz * 2.0 - 1.0;
+    m = vec3<f32>(m.xy * material.normal_scale, max(m.z, 0.0));
+    return safe_normalize(tu * m.x + bv * m.y + n * m.z, n);
 }
 
 struct GBufferOut {
@@ -78,7 +124,7 @@ struct GBufferOut {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    // Derivatives first, in uniform control flow.
+    // Derivatives and every implicit-derivative sample first, in uniform control flow.
     let plane = cross(dpdx(in.view_position), dpdy(in.view_position));
     var albedo = material.albedo;
     var specular = material.specular;
@@ -87,7 +133,19 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
         albedo *= textureSample(diffuse_map, material_sampler, in.uv).rgb;
         specular *= textureSample(specular_map, material_sampler, in.uv).r;
     }
-    let n = camera_side(safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0)), in.view_position, plane, front);
+    let vertex_normal = safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0));
+    var n = vertex_normal;
+    if NORMAL_MAPPED {
+        n = mapped_normal(vertex_normal, in.tangent, in.uv);
+    }
+    if CUT_OUT {
+        let coverage = textureSample(coverage_map, material_sampler, in.uv).a * material.alpha_factor;
+        if coverage < material.alpha_cutoff {
+            discard;
+        }
+    }
+    // The side is the vertex normal's: the mapped normal turns with its whole frame.
+    n *= camera_side(vertex_normal, in.view_position, plane, front);
     var out: GBufferOut;
     out.albedo = vec4<f32>(albedo, specular);
     out.normal = pack_surface(n, material.shininess);

@@ -18,6 +18,8 @@
 // R only) and then spread geometrically out to `reach`, so walls far beyond R still block the sky.
 //
 //   AO       = 1 − Σ|n_p| w(occluded within R) / Σ|n_p| w(all)
+// ("all": the sectors above the surface's own plane; with normal maps n is the mapped normal and
+// the plane the depth buffer's, see NORMAL_MAPPED in common/sampling_params.wgsl)
 //   direct   = Σ|n_p| Σ_g w_g · visible_g · L_sky(ω_g) / Σ|n_p| w(all)     (white furnace exact)
 //   indirect = Σ|n_p| Σ_k w_k · occluded_first_by(s) · L_bounce(s) / Σ|n_p| w(all)
 // with w = ∫ cos(θ − γ)|sin θ| dθ over the sectors named. Albedo is applied in the composite.
@@ -111,10 +113,17 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     if depth <= 0.0 {
         return out;
     }
+    // The cosines are the shading normal's; the hemisphere is cut at the surface's own plane
+    // (its normal `n_g`, the same as `n` unless the G-buffer's normals are mapped).
     let n = load_normal(pixel);
+    let surface = view_position(position, depth);
+    var n_g = n;
+    if NORMAL_MAPPED {
+        n_g = depth_normal(pixel, surface, n);
+    }
     let radius = occ.radius;
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
-    let p = view_position(position, depth) + n * occ.bias_length;
+    let p = surface + n_g * occ.bias_length;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
     let slices = max(slice_count, 1u);
     let steps = max(occ.steps, 1u);
@@ -151,6 +160,17 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
         let gamma = slice_angle(n_p, v, t);
         let lo = gamma - HALF_PI;
         let sin_gamma = dot(n_p, t) / n_len;
+        // The sectors above the surface's own plane: all of them unless the normals are mapped.
+        var inside = 0xffffffffu;
+        if NORMAL_MAPPED {
+            let ng_p = n_g - plane_normal * dot(n_g, plane_normal);
+            if dot(ng_p, ng_p) > 1e-12 {
+                let gamma_g = slice_angle(ng_p, v, t);
+                let first = sector_of(gamma_g - HALF_PI, gamma);
+                let last = sector_of(gamma_g + HALF_PI, gamma);
+                inside = select(0u, bit_range(first, last), first <= last);
+            }
+        }
         // The cosine-weighted measure of each sector group, times |n_p|.
         let width = PI / f32(GROUPS);
         let f_zero = antiderivative(0.0, gamma, sin_gamma);
@@ -168,7 +188,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             f_a = f_b;
         }
 
-        var mask = 0u;
+        // Sectors below the surface's plane count as taken: no sky, no bounce, and they leave
+        // the slice's measure (`total`) below.
+        var mask = ~inside;
         var near_mask = 0u;
         for (var side = 0u; side < 2u; side += 1u) {
             let sign = select(-1.0, 1.0, side == 0u);
@@ -231,7 +253,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 // the previous angle lies below the hemisphere and clamps to its edge sector.
                 // Without this the sectors between the horizon and a wall's first sample showed
                 // the sky, and sent no bounce.
-                let above = dot(front, n) > 0.0;
+                let above = dot(front, n_g) > 0.0;
                 if connected && above
                     && length(s - previous) < thickness + 2.0 * (distance - previous_distance) {
                     a_min = min(a_min, previous_angle);
@@ -243,7 +265,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 previous_angle = a_front;
                 // Wholly below the receiver's tangent plane: it blocks nothing of the hemisphere.
                 // (Tested on the positions, exactly, not on the approximate angles.)
-                if !above && dot(back, n) <= 0.0 {
+                if !above && dot(back, n_g) <= 0.0 {
                     continue;
                 }
                 let first = sector_of(a_min, gamma);
@@ -277,9 +299,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             let a = lo + f32(g) * width;
             let w = weights[g];
             let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
-            total += w;
+            total += w * f32(countOneBits(inside & group_bits)) / f32(PER_GROUP);
             if HAS_AO {
-                occluded_near += w * f32(countOneBits(near_mask & group_bits)) / f32(PER_GROUP);
+                occluded_near += w * f32(countOneBits(near_mask & inside & group_bits)) / f32(PER_GROUP);
             }
             if HAS_DO {
                 let visible = f32(countOneBits(~mask & group_bits)) / f32(PER_GROUP);

@@ -88,6 +88,12 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
     }
     let n = load_normal(pixel);
     let p = view_position(position, depth);
+    // With mapped normals, a sample below the surface's own plane is mirrored above it: the
+    // plane itself never occludes (see NORMAL_MAPPED in common/sampling_params.wgsl).
+    var n_g = n;
+    if NORMAL_MAPPED {
+        n_g = depth_normal(pixel, p, n);
+    }
     let radius = occ.radius;
     let bias = occ.bias_length;
     let count = min(occ.sample_count, MAX_SAMPLES);
@@ -100,7 +106,10 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
     var indirect = vec3<f32>(0.0);
     var valid = 0u;
     for (var i = 0u; i < count; i += 1u) {
-        let offset = tbn * occ.kernel[i].xyz;
+        var offset = tbn * occ.kernel[i].xyz;
+        if NORMAL_MAPPED {
+            offset -= 2.0 * min(dot(offset, n_g), 0.0) * n_g;
+        }
         let q = p + offset * radius;
         let clip = frame.view_to_clip * vec4<f32>(q, 1.0);
         if clip.w <= 0.0 {

@@ -45,7 +45,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::All => Mode::ALL.to_vec(),
     };
     let settings = args.render.settings(modes[0])?;
-    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures { lights: args.scene.lights });
+    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
     Renderer::check_memory(size, &settings, features, args.raw || args.stats, &modes)?;
     output::check_folder(&args.out)?;
     let (scene, sky) = load_scene(&args.scene)?;
@@ -124,7 +124,7 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
     let settings = args.render.settings(Mode::Off)?;
-    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures { lights: args.scene.lights });
+    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
     Renderer::check_memory(size, &settings, features, args.hdr, &Mode::ALL)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;

@@ -16,6 +16,8 @@ pub struct ViewDescription<'a> {
     pub layout: Layout,
     pub triangles: Option<usize>,
     pub scale: f32,
+    /// `--no-surface-maps` was given (for the first model).
+    pub no_surface_maps: bool,
     pub lights: usize,
     pub seed: u64,
     pub camera: &'a OrbitCamera,
@@ -64,9 +66,13 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
     settings_flags(view.settings, &mut flag);
     flag("size", format!("{}x{}", view.size.0, view.size.1));
     let s = view.settings;
-    for (on, name) in
-        [(s.sampling.depth_pyramid, "--depth-pyramid"), (!s.blur, "--no-blur"), (!s.half_resolution, "--full-res")]
-    {
+    let switches = [
+        (view.no_surface_maps, "--no-surface-maps"),
+        (s.sampling.depth_pyramid, "--depth-pyramid"),
+        (!s.blur, "--no-blur"),
+        (!s.half_resolution, "--full-res"),
+    ];
+    for (on, name) in switches {
         if on {
             args.push(name.into());
         }
@@ -145,6 +151,7 @@ mod tests {
             layout: Layout::Model,
             triangles: None,
             scale: 1.0,
+            no_surface_maps: false,
             lights: 3,
             seed: 9,
             camera,

@@ -64,6 +64,10 @@ pub struct SceneArgs {
     /// Scale the model by this factor (defaults scale with it)
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub scale: f32,
+    /// Draw the model without its normal maps and alpha cutouts (in the truth too), to see what
+    /// they bring
+    #[arg(long)]
+    pub no_surface_maps: bool,
 }
 
 /// The most point lights a run takes: every pixel loops over all of them (unshadowed), so beyond
@@ -216,7 +220,11 @@ impl SceneArgs {
     pub fn load_model(&self) -> Result<scene::Model> {
         // Beyond these, positions lose the precision the depth buffer and the march need.
         in_range("scale", self.scale, 1e-6, 1e6)?;
-        self.layout.load(self.model.as_deref(), self.scale, self.triangles)
+        let mut model = self.layout.load(self.model.as_deref(), self.scale, self.triangles)?;
+        if self.no_surface_maps {
+            model.drop_surface_maps();
+        }
+        Ok(model)
     }
 
     /// The sky folder, or the default sky.

@@ -147,7 +147,7 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
 
     // Targets: refused from the plan, before a device exists; what fits passes.
     let settings = Settings::default();
-    let features = SceneFeatures { lights: 8 };
+    let features = SceneFeatures::lit(8);
     let error = Renderer::check_memory((8192, 8192), &settings, features, false, &Mode::ALL).unwrap_err();
     assert!(error.to_string().contains("8192x8192 in Off would need"), "{error}");
     Renderer::check_memory((160, 120), &settings, features, true, &Mode::ALL).unwrap();

@@ -93,6 +93,7 @@ impl Viewer {
             layout: self.layout,
             triangles: self.triangles,
             scale: self.scale,
+            no_surface_maps: self.no_surface_maps,
             lights: self.scene.lights.len(),
             seed: self.panel.seed,
             camera: &self.camera,
@@ -162,7 +163,7 @@ impl Viewer {
                     self.panel.model_name = self.scene.model.name.clone();
                     // A model loaded here is not scaled (`--scale` applied to the first).
                     self.model_path = Some(path.clone());
-                    (self.scale, self.triangles) = (1.0, None);
+                    (self.scale, self.triangles, self.no_surface_maps) = (1.0, None, false);
                     self.panel
                         .say(format!("model {} loaded ({warnings} warnings, see the log)", path.display()), false);
                 }

@@ -128,6 +128,7 @@ struct Viewer {
     sky_path: Option<PathBuf>,
     triangles: Option<usize>,
     scale: f32,
+    no_surface_maps: bool,
     /// Cursor position in physical pixels.
     cursor: (f64, f64),
     /// When egui asked to be drawn again (an animation, a tooltip's delay).
@@ -262,6 +263,7 @@ impl Viewer {
             sky_path: options.scene.skybox.clone(),
             triangles: options.scene.triangles,
             scale: options.scene.scale,
+            no_surface_maps: options.scene.no_surface_maps,
             cursor: (0.0, 0.0),
             egui_repaint: None,
             timing_refresh: None,

@@ -17,7 +17,17 @@
 //!   environment of radiance A).
 //!
 //! The truth at a pixel is ρ·(sky + bounce + A·openness) + direct point light, the same for every
-//! mode and variant. Beside it, **within-R diagnostics** with the sampling radius R: occluders
+//! mode and variant.
+//!
+//! **Surfaces as the G-buffer draws them.** The cosines at receivers and senders are the shading
+//! normal's: the interpolated vertex normal, or the normal map's in the tangent frame (nearest
+//! texel), turned with its frame to the side the ray arrives from. The hemisphere a surface
+//! gathers from is cut at its triangle's own plane: rays are drawn cosine-distributed about the
+//! shading normal, and those below the plane are drawn again, so the weights are normalised over
+//! what remains and an open surface under a constant sky gets exactly albedo × sky whatever its
+//! normal map (the GPU does the same, with the plane from the depth buffer). A ray's hit on a
+//! cut-out texel (coverage below the material's cutoff, read at the hit's texture coordinate) is
+//! a miss, as the G-buffer discards that texel: the truth sees through the same holes. Beside it, **within-R diagnostics** with the sampling radius R: occluders
 //! and senders beyond R ignored (AO = 1 − share of rays hitting within R; sky where no hit within
 //! R; bounce from hits within R, the senders lit as above). The gap between a mode's error against
 //! the truth and against the within-R image is what its reach costs.

@@ -9,6 +9,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rand::{rngs::StdRng, RngExt};
 
+use crate::scene::model::NormalMap;
 use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
 
 /// A direction around `n` with density cos θ / π.
@@ -40,6 +41,8 @@ pub struct ReferenceScene {
     triangles: Vec<Triangle>,
     normals: Vec<[Vec3; 3]>,
     uvs: Vec<[[f32; 2]; 3]>,
+    /// Per triangle where the model has tangents (a normal map), else empty.
+    tangents: Vec<[[f32; 4]; 3]>,
     material: Vec<usize>,
     materials: Vec<Material>,
     /// Offset of secondary rays along the normal, against self-intersection.
@@ -50,8 +53,12 @@ pub struct ReferenceScene {
 #[derive(Clone, Copy, Debug)]
 pub struct Surface {
     pub position: Vec3,
-    /// Interpolated shading normal, turned towards the incoming ray (faces are two-sided).
+    /// The shading normal (interpolated, then the normal map's where the material has one),
+    /// turned with its frame towards the incoming ray (faces are two-sided).
     pub normal: Vec3,
+    /// The triangle's own normal, on the side the ray arrives from: the hemisphere is cut at
+    /// its plane (see [`ReferenceScene::hemisphere_direction`]).
+    pub geometric: Vec3,
     pub albedo: Vec3,
     pub specular: f32,
     pub shininess: f32,
@@ -85,6 +92,12 @@ impl ReferenceScene {
             .collect();
         let normals = (0..model.triangle_count()).map(|i| [0, 1, 2].map(|k| Vec3::from(vertex(i, k).normal))).collect();
         let uvs = (0..model.triangle_count()).map(|i| [0, 1, 2].map(|k| vertex(i, k).uv)).collect();
+        let tangents = match model.tangents.len() == model.vertices.len() {
+            true => (0..model.triangle_count())
+                .map(|i| [0, 1, 2].map(|k| model.tangents[model.indices[3 * i + k] as usize]))
+                .collect(),
+            false => Vec::new(),
+        };
         let bvh =
             build_cwbvh_from_tris(&triangles, BvhBuildParams::medium_build(), &mut std::time::Duration::default());
         Self {
@@ -92,18 +105,53 @@ impl ReferenceScene {
             triangles,
             normals,
             uvs,
+            tangents,
             material,
             materials: model.materials.clone(),
             epsilon: 1e-4 * model.bounds.radius(),
         }
     }
 
-    /// The closest surface along the ray within `t_max`.
+    /// Barycentric weights of `position` (on or near the plane of triangle `index`).
+    fn barycentric(&self, index: usize, position: Vec3) -> [f32; 3] {
+        let tri = &self.triangles[index];
+        let (a, b, c) = (Vec3::from(tri.v0), Vec3::from(tri.v1), Vec3::from(tri.v2));
+        let (e1, e2, ep) = (b - a, c - a, position - a);
+        let (d11, d12, d22, dp1, dp2) = (e1.dot(e1), e1.dot(e2), e2.dot(e2), ep.dot(e1), ep.dot(e2));
+        let det = d11 * d22 - d12 * d12;
+        let (v, w) = if det.abs() > f32::MIN_POSITIVE {
+            ((d22 * dp1 - d12 * dp2) / det, (d11 * dp2 - d12 * dp1) / det)
+        } else {
+            (0.0, 0.0)
+        };
+        [1.0 - v - w, v, w]
+    }
+
+    /// The texture coordinate at barycentric `weights` of triangle `index`.
+    fn uv(&self, index: usize, weights: [f32; 3]) -> [f32; 2] {
+        let uv = self.uvs[index];
+        [0, 1].map(|k| uv[0][k] * weights[0] + uv[1][k] * weights[1] + uv[2][k] * weights[2])
+    }
+
+    /// Whether the ray's hit at `t` on triangle `index` lands on a cut-out texel (the any-hit
+    /// test: such a hit is a miss, as the G-buffer discards it).
+    fn is_hole(&self, index: usize, ray: &Ray, t: f32) -> bool {
+        let Some(cutout) = &self.materials[self.material[index]].cutout else { return false };
+        let position = Vec3::from(ray.origin + ray.direction * t);
+        cutout.coverage_at(self.uv(index, self.barycentric(index, position))) < cutout.cutoff
+    }
+
+    /// The closest surface along the ray within `t_max` (cut-out texels let it through).
     pub fn trace(&self, origin: Vec3, direction: Vec3, t_max: f32) -> Option<Surface> {
         let ray = Ray::new(Vec3A::from(origin), Vec3A::from(direction), 0.0, t_max);
         let mut hit = RayHit::none();
         let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray)
+            let index = self.bvh.primitive_indices[id] as usize;
+            let t = self.triangles[index].intersect(ray);
+            if t < f32::INFINITY && self.is_hole(index, ray, t) {
+                return f32::INFINITY;
+            }
+            t
         });
         if !found {
             return None;
@@ -113,46 +161,70 @@ impl ReferenceScene {
         let tri = &self.triangles[index];
         let (a, b, c) = (Vec3::from(tri.v0), Vec3::from(tri.v1), Vec3::from(tri.v2));
         // Barycentric coordinates of the hit, for the interpolated normal and texture coordinate.
-        let (e1, e2, ep) = (b - a, c - a, position - a);
-        let (d11, d12, d22, dp1, dp2) = (e1.dot(e1), e1.dot(e2), e2.dot(e2), ep.dot(e1), ep.dot(e2));
-        let det = d11 * d22 - d12 * d12;
-        let (v, w) = if det.abs() > f32::MIN_POSITIVE {
-            ((d22 * dp1 - d12 * dp2) / det, (d11 * dp2 - d12 * dp1) / det)
-        } else {
-            (0.0, 0.0)
-        };
-        let weights = [1.0 - v - w, v, w];
+        let weights = self.barycentric(index, position);
         let n = self.normals[index];
         // The side of the triangle the ray arrives on, whatever its winding; the shading normal
         // is turned to that side, as the G-buffer does (shaders/gbuffer.wgsl, `camera_side`).
-        let mut geometric = e1.cross(e2).try_normalize().unwrap_or(-direction);
+        let mut geometric = (b - a).cross(c - a).try_normalize().unwrap_or(-direction);
         if geometric.dot(direction) > 0.0 {
             geometric = -geometric;
         }
-        let mut normal =
+        let vertex_normal =
             (n[0] * weights[0] + n[1] * weights[1] + n[2] * weights[2]).try_normalize().unwrap_or(geometric);
-        if normal.dot(geometric) < 0.0 {
+        let m = &self.materials[self.material[index]];
+        let uv = self.uv(index, weights);
+        let mut normal = match (&m.normal_map, self.tangents.get(index)) {
+            (Some(map), Some(t)) => mapped_normal(vertex_normal, t, weights, map, uv),
+            _ => vertex_normal,
+        };
+        // The side is the vertex normal's: a mapped normal turns with its whole frame.
+        if vertex_normal.dot(geometric) < 0.0 {
             normal = -normal;
         }
-        let m = &self.materials[self.material[index]];
-        let uv = self.uvs[index];
-        let uv = [0, 1].map(|k| uv[0][k] * weights[0] + uv[1][k] * weights[1] + uv[2][k] * weights[2]);
-        let texel = |image: &crate::scene::model::TextureImage| {
-            let x = ((uv[0].rem_euclid(1.0) * image.width as f32) as u32).min(image.width - 1);
-            let y = ((uv[1].rem_euclid(1.0) * image.height as f32) as u32).min(image.height - 1);
-            let i = 4 * (y * image.width + x) as usize;
-            [image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]]
-        };
+        let texel = |image: &crate::scene::model::TextureImage| image.texel(uv);
         let mut albedo = Vec3::from(m.diffuse);
         if let Some(map) = &m.diffuse_map {
-            albedo *= Vec3::from(texel(map).map(srgb_to_linear));
+            let [r, g, b, _] = texel(map);
+            albedo *= Vec3::from([r, g, b].map(srgb_to_linear));
         }
         let mut specular = m.specular.iter().sum::<f32>() / 3.0;
         if let Some(map) = &m.specular_map {
             specular *= texel(map)[0] as f32 / 255.0;
         }
-        Some(Surface { position, normal, albedo, specular, shininess: m.shininess, distance: hit.t })
+        Some(Surface { position, normal, geometric, albedo, specular, shininess: m.shininess, distance: hit.t })
     }
+
+    /// A direction from `surface` with density proportional to the cosine at its shading normal
+    /// over the directions above its own plane (those below are drawn again): the hemisphere of
+    /// a normal-mapped surface is cut where the surface itself is, and its cosine weights are
+    /// normalised over what remains, so an open surface under a constant sky gets exactly
+    /// albedo × sky whatever its normal map, as on the GPU (`NORMAL_MAPPED` in
+    /// shaders/common/sampling_params.wgsl). Where the shading normal is the triangle's, nothing
+    /// is drawn again.
+    fn hemisphere_direction(surface: &Surface, rng: &mut StdRng) -> Vec3 {
+        // At least half the shading normal's lobe lies above the plane (it is turned to the
+        // plane's side), so 32 draws all fail with a chance below 2^-32.
+        for _ in 0..32 {
+            let dir = cosine_direction(surface.normal, rng.random(), rng.random());
+            if dir.dot(surface.geometric) > 0.0 {
+                return dir;
+            }
+        }
+        cosine_direction(surface.geometric, rng.random(), rng.random())
+    }
+}
+
+/// The normal map's normal at `uv` in the frame of unit `n` and the triangle's tangents `t`
+/// (interpolated with `weights`), as `mapped_normal` in shaders/gbuffer.wgsl: nearest texel.
+fn mapped_normal(n: Vec3, t: &[[f32; 4]; 3], weights: [f32; 3], map: &NormalMap, uv: [f32; 2]) -> Vec3 {
+    let tangent: Vec3 = (0..3).map(|k| Vec3::from_slice(&t[k][..3]) * weights[k]).sum();
+    let sign = t.iter().map(|t| t[3]).find(|w| *w != 0.0).unwrap_or(0.0);
+    let Some(tu) = (tangent - n * n.dot(tangent)).try_normalize().filter(|_| sign != 0.0) else { return n };
+    let bv = n.cross(tu) * sign.signum();
+    let [r, g, b, _] = map.image.texel(uv);
+    let m = Vec3::new(r as f32, g as f32, b as f32) / 255.0 * 2.0 - 1.0;
+    let m = Vec3::new(m.x * map.scale, m.y * map.scale, m.z.max(0.0));
+    (tu * m.x + bv * m.y + n * m.z).try_normalize().unwrap_or(n)
 }
 
 /// The reference's estimates at one surface point, each with its Monte Carlo standard error.
@@ -188,13 +260,13 @@ impl ReferenceScene {
         rng: &mut StdRng,
     ) -> Estimate {
         let n = settings.samples_per_pixel.max(1);
-        let origin = surface.position + surface.normal * self.epsilon;
+        let origin = surface.position + surface.geometric * self.epsilon;
         let (mut ao_sum, mut ao_sq) = (0.0f32, 0.0f32);
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
         let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
         for _ in 0..n {
-            let dir = cosine_direction(surface.normal, rng.random(), rng.random());
+            let dir = Self::hemisphere_direction(surface, rng);
             match self.trace(origin, dir, f32::INFINITY) {
                 None => {
                     let l = sky.sample(dir) * settings.sky_scale;
@@ -248,8 +320,8 @@ impl ReferenceScene {
         rng: &mut StdRng,
     ) -> Vec3 {
         let (points, _) = point_lighting(sender, to_receiver, lights, rig);
-        let dir = cosine_direction(sender.normal, rng.random(), rng.random());
-        let origin = sender.position + sender.normal * self.epsilon;
+        let dir = Self::hemisphere_direction(sender, rng);
+        let origin = sender.position + sender.geometric * self.epsilon;
         let environment = match self.trace(origin, dir, f32::INFINITY) {
             None => sky.sample(dir) * settings.sky_scale + Vec3::splat(settings.ambient),
             Some(_) => Vec3::ZERO,

@@ -90,7 +90,7 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        let features = SceneFeatures { lights: scene.lights.len() };
+        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped: scene.model.is_normal_mapped() };
         Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
@@ -154,13 +154,18 @@ impl Renderer {
             self.history.reset();
             self.history_settings = self.settings;
         }
-        let plan = Self::plan_for(&self.settings, SceneFeatures { lights: self.lights.len() }, self.keep_hdr);
+        let plan = Self::plan_for(&self.settings, self.features(), self.keep_hdr);
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
         } else if (self.settings.sampling.variant, self.settings.view) != self.prepared {
             self.prepare_passes(gpu);
         }
+    }
+
+    /// What the current scene brings to the plan.
+    fn features(&self) -> SceneFeatures {
+        SceneFeatures { lights: self.lights.len(), normal_mapped: self.scene.normal_mapped }
     }
 
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
@@ -241,6 +246,15 @@ impl Renderer {
         self.scene.textured
     }
 
+    /// Whether the current model draws a normal map, and whether it cuts holes.
+    pub fn uses_normal_maps(&self) -> bool {
+        self.scene.normal_mapped
+    }
+
+    pub fn uses_cutouts(&self) -> bool {
+        self.scene.cut_out
+    }
+
     /// Fails before anything is allocated when the targets of any of `modes` at `size`, with
     /// the output image and its readback copy, would not fit the memory budget's share for
     /// render targets.
@@ -278,7 +292,7 @@ impl Renderer {
             return Ok(());
         }
         gpu.check_size(width, height)?;
-        let features = SceneFeatures { lights: self.lights.len() };
+        let features = self.features();
         Self::check_memory((width, height), &self.settings, features, self.keep_hdr, &[self.settings.mode])?;
         self.targets.size = (width, height);
         self.rebuild_targets(gpu);

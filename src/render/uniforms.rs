@@ -56,9 +56,12 @@ pub struct MaterialParams {
     pub albedo: [f32; 3],
     pub specular: f32,
     pub shininess: f32,
-    pub _pad0: f32,
-    pub _pad1: f32,
-    pub _pad2: f32,
+    /// Multiplies the normal map's x and y.
+    pub normal_scale: f32,
+    /// Coverage below this is a hole (cut-out materials).
+    pub alpha_cutoff: f32,
+    /// Multiplies the mask's coverage.
+    pub alpha_factor: f32,
 }
 
 /// Sampling parameters of the occlusion pass; `SamplingParams` in

@@ -105,7 +105,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             options.samples_per_pixel
         )));
     }
-    let features = crate::render::SceneFeatures { lights: options.lights };
+    let features = crate::render::SceneFeatures::lit(options.lights);
     Renderer::check_memory(options.size, &Settings::default(), features, true, &Mode::ALL)?;
     log::info!("{}", planned_work(options));
     let (scene, sky, sky_name) = load_scene(options)?;

@@ -22,6 +22,7 @@ mod cpu {
     mod hostile_files;
     mod scene_loading;
     mod shaders;
+    mod surface_maps_loading;
 }
 
 mod gpu {
@@ -32,6 +33,7 @@ mod gpu {
     mod render;
     mod sky_bounce;
     mod stability;
+    mod surface_maps;
     mod temporal;
     mod winding;
 }

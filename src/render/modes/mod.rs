@@ -32,9 +32,19 @@ use super::settings::SenderSky;
 use super::targets::{Place, TargetId, DO_FORMAT};
 
 /// What the scene brings that changes the plan.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SceneFeatures {
     pub lights: usize,
+    /// A material has a normal map: the G-buffer's normals are not the surfaces' own, and the
+    /// sampling passes take the geometry's from the depth (see `shaders/march.wgsl`).
+    pub normal_mapped: bool,
+}
+
+impl SceneFeatures {
+    /// A scene with `lights` point lights and no normal maps.
+    pub fn lit(lights: usize) -> Self {
+        Self { lights, normal_mapped: false }
+    }
 }
 
 /// The settings that shape a plan besides the mode, by name.

@@ -2,8 +2,10 @@
 //! albedo + specular strength, view-space normal + shininess, and reverse-Z depth (cleared to 0,
 //! compared with `Greater`). Every mode reads these; position is reconstructed from depth.
 //!
-//! Untextured materials use a pipeline built with `TEXTURED = false`, which never samples; the
-//! textured pipeline is only built when the model has a textured material.
+//! Each material draws with the pipeline of what it reads ([`Features`]: colour maps, a normal
+//! map, a cutout), built when a model first needs it: untextured opaque materials use the plain
+//! one, which never samples or discards. Tangents are a second vertex buffer, which only a model
+//! with a normal map has.
 
 use wgpu::util::DeviceExt;
 
@@ -25,11 +27,26 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(Step::GBUFFER, |_| true, GBufferPass::io, |cx| Ok(Box::new(GBufferPass::new(cx)?)));
 
+/// What a material's pipeline reads besides its constants (the shader's overrides).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Features {
+    /// Colour maps (diffuse, specular).
+    pub textured: bool,
+    pub normal_mapped: bool,
+    pub cut_out: bool,
+}
+
+impl Features {
+    pub fn of(m: &crate::scene::Material) -> Self {
+        Self { textured: m.is_textured(), normal_mapped: m.normal_map.is_some(), cut_out: m.cutout.is_some() }
+    }
+}
+
 pub struct GBufferPass {
     pub material_layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
-    plain: wgpu::RenderPipeline,
-    textured: Option<wgpu::RenderPipeline>,
+    /// One pipeline per set of features a model has needed (the plain one from the start).
+    pipelines: std::collections::HashMap<Features, wgpu::RenderPipeline>,
     pipeline_layout: wgpu::PipelineLayout,
     module: wgpu::ShaderModule,
 }
@@ -39,7 +56,7 @@ impl GBufferPass {
         let (device, frame_layout) = (cx.device, cx.frame_layout);
         let module = shaders::module(device, "gbuffer.wgsl")?;
         let map = |binding| texture_entry(binding, true, wgpu::TextureViewDimension::D2);
-        let material_entries = [uniform_entry(0), map(1), map(2), sampler_entry(3)];
+        let material_entries = [uniform_entry(0), map(1), map(2), sampler_entry(3), map(4), map(5)];
         let material_layout = cx.layout("gbuffer_material_layout", &material_entries);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer_pipeline_layout"),
@@ -55,8 +72,9 @@ impl GBufferPass {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let plain = Self::pipeline(device, &pipeline_layout, &module, false);
-        Ok(Self { material_layout, sampler, plain, textured: None, pipeline_layout, module })
+        let plain = Self::pipeline(device, &pipeline_layout, &module, Features::default());
+        let pipelines = [(Features::default(), plain)].into_iter().collect();
+        Ok(Self { material_layout, sampler, pipelines, pipeline_layout, module })
     }
 
     /// The model and its materials (its own bind groups); the G-buffer, depth last.
@@ -68,22 +86,36 @@ impl GBufferPass {
         device: &wgpu::Device,
         layout: &wgpu::PipelineLayout,
         module: &wgpu::ShaderModule,
-        textured: bool,
+        features: Features,
     ) -> wgpu::RenderPipeline {
-        let constants = [("TEXTURED", if textured { 1.0 } else { 0.0 })];
+        let flag = |on: bool| if on { 1.0 } else { 0.0 };
+        let constants = [
+            ("TEXTURED", flag(features.textured)),
+            ("NORMAL_MAPPED", flag(features.normal_mapped)),
+            ("CUT_OUT", flag(features.cut_out)),
+        ];
         let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+        let vertex = wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+        };
+        let tangent = wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<[f32; 4]>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![3 => Float32x4],
+        };
+        let buffers = [Some(vertex), Some(tangent)];
+        let buffers = if features.normal_mapped { &buffers[..] } else { &buffers[..1] };
+        let label = format!("gbuffer_pipeline_{features:?}");
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(if textured { "gbuffer_textured_pipeline" } else { "gbuffer_plain_pipeline" }),
+            label: Some(&label),
             layout: Some(layout),
             vertex: wgpu::VertexState {
                 module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(if features.normal_mapped { "vs_mapped" } else { "vs_main" }),
                 compilation_options: options.clone(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
-                })],
+                buffers,
             },
             primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
@@ -105,8 +137,8 @@ impl GBufferPass {
         })
     }
 
-    /// Uploads `model` and builds its material bind groups (and the textured pipeline, if any
-    /// material has a map and it does not exist yet).
+    /// Uploads `model` and builds its material bind groups (and the pipelines its materials need
+    /// that do not exist yet).
     fn upload(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
         let device = &gpu.device;
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -119,7 +151,15 @@ impl GBufferPass {
             contents: bytemuck::cast_slice(&model.indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        let mut bytes = vertices.size() + indices.size();
+        // Only a model with a normal map has tangents (one per vertex).
+        let tangents = (!model.tangents.is_empty()).then(|| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene_tangents"),
+                contents: bytemuck::cast_slice(&model.tangents),
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        });
+        let mut bytes = vertices.size() + indices.size() + tangents.as_ref().map_or(0, wgpu::Buffer::size);
         let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
         // A texture that several materials share is uploaded once (by its pixels' identity).
         let mut uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView> =
@@ -137,7 +177,9 @@ impl GBufferPass {
                     albedo: m.diffuse,
                     specular: m.specular.iter().sum::<f32>() / 3.0,
                     shininess: m.shininess,
-                    ..Default::default()
+                    normal_scale: m.normal_map.as_ref().map_or(1.0, |n| n.scale),
+                    alpha_cutoff: m.cutout.as_ref().map_or(0.0, |c| c.cutoff),
+                    alpha_factor: m.cutout.as_ref().map_or(1.0, |c| c.factor),
                 };
                 let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("material_{}_params", m.name)),
@@ -162,6 +204,12 @@ impl GBufferPass {
                     };
                 let diffuse = map(&m.diffuse_map, "diffuse", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
                 let specular = map(&m.specular_map, "specular", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
+                let normals = m.normal_map.as_ref().map(|n| n.image.clone());
+                let normals = map(&normals, "normals", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
+                // sRGB like the colour map it often is (alpha is linear in either), so the two
+                // share one upload.
+                let mask = m.cutout.as_ref().and_then(|c| c.mask.clone());
+                let coverage = map(&mask, "coverage", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&format!("material_{}_bind_group", m.name)),
                     layout: &self.material_layout,
@@ -170,21 +218,26 @@ impl GBufferPass {
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&diffuse) },
                         wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&specular) },
                         wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&normals) },
+                        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&coverage) },
                     ],
                 });
-                Draw {
-                    first_index: part.first_index,
-                    index_count: part.index_count,
-                    bind_group,
-                    textured: m.is_textured(),
-                }
+                // A normal map without tangents (a model built in code) draws with its vertex normals.
+                let features =
+                    Features { normal_mapped: m.normal_map.is_some() && tangents.is_some(), ..Features::of(m) };
+                Draw { first_index: part.first_index, index_count: part.index_count, bind_group, features }
             })
             .collect::<Vec<_>>();
-        let textured = draws.iter().any(|d| d.textured);
-        if textured && self.textured.is_none() {
-            self.textured = Some(Self::pipeline(device, &self.pipeline_layout, &self.module, true));
+        for draw in &draws {
+            if !self.pipelines.contains_key(&draw.features) {
+                let pipeline = Self::pipeline(device, &self.pipeline_layout, &self.module, draw.features);
+                self.pipelines.insert(draw.features, pipeline);
+            }
         }
-        SceneGpu { vertices, indices, draws, textured, bytes }
+        let textured = draws.iter().any(|d| d.features.textured);
+        let normal_mapped = draws.iter().any(|d| d.features.normal_mapped);
+        let cut_out = draws.iter().any(|d| d.features.cut_out);
+        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, cut_out, bytes }
     }
 }
 
@@ -212,12 +265,12 @@ impl Pass for GBufferPass {
         });
         pass.set_bind_group(0, frame, &[]);
         pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        if let Some(tangents) = &scene.tangents {
+            pass.set_vertex_buffer(1, tangents.slice(..));
+        }
         pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
         for draw in &scene.draws {
-            let pipeline = match (&self.textured, draw.textured) {
-                (Some(textured), true) => textured,
-                _ => &self.plain,
-            };
+            let pipeline = &self.pipelines[&draw.features];
             pass.set_pipeline(pipeline);
             pass.set_bind_group(1, &draw.bind_group, &[]);
             pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);

@@ -72,6 +72,8 @@ struct Key {
     pyramid: bool,
     /// Half width and height (an upsample follows).
     half_resolution: bool,
+    /// The G-buffer holds mapped normals: the geometry's come from the depth.
+    normal_mapped: bool,
 }
 
 impl Key {
@@ -83,6 +85,7 @@ impl Key {
             ("HAS_DO", f(o.directional)),
             ("INDIRECT", f(o.indirect)),
             ("HALF_RES", f(self.half_resolution)),
+            ("NORMAL_MAPPED", f(self.normal_mapped)),
         ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
@@ -141,6 +144,7 @@ impl Pass for SamplingPass {
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.pyramid,
             half_resolution: plan.half_resolution,
+            normal_mapped: plan.features.normal_mapped,
         };
         let march_module = &self.march_module;
         self.state.ensure(key, |key, points_module, layouts| {

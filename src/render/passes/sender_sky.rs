@@ -30,8 +30,9 @@ pub const ENTRY: Entry = Entry::new(
 pub const SENDER_SKY: TargetId = TargetId::new("sender_sky", DO_FORMAT, Place::HalfScreen);
 
 pub struct SenderSkyPass {
-    /// Keyed by whether the far steps read the depth pyramid.
-    state: PassState<bool>,
+    /// Keyed by whether the far steps read the depth pyramid, and whether the G-buffer's normals
+    /// are mapped.
+    state: PassState<(bool, bool)>,
 }
 
 impl SenderSkyPass {
@@ -47,11 +48,17 @@ impl SenderSkyPass {
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || p.plan.pyramid;
-        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |pyramid| PipelineSpec {
+        let key = || (p.plan.pyramid, p.plan.features.normal_mapped);
+        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |(pyramid, mapped)| PipelineSpec {
             entry: "fs_sender",
             targets: vec![Some(DO_FORMAT.into())],
-            constants: vec![("HAS_AO", 0.0), ("HAS_DO", 1.0), ("INDIRECT", 0.0), ("USE_PYRAMID", flag(pyramid))],
+            constants: vec![
+                ("HAS_AO", 0.0),
+                ("HAS_DO", 1.0),
+                ("INDIRECT", 0.0),
+                ("USE_PYRAMID", flag(pyramid)),
+                ("NORMAL_MAPPED", flag(mapped)),
+            ],
         });
     }
 

@@ -49,7 +49,7 @@ fn all_plans() -> Vec<Plan> {
                     let [blur, pyramid, display, indirect, accumulate, half_resolution] =
                         [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
                     let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half_resolution, accumulate };
-                    plans.push(Plan::new(mode, SceneFeatures { lights }, o));
+                    plans.push(Plan::new(mode, SceneFeatures::lit(lights), o));
                 }
             }
         }
@@ -97,7 +97,7 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
 #[test]
 fn the_architecture_pages_mode_table_is_what_the_plans_are() {
     let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/ARCHITECTURE.md")).unwrap();
-    let lit = SceneFeatures { lights: 8 };
+    let lit = SceneFeatures::lit(8);
     let mut previous: Option<Vec<String>> = None;
     let mut rows = 0;
     for line in page.lines().filter(|l| l.starts_with("| ")) {
@@ -143,7 +143,7 @@ fn every_mode_has_one_row_with_its_own_key_and_names() {
 
 #[test]
 fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
-    let lit = SceneFeatures { lights: 8 };
+    let lit = SceneFeatures::lit(8);
     // (mode, steps, (hdr, bounce, ao, directional))
     let rows = [
         (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
@@ -170,7 +170,7 @@ fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
 
 #[test]
 fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_lighting_pass() {
-    let lit = SceneFeatures { lights: 8 };
+    let lit = SceneFeatures::lit(8);
     for mode in Mode::ALL {
         let hdr = Plan::new(mode, lit, PlanOptions { display: false, ..PlanOptions::default() });
         let display = Plan::new(mode, lit, PlanOptions::default());
@@ -180,7 +180,7 @@ fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_light
         let without = |p: &Plan| p.steps.iter().filter(|s| !matches!(**s, Step::SKYBOX | Step::TONEMAP)).count();
         assert_eq!(without(&hdr), display.steps.len(), "{mode}: the same passes otherwise");
     }
-    let dark = Plan::new(Mode::Ssdo, SceneFeatures { lights: 0 }, PlanOptions::default());
+    let dark = Plan::new(Mode::Ssdo, SceneFeatures::lit(0), PlanOptions::default());
     assert!(dark.has(Step::LIGHTING), "under a sky alone the senders' sky light is bounced");
     assert!(!dark.keeps_hdr(), "no lights: the lighting pass writes the bounce alone, no HDR target");
 }
@@ -201,7 +201,7 @@ fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
     ];
     for (mode, lights, indirect, sender_sky, want) in rows {
         let o = PlanOptions { indirect, sender_sky, ..PlanOptions::default() };
-        let plan = Plan::new(mode, SceneFeatures { lights }, o);
+        let plan = Plan::new(mode, SceneFeatures::lit(lights), o);
         let got = (plan.has(Step::LIGHTING), set(&plan).bounce, plan.has(Step::LIGHT_CUBES));
         assert_eq!(got, want, "{mode}, {lights} lights, indirect {indirect}, sender sky {sender_sky:?}");
         // Without a lighting pass that writes it, the composite runs the light loop itself.
@@ -294,7 +294,7 @@ fn every_pass_declares_what_its_shader_binds_in_every_plan() {
 fn a_declaration_that_drops_a_read_fails_the_checks() {
     // The sampling pass of SSDO with lights reads the bounce; a list without it is caught, both
     // against the shader and by the plan (the bounce would be written and never read).
-    let plan = Plan::new(Mode::Ssdo, SceneFeatures { lights: 8 }, PlanOptions::default());
+    let plan = Plan::new(Mode::Ssdo, SceneFeatures::lit(8), PlanOptions::default());
     let entry = PASSES.iter().find(|e| e.step == Step::SAMPLING).unwrap();
     let mut io = (entry.io)(&plan);
     declared_as_bound(entry, &io).unwrap();

@@ -12,15 +12,23 @@ pub(crate) struct Draw {
     pub first_index: u32,
     pub index_count: u32,
     pub bind_group: wgpu::BindGroup,
-    pub textured: bool,
+    /// The pipeline it draws with.
+    pub features: crate::render::passes::gbuffer::Features,
 }
 
 /// The model on the GPU.
 pub struct SceneGpu {
     pub(crate) vertices: wgpu::Buffer,
     pub(crate) indices: wgpu::Buffer,
+    /// One per vertex, only where a material has a normal map.
+    pub(crate) tangents: Option<wgpu::Buffer>,
     pub(crate) draws: Vec<Draw>,
+    /// A material reads colour maps.
     pub textured: bool,
+    /// A material reads a normal map: the G-buffer's normals are not the geometry's.
+    pub normal_mapped: bool,
+    /// A material cuts holes.
+    pub cut_out: bool,
     pub bytes: u64,
 }
 

@@ -113,7 +113,11 @@ fn uniform_structs_match_wgsl_member_for_member() {
         "Light",
         GpuLight { world_position, intensity, view_position, _pad0, color, cube_half_size }
     );
-    same_layout!(&gbuffer, "MaterialParams", MaterialParams { albedo, specular, shininess, _pad0, _pad1, _pad2 });
+    same_layout!(
+        &gbuffer,
+        "MaterialParams",
+        MaterialParams { albedo, specular, shininess, normal_scale, alpha_cutoff, alpha_factor }
+    );
     same_layout!(
         &parse("points.wgsl"),
         "SamplingParams",
