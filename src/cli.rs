@@ -108,6 +108,7 @@ impl ReportArgs {
         ssdo::report::ReportOptions {
             scene: self.scene.clone(),
             model: self.model.clone(),
+            no_surface_maps: self.no_surface_maps,
             skybox: self.skybox.clone(),
             size: (self.size.0, self.size.1),
             samples: self.samples.clone(),
@@ -130,9 +131,12 @@ pub(crate) struct ReportArgs {
     /// sky) or stairs (stairs under an overhang, a scene nobody tuned on)
     #[arg(long, default_value = "cornell")]
     pub(crate) scene: String,
-    /// An OBJ model instead of a named scene
+    /// A model (OBJ or glTF) instead of a named scene
     #[arg(long)]
     pub(crate) model: Option<PathBuf>,
+    /// Leave out the model's normal maps and alpha cutouts, on the GPU and in the truth
+    #[arg(long)]
+    pub(crate) no_surface_maps: bool,
     /// Skybox folder [default: the scene's own sky]
     #[arg(long)]
     pub(crate) skybox: Option<PathBuf>,

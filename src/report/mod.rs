@@ -74,10 +74,13 @@ pub struct Report {
 /// The report's scene (its model, or `--model`), its lights, its sky (the scene's, or
 /// `--skybox`, or the default) and the sky's name for messages.
 fn load_scene(options: &ReportOptions) -> Result<(Scene, Skybox, String)> {
-    let (model, scene_sky) = match &options.model {
+    let (mut model, scene_sky) = match &options.model {
         Some(path) => (scene::load_model_file(path)?, None),
         None => scenes::by_name(&options.scene)?,
     };
+    if options.no_surface_maps {
+        model.drop_surface_maps();
+    }
     let sky_path = options.skybox.clone().or(scene_sky);
     let sky = match &sky_path {
         Some(path) => Skybox::load(path)?,

@@ -40,8 +40,10 @@ impl RadiusChoice {
 /// What to sweep.
 pub struct ReportOptions {
     pub scene: String,
-    /// Overrides the scene's model with an OBJ file.
+    /// Overrides the scene's model with an OBJ or glTF file.
     pub model: Option<PathBuf>,
+    /// Leave out the model's normal maps and alpha cutouts, on both sides.
+    pub no_surface_maps: bool,
     pub skybox: Option<PathBuf>,
     pub size: (u32, u32),
     /// Sample counts of the points and classic variants.

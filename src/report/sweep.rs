@@ -170,6 +170,7 @@ mod tests {
         ReportOptions {
             scene: "cornell".into(),
             model: None,
+            no_surface_maps: false,
             skybox: None,
             size: (16, 12),
             samples: vec![8; samples],

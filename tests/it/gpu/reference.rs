@@ -272,6 +272,7 @@ fn tiny_report(
     ReportOptions {
         scene: "cornell".into(),
         model,
+        no_surface_maps: false,
         skybox,
         size: (16, 12),
         samples: vec![4],
