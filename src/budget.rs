@@ -23,6 +23,9 @@ pub const MIN_BUDGET: u64 = 64 << 20;
 /// mesh, the loader's three 32-byte vertices, the GPU buffers and their upload copies (one
 /// polygon of 15.7M fan triangles peaked at 474 B a triangle, 6.6M separate faces at 662 B).
 pub const BYTES_PER_TRIANGLE: u64 = 640;
+/// What a normal-mapped model's tangents add a triangle: three 16-byte tangents on the CPU, in
+/// their GPU buffer and in its upload copy.
+pub const TANGENT_BYTES_PER_TRIANGLE: u64 = 3 * 3 * 16;
 
 /// The parts of the budget, each a fraction of the whole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -90,7 +90,9 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped: scene.model.is_normal_mapped() };
+        // As the G-buffer's upload decides: a normal map is drawn where the model has tangents.
+        let normal_mapped = scene.model.is_normal_mapped() && !scene.model.tangents.is_empty();
+        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped };
         Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);

@@ -8,6 +8,7 @@ use glam::Vec3;
 
 use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
+use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 /// One vertex as the G-buffer pass reads it.
@@ -344,6 +345,15 @@ pub(super) fn finish(
     let mut model = Model::from_groups(&name, materials, groups)
         .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
     warnings.extend(model.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
+    if model.is_normal_mapped() {
+        // Sized before they are made: the file's triangles were, without them.
+        let triangles = model.triangle_count() as u64;
+        let per_triangle = budget::BYTES_PER_TRIANGLE + budget::TANGENT_BYTES_PER_TRIANGLE;
+        budget::check(Share::Geometry, triangles.saturating_mul(per_triangle), || {
+            format!("{triangles} triangles with tangents for their normal maps")
+        })
+        .map_err(|problem| Error::input(path, problem))?;
+    }
     model.generate_tangents(given_tangents);
     for w in &warnings {
         log::warn!("{}: {w}", path.display());
