@@ -279,12 +279,8 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                     near_mask |= bits;
                 }
                 if HAS_DO && INDIRECT && fresh != 0u {
-                    // Only a sender facing the receiver sends its light this way: its own
-                    // surface's side, which a mapped normal need not tell.
-                    var n_s = load_normal(texel);
-                    if NORMAL_MAPPED {
-                        n_s = depth_normal(texel, s, n_s);
-                    }
+                    let n_s = load_normal(texel);
+                    // Only a sender facing the receiver sends its light this way.
                     if dot(n_s, -front) > 0.0 {
                         // The measure of the sectors it occludes first, group by group.
                         var w = 0.0;
