@@ -104,6 +104,21 @@ fn placed_obj(dir: &std::path::Path, name: &str, scale: f64, offset: f64) -> ssd
     fitted
 }
 
+/// The default scene with a normal map of zero, axis-aligned and straight texels at a scale of
+/// 1e6 on every material, and a cutout of a quarter of each texture tile.
+fn extreme_maps() -> ssdo::scene::Model {
+    use ssdo::scene::model::{Cutout, NormalMap, TextureImage};
+    let mut model = builtin::cornell().unwrap();
+    let texels = vec![128, 128, 128, 255, 255, 0, 0, 255, 0, 0, 0, 255, 128, 128, 255, 0];
+    let image = TextureImage { width: 2, height: 2, rgba: std::sync::Arc::new(texels) };
+    for m in &mut model.materials {
+        m.normal_map = Some(NormalMap { image: image.clone(), scale: 1e6 });
+        m.cutout = Some(Cutout { mask: Some(image.clone()), factor: 1.0, cutoff: 0.5 });
+    }
+    model.generate_tangents(None);
+    model
+}
+
 fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     let mut list = Vec::new();
     let mut c = base("near 1e-6, far inf", "--near 1e-6 --far inf");
@@ -208,6 +223,11 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
         "1e-9 across, 1e5 radii from the origin",
         "--model tiny_far.obj",
         placed_obj(dir, "tiny_far.obj", 1e-9, 1e5),
+    ));
+    list.push(with_model(
+        "normal maps of zero and extreme texels at scale 1e6, cut-outs",
+        "(built in code)",
+        extreme_maps(),
     ));
     let mut c = base("near plane at 1e-9 of the distance (the smallest taken)", "--near <1e-9 × distance>");
     c.camera.near = c.camera.distance * 1e-9;
