@@ -6,6 +6,9 @@
 //    does not cross silhouettes or creases (no halos).
 //  * otherwise the classic 4x4 box blur of the classic SSAO chapter.
 // Neighbours on the sky or holding non-finite values are left out.
+// With HALF_RES the blur runs on the half-resolution samples, before the upsample: its pixel
+// (x, y) is the sample taken at the full-resolution pixel (2x, 2y), whose G-buffer it reads, and
+// its 4x4 window is the rotation tile the samples were taken with (sampling_params.wgsl).
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
@@ -17,6 +20,16 @@
 @group(1) @binding(4) var input: texture_2d<f32>;
 
 override BILATERAL: bool = true;
+// On the half-resolution samples.
+override HALF_RES: bool = false;
+
+// The full-resolution pixel (its G-buffer) of the input's pixel `t`.
+fn surface_pixel(t: vec2<i32>) -> vec2<i32> {
+    if HALF_RES {
+        return min(2 * t, vec2<i32>(frame.viewport.xy) - 1);
+    }
+    return t;
+}
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;
 
@@ -44,7 +57,7 @@ fn normal_agreement(a: vec2<f32>, b: vec2<f32>) -> f32 {
 // The classic 4x4 box: the sampling pass wrote every pixel (the sky as unoccluded), so no depth
 // is read per neighbour; only non-finite values are left out.
 fn box_blur(pixel: vec2<i32>) -> vec4<f32> {
-    let last = vec2<i32>(frame.viewport.xy) - 1;
+    let last = vec2<i32>(textureDimensions(input)) - 1;
     var sum = vec4<f32>(0.0);
     var total = 0.0;
     for (var y = -2; y < 2; y += 1) {
@@ -63,7 +76,8 @@ fn box_blur(pixel: vec2<i32>) -> vec4<f32> {
 
 fn blur(position: vec2<f32>) -> vec4<f32> {
     let pixel = vec2<i32>(position);
-    let depth = load_depth(pixel);
+    let centre = surface_pixel(pixel);
+    let depth = load_depth(centre);
     if depth <= 0.0 {
         // A sky pixel: no occlusion, no DO.
         return select(vec4<f32>(1.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), HAS_DO);
@@ -71,29 +85,37 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     if !BILATERAL {
         return box_blur(pixel);
     }
-    let bits_p = textureLoad(g_normal, pixel, 0).r;
+    let bits_p = textureLoad(g_normal, centre, 0).r;
     let n = unpack_normal(bits_p);
     let oct_p = octahedral_code(bits_p);
-    let p = view_position(position, depth);
-    let size = vec2<i32>(frame.viewport.xy);
+    let p = view_position(vec2<f32>(centre) + 0.5, depth);
+    let size = vec2<i32>(textureDimensions(input));
     // Never 0: a radius of 0 still blurs flat surfaces.
     let tolerance = max(0.25 * params.radius, 1e-30);
 
     var sum = vec4<f32>(0.0);
     var total = 0.0;
-    for (var y = -2; y < 2; y += 1) {
-        for (var x = -2; x < 2; x += 1) {
+    // At half resolution a 3x3 tent (1 2 1 × 1 2 1) over the half-size samples: about the
+    // footprint the 4x4 window has at full resolution (6 full-resolution pixels across).
+    let lo = select(-2, -1, HALF_RES);
+    let hi = select(2, 2, HALF_RES);
+    for (var y = lo; y < hi; y += 1) {
+        for (var x = lo; x < hi; x += 1) {
             let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), size - 1);
-            let d = load_depth(t);
+            let at = surface_pixel(t);
+            let d = load_depth(at);
             if d <= 0.0 {
                 continue;
             }
             var w = 1.0;
+            if HALF_RES {
+                w = f32((2 - abs(x)) * (2 - abs(y)));
+            }
             if BILATERAL {
-                let q = view_position(vec2<f32>(t) + 0.5, d);
+                let q = view_position(vec2<f32>(at) + 0.5, d);
                 let plane = abs(dot(n, q - p));
-                let agree = normal_agreement(oct_p, octahedral_code(textureLoad(g_normal, t, 0).r));
-                w = max(1.0 - plane / tolerance, 0.0) * agree;
+                let agree = normal_agreement(oct_p, octahedral_code(textureLoad(g_normal, at, 0).r));
+                w *= max(1.0 - plane / tolerance, 0.0) * agree;
             }
             let value = textureLoad(input, t, 0);
             if w <= 0.0 || !finite4(value) {

@@ -138,11 +138,14 @@ pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Outpu
 
 /// The sampling chain's outputs, each for AO alone (SSAO) or DO + AO (SSDO and SSAO+SSDO: rgb
 /// sky light and bounce before albedo, a AO): what the sampling pass (or the upsample) writes,
-/// what a half-resolution sampling pass writes, the blurred copy and the average over frames.
+/// what a half-resolution sampling pass writes and its blurred copy, the blurred copy at full
+/// resolution (the blur's, or the upsample's of the half-size one) and the average over frames.
 pub const AO_RAW: TargetId = TargetId::new("ao_raw", AO_FORMAT, Place::Screen);
 pub const DO_RAW: TargetId = TargetId::new("do_raw", DO_FORMAT, Place::Screen);
 pub const AO_HALF: TargetId = TargetId::new("ao_half", AO_FORMAT, Place::HalfScreen);
 pub const DO_HALF: TargetId = TargetId::new("do_half", DO_FORMAT, Place::HalfScreen);
+pub const AO_HALF_BLURRED: TargetId = TargetId::new("ao_half_blurred", AO_FORMAT, Place::HalfScreen);
+pub const DO_HALF_BLURRED: TargetId = TargetId::new("do_half_blurred", DO_FORMAT, Place::HalfScreen);
 pub const AO_BLURRED: TargetId = TargetId::new("ao_blurred", AO_FORMAT, Place::Screen);
 pub const DO_BLURRED: TargetId = TargetId::new("do_blurred", DO_FORMAT, Place::Screen);
 pub const AO_ACCUMULATED: TargetId = TargetId::new("ao_accumulated", AO_FORMAT, Place::Screen);
@@ -153,6 +156,8 @@ pub const DO_ACCUMULATED: TargetId = TargetId::new("do_accumulated", DO_FORMAT, 
 pub enum Stage {
     Raw,
     Half,
+    /// The half-size samples blurred where they were taken (half-resolution plans that blur).
+    HalfBlurred,
     Blurred,
     Accumulated,
 }
@@ -163,6 +168,7 @@ impl Stage {
         let (ao, d) = match self {
             Stage::Raw => (AO_RAW, DO_RAW),
             Stage::Half => (AO_HALF, DO_HALF),
+            Stage::HalfBlurred => (AO_HALF_BLURRED, DO_HALF_BLURRED),
             Stage::Blurred => (AO_BLURRED, DO_BLURRED),
             Stage::Accumulated => (AO_ACCUMULATED, DO_ACCUMULATED),
         };

@@ -37,7 +37,7 @@ pub struct Entry {
 
 /// What a pass is for, as `bench` splits a frame's time: making the occlusion samples (the
 /// sampling pass and what only it reads: the depth pyramid, the senders' sky), cleaning them
-/// (upsample, blur, temporal accumulation), or the rest (geometry, lighting, compositing, display).
+/// (blur, upsample, temporal accumulation), or the rest (geometry, lighting, compositing, display).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Role {
     Sampling,

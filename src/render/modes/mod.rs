@@ -10,17 +10,18 @@
 //! | mode | steps (the defaults: lights, half resolution, blur, accumulation, display plan) | targets besides the G-buffer and histories |
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
-//! | SSAO | gbuffer, ssao, upsample, blur, temporal, composite, light_cubes | `ao_half`, `ao_raw`, `ao_blurred`, `ao_accumulated` |
-//! | SSDO | gbuffer, sender_sky, lighting, ssdo, upsample, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_raw`, `do_blurred`, `do_accumulated` |
-//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, upsample, blur, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//! | SSAO | gbuffer, ssao, blur, upsample, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_blurred`, `ao_accumulated` |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, upsample, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_blurred`, `do_accumulated` |
+//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, upsample, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
 //!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
 //! senders' sky and ambient light; no HDR target in a display plan); with `--sender-sky off` and
 //! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a
 //! debug view) adds `hdr_color`, the skybox and the tone map; `--no-blur` drops the blur and its
-//! targets; `--accumulate 1` drops the temporal pass, its target and its two histories;
-//! `--full-res` the upsample and the half-size target; the march with `--depth-pyramid` adds the
+//! half-size target (the upsample then writes `ao_raw` / `do_raw`); `--accumulate 1` drops the temporal pass, its target and its two histories;
+//! `--full-res` the upsample and the half-size targets (the blur then reads `ao_raw` / `do_raw`
+//! and writes `ao_blurred` / `do_blurred`); the march with `--depth-pyramid` adds the
 //! pyramid in the DO modes.
 
 pub mod table;

@@ -1,5 +1,7 @@
 //! Denoise of the sampling pass's output (`shaders/blur.wgsl`): a 4x4 window, bilateral (plane
-//! distance and normal agreement) in the default variant, the classic box blur otherwise.
+//! distance and normal agreement) in the default variant, the classic box blur otherwise. Where
+//! the samples were taken at half resolution it runs there, on a quarter of the pixels, before
+//! the upsample: its window is that of the rotation tile the samples were taken with.
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
@@ -23,6 +25,8 @@ pub const ENTRY: Entry =
 struct Key {
     outputs: Outputs,
     bilateral: bool,
+    /// On the half-size samples (the G-buffer read at the pixels they were taken at).
+    half_resolution: bool,
 }
 
 pub struct BlurPass {
@@ -34,20 +38,32 @@ impl BlurPass {
         Ok(Self { state: PassState::new(cx, "blur", "blur.wgsl", false)? })
     }
 
-    /// The G-buffer, the parameters and the sampling output; the output blurred.
+    /// The G-buffer, the parameters and the sampling output; the output blurred (at half size
+    /// where the samples are, for the upsample).
     pub fn io(plan: &Plan) -> PassIo {
-        filter_io(plan, Stage::Raw, Stage::Blurred)
+        match plan.half_resolution {
+            true => filter_io(plan, Stage::Half, Stage::HalfBlurred),
+            false => filter_io(plan, Stage::Raw, Stage::Blurred),
+        }
     }
 }
 
 impl Pass for BlurPass {
     /// Builds what the plan needs (nothing when it does not blur).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || Key { outputs: Outputs::of(p.plan), bilateral: p.variant.decl().blur == Blur::Bilateral };
+        let key = || Key {
+            outputs: Outputs::of(p.plan),
+            bilateral: p.variant.decl().blur == Blur::Bilateral,
+            half_resolution: p.plan.half_resolution,
+        };
         self.state.prepare_fullscreen(device, p, (Step::BLUR, Self::io), key, |key| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(key.outputs.format().into())],
-            constants: vec![("BILATERAL", flag(key.bilateral)), ("HAS_DO", flag(key.outputs.directional))],
+            constants: vec![
+                ("BILATERAL", flag(key.bilateral)),
+                ("HAS_DO", flag(key.outputs.directional)),
+                ("HALF_RES", flag(key.half_resolution)),
+            ],
         });
     }
 

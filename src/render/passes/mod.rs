@@ -39,10 +39,10 @@ pub const PASSES: [Entry; 12] = [
     lighting::ENTRY,
     // AO and/or DO from one set of samples.
     sampling::ENTRY,
+    // Denoise AO/DO, where the samples are (at half resolution when they were taken there).
+    blur::ENTRY,
     // Half-resolution AO/DO to full resolution, on each pixel's own surface.
     upsample::ENTRY,
-    // Denoise AO/DO.
-    blur::ENTRY,
     // Average AO/DO over frames, where the same surface was.
     temporal::ENTRY,
     // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky behind

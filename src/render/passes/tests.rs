@@ -29,8 +29,9 @@ fn set(plan: &Plan) -> Set {
     Set {
         hdr: has(HDR),
         bounce: has(BOUNCE),
-        ao: has(AO_RAW),
-        directional: has(DO_RAW),
+        // What the sampling pass writes: at full size, or at half size with an upsample after it.
+        ao: has(AO_RAW) || has(AO_HALF),
+        directional: has(DO_RAW) || has(DO_HALF),
         blurred: has(AO_BLURRED) || has(DO_BLURRED),
         accumulated: has(AO_ACCUMULATED) || has(DO_ACCUMULATED),
         half: has(AO_HALF) || has(DO_HALF),
@@ -147,15 +148,15 @@ fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
     // (mode, steps, (hdr, bounce, ao, directional))
     let rows = [
         (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
-        (Mode::Ssao, "gbuffer, ssao, upsample, blur, temporal, composite, light_cubes", (false, false, true, false)),
+        (Mode::Ssao, "gbuffer, ssao, blur, upsample, temporal, composite, light_cubes", (false, false, true, false)),
         (
             Mode::Ssdo,
-            "gbuffer, sender_sky, lighting, ssdo, upsample, blur, temporal, composite, light_cubes",
+            "gbuffer, sender_sky, lighting, ssdo, blur, upsample, temporal, composite, light_cubes",
             (true, true, false, true),
         ),
         (
             Mode::Both,
-            "gbuffer, sender_sky, lighting, ssao_ssdo, upsample, blur, temporal, composite, light_cubes",
+            "gbuffer, sender_sky, lighting, ssao_ssdo, blur, upsample, temporal, composite, light_cubes",
             (true, true, false, true),
         ),
     ];
@@ -359,6 +360,6 @@ fn each_pass_role_is_what_its_reads_and_writes_make_it() {
     }
     assert_eq!(
         PASSES.iter().filter(|e| e.role == Role::Denoise).map(|e| e.step.name()).collect::<Vec<_>>(),
-        ["upsample", "blur", "temporal"]
+        ["blur", "upsample", "temporal"]
     );
 }

@@ -1,7 +1,8 @@
 //! The upsample after a half-resolution sampling pass (`shaders/upsample.wgsl`): the half-size
 //! AO or DO + AO brought to full resolution, each pixel taking only the samples on its own
-//! surface, so silhouettes keep no halo. It writes the full-resolution raw target, which the blur
-//! and the temporal pass read as they would the sampling pass's own.
+//! surface, so silhouettes keep no halo. It reads the half-size samples blurred where the plan
+//! blurs (the blur runs before it, at half size) and writes the full-resolution target the
+//! temporal pass and the composite read: the blurred one, or the raw one without a blur.
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
@@ -33,9 +34,13 @@ impl UpsamplePass {
         Ok(Self { state: PassState::new(cx, "upsample", "upsample.wgsl", false)? })
     }
 
-    /// The G-buffer, the parameters and the half-size samples; the full-size ones.
+    /// The G-buffer, the parameters and the half-size samples (blurred, where the plan blurs);
+    /// the full-size ones.
     pub fn io(plan: &Plan) -> PassIo {
-        filter_io(plan, Stage::Half, Stage::Raw)
+        match plan.blur {
+            true => filter_io(plan, Stage::HalfBlurred, Stage::Blurred),
+            false => filter_io(plan, Stage::Half, Stage::Raw),
+        }
     }
 }
 

@@ -204,7 +204,7 @@ fn a_flat_normal_mapped_surface_does_not_occlude_itself() {
         let mut r = renderer(gpu, &scene, &sky, (W, H), settings(mode));
         shoot(gpu, &mut r, &camera);
         let t = r.targets();
-        let ao = read_occlusion(gpu, t.raw(), true).unwrap().ao.unwrap();
+        let ao = read_occlusion(gpu, t.occlusion(), true).unwrap().ao.unwrap();
         let lowest = ao.iter().copied().fold(f32::MAX, f32::min);
         assert!(lowest >= 0.97, "{mode}: AO {lowest} somewhere on the open floor");
     }

@@ -82,6 +82,8 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
                 assert_eq!(r.frames_accumulated(), frames);
                 let (d, a) = (directional(gpu, &r), ao(gpu, &r));
                 let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
+                // The albedo as the G-buffer holds it (8-bit sRGB: 0.5 is stored 0.6% low).
+                let stored = read_texture(gpu, &r.targets().albedo().texture).unwrap();
                 for (x, y) in Furnace::PIXELS {
                     let i = y * W as usize + x;
                     let got = d[i];
@@ -89,7 +91,9 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
                     assert!((got / sky_radiance - 1.0).abs().max_element() < 0.01, "{what}: DO {got}");
                     assert!(a[i] > 0.99, "{what}: AO {}", a[i]);
                     let radiance = Vec3::new(hdr[i][0], hdr[i][1], hdr[i][2]);
-                    let want = albedo * sky_radiance;
+                    let stored_albedo = srgb_to_linear(stored[4 * i]);
+                    assert!((stored_albedo / albedo - 1.0).abs() < 0.01, "{what}: albedo stored as {stored_albedo}");
+                    let want = stored_albedo * sky_radiance;
                     assert!((radiance / want - 1.0).abs().max_element() < 0.01, "{what}: {radiance} vs {want}");
                 }
             }
@@ -278,11 +282,15 @@ fn pillar_scene() -> (Scene, Skybox, OrbitCamera) {
 fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = pillar_scene();
-    for mode in [Mode::Ssao, Mode::Both] {
-        let s = Settings { half_resolution: true, blur: false, ..settings(mode, 1) };
+    // Unblurred, and blurred at half size before the upsample (the default): the upsample's
+    // output against its input.
+    use ssdo::render::targets::Stage;
+    for (mode, blur) in [(Mode::Ssao, false), (Mode::Both, false), (Mode::Ssao, true), (Mode::Both, true)] {
+        let s = Settings { half_resolution: true, blur, ..settings(mode, 1) };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         shoot(gpu, &mut r, &camera);
         assert!(r.plan().has(Step::UPSAMPLE));
+        let (from, to) = if blur { (Stage::HalfBlurred, Stage::Blurred) } else { (Stage::Half, Stage::Raw) };
         let t = r.targets();
         let depth = ssdo::headless::readback::read_depth(gpu, &t.depth().texture).unwrap();
         // AO alone as the first of four channels, beside DO + AO's four.
@@ -290,7 +298,7 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
             let values = read_occlusion(gpu, set, false).unwrap();
             values.directional.unwrap_or_else(|| values.ao.unwrap().iter().map(|&a| [a, 0.0, 0.0, 1.0]).collect())
         };
-        let (half, full) = (read(t.stage(ssdo::render::targets::Stage::Half)), read(t.raw()));
+        let (half, full) = (read(t.stage(from)), read(t.stage(to)));
         let (hw, hh) = (W.div_ceil(2) as i64, H.div_ceil(2) as i64);
         assert_eq!(half.len() as i64, hw * hh, "the sampling pass ran at half size");
         // Each full-resolution pixel next to a silhouette may only hold a blend of the half-size
@@ -334,9 +342,19 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         assert!(checked > 200, "{mode}: the view has silhouettes ({checked} pixels beside one)");
         assert!(
             halos.is_empty(),
-            "{mode}: {} of {checked} pixels take values from across a silhouette: {:?}",
+            "{mode}, blur {blur}: {} of {checked} pixels take values from across a silhouette: {:?}",
             halos.len(),
             &halos[..halos.len().min(5)]
         );
+    }
+}
+
+/// The linear value of an 8-bit sRGB code.
+fn srgb_to_linear(code: u8) -> f32 {
+    let c = code as f32 / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
     }
 }
