@@ -65,7 +65,8 @@ pub struct Surface {
     pub distance: f32,
 }
 
-fn srgb_to_linear(c: u8) -> f32 {
+/// The linear value of an 8-bit sRGB code.
+pub fn srgb_to_linear(c: u8) -> f32 {
     let c = c as f32 / 255.0;
     if c <= 0.04045 {
         c / 12.92

@@ -101,6 +101,18 @@ pub fn mean_rgb(image: &image::RgbaImage, x0: u32, y0: u32, w: u32, h: u32) -> V
     sum / (w * h) as f32
 }
 
+/// Mean rgb over the (2r+1)² window around `(x, y)` of a test-sized, row-major buffer.
+pub fn window_mean(buffer: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for yy in y - r..=y + r {
+        for xx in x - r..=x + r {
+            let p = buffer[yy * W as usize + xx];
+            sum += Vec3::new(p[0], p[1], p[2]);
+        }
+    }
+    sum / ((2 * r + 1) * (2 * r + 1)) as f32
+}
+
 /// Pixel coordinates of world point `p` in a `size` image from `camera`; it must lie well inside.
 pub fn project_to(camera: &OrbitCamera, size: (u32, u32), p: Vec3) -> (usize, usize) {
     let (w, h) = (size.0 as f32, size.1 as f32);

@@ -32,17 +32,6 @@ fn rgb(p: [f32; 4]) -> Vec3 {
     Vec3::new(p[0], p[1], p[2])
 }
 
-/// Mean over a (2r+1)² window.
-fn mean_rgb(buffer: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {
-    let mut sum = Vec3::ZERO;
-    for yy in y - r..=y + r {
-        for xx in x - r..=x + r {
-            sum += rgb(buffer[yy * W as usize + xx]);
-        }
-    }
-    sum / ((2 * r + 1) * (2 * r + 1)) as f32
-}
-
 struct Buffers {
     /// AO from its own target (SSAO) or from DO's alpha (SSAO+SSDO).
     ao: Option<Vec<f32>>,
@@ -163,14 +152,14 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
     let b = render(gpu, &mut r, &camera, true);
     // The sky is black: DO is the indirect bounce alone.
-    let indirect = mean_rgb(&b.directional.unwrap(), near, 1);
+    let indirect = common::window_mean(&b.directional.unwrap(), near, 1);
     assert!(indirect.x > 0.01 && indirect.x > 5.0 * indirect.y, "red bounce near the wall: {indirect}");
-    let ssdo_near = mean_rgb(&b.hdr, near, 1);
-    let ssdo_far = mean_rgb(&b.hdr, far, 1);
+    let ssdo_near = common::window_mean(&b.hdr, near, 1);
+    let ssdo_far = common::window_mean(&b.hdr, far, 1);
 
     r.set_mode(gpu, Mode::Ssao);
     let b = render(gpu, &mut r, &camera, true);
-    let ssao_near = mean_rgb(&b.hdr, near, 1);
+    let ssao_near = common::window_mean(&b.hdr, near, 1);
     assert!((ratio(ssao_near) - 1.0).abs() < 0.02, "SSAO floor stays white: {ssao_near}");
     assert!(
         ratio(ssdo_near) > 1.1 * ratio(ssao_near),
@@ -199,19 +188,19 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
 
     let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { ambient: 0.3, ..settings(Mode::Ssdo) });
     let hdr = render(gpu, &mut r, &camera, true).hdr;
-    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    let (up, down) = (common::window_mean(&hdr, top, 1), common::window_mean(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "SSDO: top {up}, bottom {down}");
 
     // Off sees the same sky, unoccluded (its irradiance per normal): also blue on top.
     r.set_mode(gpu, Mode::Off);
     let hdr = render(gpu, &mut r, &camera, true).hdr;
-    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    let (up, down) = (common::window_mean(&hdr, top, 1), common::window_mean(&hdr, bottom, 1));
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
 
     // The classic variant keeps the SSDO course project's constant grey ambient in Off: no sky.
     r.settings.sampling.variant = Variant::Classic;
     let hdr = render(gpu, &mut r, &camera, true).hdr;
-    let (up, down) = (mean_rgb(&hdr, top, 1), mean_rgb(&hdr, bottom, 1));
+    let (up, down) = (common::window_mean(&hdr, top, 1), common::window_mean(&hdr, bottom, 1));
     assert!((up - down).abs().max_element() < 1e-3, "classic Off has no directional sky: top {up}, bottom {down}");
 }
 
@@ -224,9 +213,9 @@ fn ssao_and_ssdo_differ_only_where_the_sky_is_occluded() {
     let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
     let s = Settings { sampling: Sampling { samples: 64, ..Default::default() }, ..settings(Mode::Ssao) };
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
-    let ssao = mean_rgb(&render(gpu, &mut r, &camera, true).hdr, top, 1);
+    let ssao = common::window_mean(&render(gpu, &mut r, &camera, true).hdr, top, 1);
     r.set_mode(gpu, Mode::Ssdo);
-    let ssdo = mean_rgb(&render(gpu, &mut r, &camera, true).hdr, top, 1);
+    let ssdo = common::window_mean(&render(gpu, &mut r, &camera, true).hdr, top, 1);
     assert!((ssao - ssdo).abs().max_element() < 0.05 * ssao.max_element(), "open top: SSAO {ssao}, SSDO {ssdo}");
 }
 

@@ -15,18 +15,6 @@ use ssdo::render::{Mode, Sampling, SenderSky, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{LightRig, Material, OrbitCamera, Scene, Skybox};
 
-/// Mean rgb over a (2r+1)² window of a row-major buffer.
-fn window(buffer: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {
-    let mut sum = Vec3::ZERO;
-    for yy in y - r..=y + r {
-        for xx in x - r..=x + r {
-            let p = buffer[yy * W as usize + xx];
-            sum += Vec3::new(p[0], p[1], p[2]);
-        }
-    }
-    sum / ((2 * r + 1) * (2 * r + 1)) as f32
-}
-
 /// One frame's HDR image and (DO modes) its DO buffer, pre-exposure divided out.
 fn frame(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, s: Settings) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
     let mut r = renderer(gpu, scene, sky, (W, H), s);
@@ -71,12 +59,12 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
 
     for mode in [Mode::Off, Mode::Ssao] {
         let (hdr, _) = frame(gpu, &scene, &sky, &camera, settings(mode));
-        let c = window(&hdr, near, 1);
+        let c = common::window_mean(&hdr, near, 1);
         assert!((redness(c) - 1.0).abs() < 0.02, "{mode}: the floor by the wall stays white: {c}");
     }
     for mode in [Mode::Ssdo, Mode::Both] {
         let (hdr, _) = frame(gpu, &scene, &sky, &camera, settings(mode));
-        let (by_wall, open) = (window(&hdr, near, 1), window(&hdr, far, 1));
+        let (by_wall, open) = (common::window_mean(&hdr, near, 1), common::window_mean(&hdr, far, 1));
         assert!(redness(by_wall) > 1.15, "{mode}: the floor by the wall turns red: {by_wall}");
         assert!(redness(by_wall) > redness(open) + 0.1, "{mode}: the red fades away from the wall: {open}");
     }
@@ -84,7 +72,7 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
     // The bounce alone, against the truth's at the same floor point.
     let s = Settings { view: View::DoIndirect, ..settings(Mode::Ssdo) };
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
-    let got = window(&directional, near, 1);
+    let got = common::window_mean(&directional, near, 1);
     let (want, sigma) = traced_bounce(&scene, &sky, near_point, 8192);
     eprintln!("bounce 0.15 from the red wall under a white sky: GPU {got}, truth {want} ± {sigma}");
     assert!(got.x > 5.0 * got.y, "the bounce is red: {got}");
@@ -148,14 +136,14 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
     let sampling = Sampling { slices: 8, steps: 32, reach: Some(10.0), thickness: Some(1.0), ..base.sampling };
     let s = Settings { view: View::DoIndirect, sampling, ..base };
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
-    let got = window(&directional, project(&camera, receiver), 1).x;
+    let got = common::window_mean(&directional, project(&camera, receiver), 1).x;
     eprintln!("wall on a floor strip at d = {d}: GPU bounce {got:.4}, truth {:.4} ± {sigma:.4}", want.x);
     assert!((got / want.x - 1.0).abs() < 0.1, "GPU bounce {got} against the truth {} (±10%)", want.x);
 
     // The senders' unoccluded irradiance ignores the floor below the wall: measurably too bright.
     let s = Settings { sender_sky: SenderSky::Irradiance, ..s };
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
-    let unoccluded = window(&directional, project(&camera, receiver), 1).x;
+    let unoccluded = common::window_mean(&directional, project(&camera, receiver), 1).x;
     assert!(unoccluded > 1.25 * want.x, "unoccluded senders {unoccluded} against the truth {}", want.x);
 }
 
@@ -187,7 +175,7 @@ fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
     for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
         let bounce = |sky_strength| {
             let s = Settings { sender_sky, sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) };
-            window(&frame(gpu, &scene, &sky, &camera, s).1, near, 1).x
+            common::window_mean(&frame(gpu, &scene, &sky, &camera, s).1, near, 1).x
         };
         let (one, two) = (bounce(1.0), bounce(2.0));
         assert!(one > 0.01 && (two / one - 2.0).abs() < 0.02, "{sender_sky:?}: bounce {one} at 1, {two} at 2");

@@ -95,18 +95,6 @@ fn trace_truth(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, spp
     Reference::mean(&trace(1), &trace(2))
 }
 
-/// Mean linear RGB of `image` over the window of half size `r` around `(x, y)`.
-fn window(image: &[[f32; 4]], (x, y): (usize, usize), r: usize) -> Vec3 {
-    let mut sum = Vec3::ZERO;
-    for yy in y - r..=y + r {
-        for xx in x - r..=x + r {
-            let p = image[yy * W as usize + xx];
-            sum += Vec3::new(p[0], p[1], p[2]);
-        }
-    }
-    sum / ((2 * r + 1) * (2 * r + 1)) as f32
-}
-
 fn truth_window(truth: &Reference, (x, y): (usize, usize), r: usize) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for yy in y - r..=y + r {
@@ -157,8 +145,8 @@ fn a_tilted_normal_map_takes_the_sky_of_the_side_it_leans_to_in_every_mode_and_i
     assert!((flat_truth - 0.5).abs() < 0.02, "flat floor's truth: red share {flat_truth}");
     assert!(truth > 0.7, "mapped floor's truth: red share {truth}");
     for mode in Mode::ALL {
-        let share = red_share(window(&hdr(gpu, &mapped, &sky, &camera, settings(mode)), centre, 6));
-        let flat_share = red_share(window(&hdr(gpu, &flat, &sky, &camera, settings(mode)), centre, 6));
+        let share = red_share(common::window_mean(&hdr(gpu, &mapped, &sky, &camera, settings(mode)), centre, 6));
+        let flat_share = red_share(common::window_mean(&hdr(gpu, &flat, &sky, &camera, settings(mode)), centre, 6));
         assert!((flat_share - 0.5).abs() < 0.03, "{mode}: the flat floor has red share {flat_share}");
         // Off and SSAO light by the sky's irradiance for the normal, over the whole hemisphere
         // around it (no visibility): a little redder than the truth, which sees no sky below the
@@ -280,7 +268,7 @@ fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_tru
     let behind = common::project(&camera, v(0.0, 0.0, -0.4));
     let sampling = ssdo::render::Sampling { thickness: Some(0.05), ..Default::default() };
     let s = Settings { sampling, ..settings(Mode::Ssdo) };
-    let through = |scene: &Scene| window(&hdr(gpu, scene, &sky, &camera, s), behind, 1).z;
+    let through = |scene: &Scene| common::window_mean(&hdr(gpu, scene, &sky, &camera, s), behind, 1).z;
     let (gpu_cut, gpu_solid) = (through(&cut), through(&solid));
     let truth_cut = trace_truth(gpu, &cut, &sky, &camera, 64);
     let truth_solid = trace_truth(gpu, &solid, &sky, &camera, 64);
@@ -350,8 +338,8 @@ fn a_gltf_leaf_seen_from_behind_is_lit_and_given_tangents_match_generated_ones()
     // The leaf's back, seen from below, is lit by a light below it, and not by the same light
     // above it (where its front, out of sight, faces it).
     let edge = common::project(&camera, Vec3::new(0.2, 0.0, 0.2));
-    let below = window(&a, edge, 1);
-    let above = window(&hdr(gpu, &lit(given, 1.0), &sky, &camera, s), edge, 1);
+    let below = common::window_mean(&a, edge, 1);
+    let above = common::window_mean(&hdr(gpu, &lit(given, 1.0), &sky, &camera, s), edge, 1);
     assert!(below.y > 1.5 * above.y, "seen from below: {below} lit from below, {above} lit from above");
     // The hole in the middle shows the sky behind (the sky's colour, not the leaf's green).
     let hole = a[{

@@ -91,7 +91,7 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
                     assert!((got / sky_radiance - 1.0).abs().max_element() < 0.01, "{what}: DO {got}");
                     assert!(a[i] > 0.99, "{what}: AO {}", a[i]);
                     let radiance = Vec3::new(hdr[i][0], hdr[i][1], hdr[i][2]);
-                    let stored_albedo = srgb_to_linear(stored[4 * i]);
+                    let stored_albedo = ssdo::reference::srgb_to_linear(stored[4 * i]);
                     assert!((stored_albedo / albedo - 1.0).abs() < 0.01, "{what}: albedo stored as {stored_albedo}");
                     let want = stored_albedo * sky_radiance;
                     assert!((radiance / want - 1.0).abs().max_element() < 0.01, "{what}: {radiance} vs {want}");
@@ -346,15 +346,5 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
             halos.len(),
             &halos[..halos.len().min(5)]
         );
-    }
-}
-
-/// The linear value of an 8-bit sRGB code.
-fn srgb_to_linear(code: u8) -> f32 {
-    let c = code as f32 / 255.0;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
     }
 }
