@@ -20,7 +20,8 @@
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(3) var<uniform> params: FilterParams;
-// This frame's output of the blur (or of the sampling pass without blur).
+// This frame's output of the blur (or of the sampling pass without blur): at half size where the
+// chain samples there (HALF_INPUT), upsampled here as it is read.
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The last frame's average, and the surface each of its pixels holds: x the reverse-Z depth
 // (f32 bits), y the world normal packed as the G-buffer packs normals (bits 0-23) and the frames
@@ -39,6 +40,22 @@ const STILL_PIXELS: f32 = 0.01;
 // pixel is still and reads its own texel alone, which on a CPU rasteriser (where a branch not
 // taken still costs its work) keeps the pass to a fifth of its moving cost.
 override CAMERA_MOVED: bool = true;
+// `current` holds half-size samples: each pixel upsamples them as it reads them (the upsample
+// pass's own function, common/upsample.wgsl), so a half-resolution chain that accumulates has
+// no upsample pass of its own.
+override HALF_INPUT: bool = false;
+// The input is DO + AO rather than AO alone (what a pixel with no surface holds).
+override HAS_DO: bool = true;
+
+#include "common/upsample.wgsl"
+
+// This frame's value at full-resolution `pixel` (centre `position`).
+fn this_frame(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
+    if HALF_INPUT {
+        return upsample(pixel, position);
+    }
+    return textureLoad(current, pixel, 0);
+}
 
 struct TemporalOut {
     // what the composite reads this frame
@@ -52,16 +69,20 @@ fn finite4(v: vec4<f32>) -> bool {
     return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
 }
 
-// The range of this frame's values over the 3x3 pixels around `pixel` on a surface.
+// The range of this frame's values over the 3x3 pixels around `pixel` on a surface (of the
+// half-size samples around it, with HALF_INPUT).
 fn neighbourhood(pixel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
-    let last = vec2<i32>(frame.viewport.xy) - 1;
+    let last = vec2<i32>(textureDimensions(current)) - 1;
+    let full_last = vec2<i32>(frame.viewport.xy) - 1;
+    let middle = select(pixel, pixel >> vec2<u32>(1u), HALF_INPUT);
     var lo = centre;
     var hi = centre;
     for (var y = -1; y <= 1; y += 1) {
         for (var x = -1; x <= 1; x += 1) {
-            let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), last);
+            let t = clamp(middle + vec2<i32>(x, y), vec2<i32>(0), last);
             let v = textureLoad(current, t, 0);
-            if load_depth(t) > 0.0 && finite4(v) {
+            let at = select(t, min(2 * t, full_last), HALF_INPUT);
+            if load_depth(at) > 0.0 && finite4(v) {
                 lo = min(lo, v);
                 hi = max(hi, v);
             }
@@ -73,7 +94,7 @@ fn neighbourhood(pixel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
 @fragment
 fn fs_main(in: FullscreenOut) -> TemporalOut {
     let pixel = vec2<i32>(in.position.xy);
-    let now = textureLoad(current, pixel, 0);
+    let now = this_frame(pixel, in.position.xy);
     var out: TemporalOut;
     out.shown = now;
     out.history = now;

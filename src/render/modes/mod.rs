@@ -10,16 +10,20 @@
 //! | mode | steps (the defaults: lights, half resolution, blur, accumulation, display plan) | targets besides the G-buffer and histories |
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
-//! | SSAO | gbuffer, ssao, blur, upsample, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_blurred`, `ao_accumulated` |
-//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, upsample, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_blurred`, `do_accumulated` |
-//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, upsample, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//! | SSAO | gbuffer, ssao, blur, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_accumulated` |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_accumulated` |
+//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//!
+//! The sampling pass and the blur run at half size; the temporal pass upsamples as it reads, so
+//! the default chain has one full-screen denoise pass.
 //!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
 //! senders' sky and ambient light; no HDR target in a display plan); with `--sender-sky off` and
 //! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a
 //! debug view) adds `hdr_color`, the skybox and the tone map; `--no-blur` drops the blur and its
-//! half-size target (the upsample then writes `ao_raw` / `do_raw`); `--accumulate 1` drops the temporal pass, its target and its two histories;
+//! half-size target (the upsample then writes `ao_raw` / `do_raw`); `--accumulate 1` drops the temporal pass, its target and its two histories (a
+//! half-resolution chain then runs an upsample pass, into `ao_blurred` / `do_blurred`);
 //! `--full-res` the upsample and the half-size targets (the blur then reads `ao_raw` / `do_raw`
 //! and writes `ao_blurred` / `do_blurred`); the march with `--depth-pyramid` adds the
 //! pyramid in the DO modes.
@@ -161,7 +165,8 @@ pub struct Plan {
     /// What lights the bounce's senders besides the point lights; `Off` wherever the plan has no
     /// bounce.
     pub sender_sky: SenderSky,
-    /// The sampling pass runs at half resolution (an upsample follows it).
+    /// The sampling pass runs at half resolution (an upsample follows it, or the temporal pass
+    /// upsamples as it reads).
     pub half_resolution: bool,
     /// The sampling output is averaged over frames (a temporal pass and its histories).
     pub accumulates: bool,

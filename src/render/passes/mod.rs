@@ -95,7 +95,9 @@ impl Plan {
             blur: has(Step::BLUR),
             display: o.display,
             sender_sky: facts.sender_sky(),
-            half_resolution: has(Step::UPSAMPLE),
+            // The sampling pass runs at half size: an upsample follows it, or the temporal pass
+            // upsamples as it reads.
+            half_resolution: facts.samples() && o.half_resolution,
             accumulates: has(Step::TEMPORAL),
             lighting: has(Step::LIGHTING),
             pyramid: has(Step::DEPTH_PYRAMID),

@@ -1,5 +1,7 @@
 //! The temporal pass (`shaders/temporal.wgsl`): the blurred (or raw) sampling output averaged
 //! with the last frames' where the same surface was, reprojected through the previous camera.
+//! After a half-resolution sampling pass it reads the half-size samples and upsamples them as it
+//! reads (`shaders/common/upsample.wgsl`): there is then no upsample pass.
 //! It writes three targets at once: what the composite reads this frame (`ao_accumulated` /
 //! `do_accumulated`), and the two histories the next frame reads (`history.rs`). Its bind group
 //! reads one side of each history pair, so it keeps one group a parity and binds the frame's.
@@ -27,11 +29,19 @@ pub const ENTRY: Entry = Entry::new(
 .keeping(TemporalPass::histories)
 .role(Role::Denoise);
 
+/// What distinguishes one temporal pipeline from another: what the sampling pass produces, and
+/// whether its input is at half size (upsampled as it is read).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Key {
+    outputs: Outputs,
+    half_input: bool,
+}
+
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
     /// whose camera moved (reprojecting), and the one for a still camera (each pixel its own).
-    state: PassState<Outputs>,
-    still: PassState<Outputs>,
+    state: PassState<Key>,
+    still: PassState<Key>,
     /// This frame's camera moved (set in `begin_frame`).
     camera_moved: bool,
     /// Group 1 for a frame that writes side 0 of the histories, and for one that writes side 1.
@@ -46,10 +56,17 @@ impl TemporalPass {
     }
 
     /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
-    /// histories; the average and this frame's histories.
+    /// histories; the average and this frame's histories. After a half-resolution sampling
+    /// pass it reads the half-size samples and upsamples them itself (no upsample pass).
     pub fn io(plan: &Plan) -> PassIo {
         let d = plan.decl.directional_occlusion;
-        let filtered = if plan.blur { Stage::Blurred } else { Stage::Raw }.target(d);
+        let filtered = match (plan.half_resolution, plan.blur) {
+            (true, true) => Stage::HalfBlurred,
+            (true, false) => Stage::Half,
+            (false, true) => Stage::Blurred,
+            (false, false) => Stage::Raw,
+        }
+        .target(d);
         let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Filter]);
         let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
         PassIo {
@@ -85,14 +102,19 @@ impl Pass for TemporalPass {
         self.groups = Some([0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
         self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
-            state.ensure_fullscreen(device, Outputs::of(plan), |outputs| PipelineSpec {
+            let key = Key { outputs: Outputs::of(plan), half_input: plan.half_resolution };
+            state.ensure_fullscreen(device, key, |key| PipelineSpec {
                 entry: "fs_main",
                 targets: vec![
-                    Some(outputs.format().into()),
-                    Some(outputs.format().into()),
+                    Some(key.outputs.format().into()),
+                    Some(key.outputs.format().into()),
                     Some(SURFACE_HISTORY_FORMAT.into()),
                 ],
-                constants: vec![("CAMERA_MOVED", flag(moved))],
+                constants: vec![
+                    ("CAMERA_MOVED", flag(moved)),
+                    ("HALF_INPUT", flag(key.half_input)),
+                    ("HAS_DO", flag(key.outputs.directional)),
+                ],
             });
         }
     }

@@ -6,7 +6,8 @@ use crate::render::graph::io::{Kind, Read};
 use crate::render::modes::MODES;
 use crate::render::settings::SenderSky;
 use crate::render::targets::{
-    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_RAW, BOUNCE, DO_ACCUMULATED, DO_BLURRED, DO_HALF, DO_RAW, HDR, OUTPUT,
+    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_HALF_BLURRED, AO_RAW, BOUNCE, DO_ACCUMULATED, DO_BLURRED, DO_HALF,
+    DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
 };
 use depth_pyramid::PYRAMID;
 use sender_sky::SENDER_SKY;
@@ -32,7 +33,7 @@ fn set(plan: &Plan) -> Set {
         // What the sampling pass writes: at full size, or at half size with an upsample after it.
         ao: has(AO_RAW) || has(AO_HALF),
         directional: has(DO_RAW) || has(DO_HALF),
-        blurred: has(AO_BLURRED) || has(DO_BLURRED),
+        blurred: [AO_BLURRED, DO_BLURRED, AO_HALF_BLURRED, DO_HALF_BLURRED].into_iter().any(has),
         accumulated: has(AO_ACCUMULATED) || has(DO_ACCUMULATED),
         half: has(AO_HALF) || has(DO_HALF),
         pyramid: has(PYRAMID),
@@ -88,7 +89,8 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(t.blurred, plan.blur);
         assert_eq!(t.accumulated, plan.accumulates());
         assert_eq!(t.half, plan.half_resolution);
-        assert_eq!(plan.half_resolution, sampled && plan.has(Step::UPSAMPLE));
+        // A half-resolution chain has an upsample pass unless the temporal pass upsamples.
+        assert_eq!(plan.has(Step::UPSAMPLE), plan.half_resolution && !plan.accumulates());
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
         assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
         assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
@@ -148,15 +150,15 @@ fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
     // (mode, steps, (hdr, bounce, ao, directional))
     let rows = [
         (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
-        (Mode::Ssao, "gbuffer, ssao, blur, upsample, temporal, composite, light_cubes", (false, false, true, false)),
+        (Mode::Ssao, "gbuffer, ssao, blur, temporal, composite, light_cubes", (false, false, true, false)),
         (
             Mode::Ssdo,
-            "gbuffer, sender_sky, lighting, ssdo, blur, upsample, temporal, composite, light_cubes",
+            "gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes",
             (true, true, false, true),
         ),
         (
             Mode::Both,
-            "gbuffer, sender_sky, lighting, ssao_ssdo, blur, upsample, temporal, composite, light_cubes",
+            "gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes",
             (true, true, false, true),
         ),
     ];

@@ -2,7 +2,9 @@
 //! AO or DO + AO brought to full resolution, each pixel taking only the samples on its own
 //! surface, so silhouettes keep no halo. It reads the half-size samples blurred where the plan
 //! blurs (the blur runs before it, at half size) and writes the full-resolution target the
-//! temporal pass and the composite read: the blurred one, or the raw one without a blur.
+//! composite reads: the blurred one, or the raw one without a blur. It runs only where nothing
+//! is accumulated: the temporal pass upsamples as it reads (the same function,
+//! `shaders/common/upsample.wgsl`), one full-screen pass fewer.
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
@@ -18,7 +20,8 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(
     Step::UPSAMPLE,
-    |f| f.samples() && f.options.half_resolution,
+    // With accumulation the temporal pass upsamples as it reads: one full-screen pass fewer.
+    |f| f.samples() && f.options.half_resolution && !f.options.accumulate,
     UpsamplePass::io,
     |cx| Ok(Box::new(UpsamplePass::new(cx)?)),
 )

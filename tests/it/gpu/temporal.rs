@@ -282,15 +282,28 @@ fn pillar_scene() -> (Scene, Skybox, OrbitCamera) {
 fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = pillar_scene();
-    // Unblurred, and blurred at half size before the upsample (the default): the upsample's
-    // output against its input.
+    // Unblurred, and blurred at half size before the upsample, by the upsample pass (one frame)
+    // and by the temporal pass as it reads (the default: its first frame is the upsample alone):
+    // the upsampled output against its input.
     use ssdo::render::targets::Stage;
-    for (mode, blur) in [(Mode::Ssao, false), (Mode::Both, false), (Mode::Ssao, true), (Mode::Both, true)] {
-        let s = Settings { half_resolution: true, blur, ..settings(mode, 1) };
+    for (mode, blur, frames) in [
+        (Mode::Ssao, false, 1),
+        (Mode::Both, false, 1),
+        (Mode::Ssao, true, 1),
+        (Mode::Both, true, 1),
+        (Mode::Ssao, true, 16),
+        (Mode::Both, false, 16),
+    ] {
+        let s = Settings { half_resolution: true, blur, ..settings(mode, frames) };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         shoot(gpu, &mut r, &camera);
-        assert!(r.plan().has(Step::UPSAMPLE));
-        let (from, to) = if blur { (Stage::HalfBlurred, Stage::Blurred) } else { (Stage::Half, Stage::Raw) };
+        assert_eq!(r.plan().has(Step::UPSAMPLE), frames == 1);
+        let from = if blur { Stage::HalfBlurred } else { Stage::Half };
+        let to = match (frames, blur) {
+            (1, true) => Stage::Blurred,
+            (1, false) => Stage::Raw,
+            _ => Stage::Accumulated,
+        };
         let t = r.targets();
         let depth = ssdo::headless::readback::read_depth(gpu, &t.depth().texture).unwrap();
         // AO alone as the first of four channels, beside DO + AO's four.
@@ -342,7 +355,7 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         assert!(checked > 200, "{mode}: the view has silhouettes ({checked} pixels beside one)");
         assert!(
             halos.is_empty(),
-            "{mode}, blur {blur}: {} of {checked} pixels take values from across a silhouette: {:?}",
+            "{mode}, blur {blur}, {frames} frames: {} of {checked} pixels take values from across a silhouette: {:?}",
             halos.len(),
             &halos[..halos.len().min(5)]
         );

@@ -65,7 +65,7 @@ fn buffers(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, mode: M
     shoot(gpu, &mut r, camera);
     let t = r.targets();
     match view {
-        View::Ao => read_rgba16f(gpu, &t.raw().directional.unwrap().texture).unwrap(),
+        View::Ao => read_rgba16f(gpu, &t.occlusion().directional.unwrap().texture).unwrap(),
         _ => read_rgba16f(gpu, &t.hdr().unwrap().texture).unwrap(),
     }
 }

@@ -1,0 +1,68 @@
+// The edge-aware upsample of half-resolution samples, shared by the upsample pass
+// (shaders/upsample.wgsl) and the temporal pass, which folds it in where it follows a
+// half-resolution sampling chain (shaders/temporal.wgsl).
+//
+// Each full-resolution pixel takes the 2x2 half-resolution samples at and after it (each sample
+// is the full-resolution pixel (2x, 2y), so these are the nearest ones on either side of an odd
+// pixel, and an even pixel's own with the next), weighted by a tent over their distance and by whether they lie on this pixel's
+// surface — within a quarter of the sampling radius of its tangent plane, with normals that
+// agree (as the blur weighs its neighbours). So a silhouette takes nothing from the surface
+// behind it, and a far wall nothing from the object before it: no halo. Where no sample is on
+// the same surface (a feature thinner than two pixels), the one nearest its plane stands in.
+//
+// The including shader declares `current` (the half-size samples: AO in r, or DO + AO),
+// `params` (FilterParams) and the override HAS_DO, and includes gbuffer_read.wgsl first.
+
+// What a pixel with no surface holds: no occlusion, no DO.
+fn unoccluded_value() -> vec4<f32> {
+    return select(vec4<f32>(1.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0), HAS_DO);
+}
+
+// The upsampled value at full-resolution `pixel` (its centre `position`), from the half-size
+// samples in `current`.
+fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
+    let unoccluded = unoccluded_value();
+    let depth = load_depth(pixel);
+    if depth <= 0.0 {
+        return unoccluded;
+    }
+    let p = view_position(position, depth);
+    let n = load_normal(pixel);
+    let tolerance = max(0.25 * params.radius, 1e-30);
+    let full = vec2<i32>(frame.viewport.xy);
+    let half_last = vec2<i32>(textureDimensions(current)) - 1;
+    let base = pixel >> vec2<u32>(1u);
+
+    var sum = vec4<f32>(0.0);
+    var total = 0.0;
+    var nearest = unoccluded;
+    var nearest_plane = 3.4e38;
+    for (var y = 0; y <= 1; y += 1) {
+        for (var x = 0; x <= 1; x += 1) {
+            let h = clamp(base + vec2<i32>(x, y), vec2<i32>(0), half_last);
+            let at = min(2 * h, full - 1);
+            let d = load_depth(at);
+            if d <= 0.0 {
+                continue;
+            }
+            let value = textureLoad(current, h, 0);
+            let q = view_position(vec2<f32>(at) + 0.5, d);
+            let plane = abs(dot(n, q - p));
+            if plane < nearest_plane {
+                nearest_plane = plane;
+                nearest = value;
+            }
+            // A tent over the distance in full-resolution pixels: 1 at the pixel itself, 0 at 3.
+            let gap = abs(vec2<f32>(at - pixel));
+            let tent = max(1.0 - gap / 3.0, vec2<f32>(0.0));
+            let agree = clamp((dot(n, load_normal(at)) - 0.8) * 5.0, 0.0, 1.0);
+            let w = tent.x * tent.y * max(1.0 - plane / tolerance, 0.0) * agree;
+            sum += w * value;
+            total += w;
+        }
+    }
+    if total > 1e-4 {
+        return sum / total;
+    }
+    return nearest;
+}
