@@ -93,7 +93,7 @@ impl ReferenceScene {
             .collect();
         let normals = (0..model.triangle_count()).map(|i| [0, 1, 2].map(|k| Vec3::from(vertex(i, k).normal))).collect();
         let uvs = (0..model.triangle_count()).map(|i| [0, 1, 2].map(|k| vertex(i, k).uv)).collect();
-        let tangents = match model.tangents.len() == model.vertices.len() {
+        let tangents = match model.has_tangents() {
             true => (0..model.triangle_count())
                 .map(|i| [0, 1, 2].map(|k| model.tangents[model.indices[3 * i + k] as usize]))
                 .collect(),

@@ -90,8 +90,8 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        // As the G-buffer's upload decides: a normal map is drawn where the model has tangents.
-        let normal_mapped = scene.model.is_normal_mapped() && !scene.model.tangents.is_empty();
+        // As the G-buffer's upload decides (`GBufferPass::upload`).
+        let normal_mapped = scene.model.is_normal_mapped() && scene.model.has_tangents();
         let features = SceneFeatures { lights: scene.lights.len(), normal_mapped };
         Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
@@ -246,15 +246,6 @@ impl Renderer {
     /// Whether the current model needs the textured G-buffer pipeline.
     pub fn uses_texture_path(&self) -> bool {
         self.scene.textured
-    }
-
-    /// Whether the current model draws a normal map, and whether it cuts holes.
-    pub fn uses_normal_maps(&self) -> bool {
-        self.scene.normal_mapped
-    }
-
-    pub fn uses_cutouts(&self) -> bool {
-        self.scene.cut_out
     }
 
     /// Fails before anything is allocated when the targets of any of `modes` at `size`, with

@@ -58,7 +58,8 @@ pub struct Cutout {
 }
 
 impl Cutout {
-    /// The coverage at texel `(x, y)` of the mask (or the factor alone without one).
+    /// The coverage at texture coordinate `uv` (nearest texel of the mask, times the factor; the
+    /// factor alone without a mask).
     pub fn coverage_at(&self, uv: [f32; 2]) -> f32 {
         match &self.mask {
             Some(mask) => self.factor * mask.texel(uv)[3] as f32 / 255.0,
@@ -176,6 +177,13 @@ impl Model {
     /// Whether a drawn material has a normal map (the model then has tangents).
     pub fn is_normal_mapped(&self) -> bool {
         self.parts.iter().any(|p| self.materials[p.material].normal_map.is_some())
+    }
+
+    /// Whether there is a tangent for every vertex: normal maps are drawn (and traced) only then;
+    /// a model built in code with a normal map and no [`Model::generate_tangents`] draws its
+    /// vertex normals.
+    pub fn has_tangents(&self) -> bool {
+        !self.vertices.is_empty() && self.tangents.len() == self.vertices.len()
     }
 
     /// Fills [`Model::tangents`] where a material has a normal map: `given` (one per vertex, in

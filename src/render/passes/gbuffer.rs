@@ -37,8 +37,13 @@ pub struct Features {
 }
 
 impl Features {
-    pub fn of(m: &crate::scene::Material) -> Self {
-        Self { textured: m.is_textured(), normal_mapped: m.normal_map.is_some(), cut_out: m.cutout.is_some() }
+    /// What material `m` of a model reads; its normal map only where the model has tangents.
+    pub fn of(m: &crate::scene::Material, has_tangents: bool) -> Self {
+        Self {
+            textured: m.is_textured(),
+            normal_mapped: m.normal_map.is_some() && has_tangents,
+            cut_out: m.cutout.is_some(),
+        }
     }
 }
 
@@ -152,7 +157,7 @@ impl GBufferPass {
             usage: wgpu::BufferUsages::INDEX,
         });
         // Only a model with a normal map has tangents (one per vertex).
-        let tangents = (!model.tangents.is_empty()).then(|| {
+        let tangents = model.has_tangents().then(|| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene_tangents"),
                 contents: bytemuck::cast_slice(&model.tangents),
@@ -222,9 +227,7 @@ impl GBufferPass {
                         wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&coverage) },
                     ],
                 });
-                // A normal map without tangents (a model built in code) draws with its vertex normals.
-                let features =
-                    Features { normal_mapped: m.normal_map.is_some() && tangents.is_some(), ..Features::of(m) };
+                let features = Features::of(m, tangents.is_some());
                 Draw { first_index: part.first_index, index_count: part.index_count, bind_group, features }
             })
             .collect::<Vec<_>>();
@@ -236,8 +239,7 @@ impl GBufferPass {
         }
         let textured = draws.iter().any(|d| d.features.textured);
         let normal_mapped = draws.iter().any(|d| d.features.normal_mapped);
-        let cut_out = draws.iter().any(|d| d.features.cut_out);
-        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, cut_out, bytes }
+        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, bytes }
     }
 }
 

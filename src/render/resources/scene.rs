@@ -27,8 +27,6 @@ pub struct SceneGpu {
     pub textured: bool,
     /// A material reads a normal map: the G-buffer's normals are not the geometry's.
     pub normal_mapped: bool,
-    /// A material cuts holes.
-    pub cut_out: bool,
     pub bytes: u64,
 }
 
