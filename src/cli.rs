@@ -30,6 +30,110 @@ pub(crate) enum Command {
     Bench(BenchArgs),
     /// Error of every mode and setting against a CPU ray-traced reference, against GPU time.
     Report(ReportArgs),
+    /// The best setting a frame budget buys on this scene and device, measured against the
+    /// report's truth: the front, the pick as a preset file and as a capture command.
+    Tune(TuneArgs),
+}
+
+/// The scene a report or tune measures against its truth: a named scene or a model, its sky, the
+/// image size and the lights.
+#[derive(Args)]
+pub(crate) struct TruthScene {
+    /// Scene: cornell (the default scene), crevices (thin features, deep slots), open (redblue
+    /// sky) or stairs (stairs under an overhang, a scene nobody tuned on)
+    #[arg(long, default_value = "cornell")]
+    pub(crate) scene: String,
+    /// A model (OBJ or glTF) instead of a named scene
+    #[arg(long)]
+    pub(crate) model: Option<PathBuf>,
+    /// Leave out the model's normal maps and alpha cutouts, on the GPU and in the truth
+    #[arg(long)]
+    pub(crate) no_surface_maps: bool,
+    /// Skybox folder [default: the scene's own sky]
+    #[arg(long)]
+    pub(crate) skybox: Option<PathBuf>,
+    /// Image size, WIDTHxHEIGHT
+    #[arg(long, default_value = "320x240", value_parser = parse_size)]
+    pub(crate) size: Size,
+    /// Number of random point lights, 0-4096
+    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = ssdo::spec::parse_lights)]
+    pub(crate) lights: usize,
+    /// Seed of the lights and of the reference's rays
+    #[arg(long, default_value_t = 1)]
+    pub(crate) seed: u64,
+}
+
+#[derive(Args)]
+pub(crate) struct TuneArgs {
+    /// The frame budget in GPU milliseconds
+    #[arg(long, conflicts_with = "budget_off")]
+    pub(crate) budget_ms: Option<f64>,
+    /// The frame budget as a multiple of the Off frame's time, measured in the same run
+    #[arg(long)]
+    pub(crate) budget_off: Option<f64>,
+    /// Pick the cheapest setting whose HDR RMSE is at most this (within the budget, if given)
+    #[arg(long)]
+    pub(crate) target_error: Option<f64>,
+    /// Mode to tune: ssao, ssdo or both
+    #[arg(long, default_value = "ssdo")]
+    pub(crate) mode: Mode,
+    #[command(flatten)]
+    pub(crate) on: TruthScene,
+    /// Views measured: the report's, and the others turned about the model up to --spread
+    /// degrees either side, 1-8
+    #[arg(long, default_value_t = 3)]
+    pub(crate) views: usize,
+    /// Degrees the farthest views turn from the report's, 0-90
+    #[arg(long, default_value_t = 20.0)]
+    pub(crate) spread: f32,
+    /// Frames timed per setting, on the report's view (after two warm-up frames), 1-10000
+    #[arg(long, default_value_t = 10, value_parser = parse_frames)]
+    pub(crate) frames: usize,
+    /// Reference rays per pixel, in each of the two traces of each view, 2-65536
+    #[arg(long, default_value_t = 128, value_parser = parse_spp)]
+    pub(crate) spp: u32,
+    /// The most settings the search measures, 0-400 (0: measure the --also presets only)
+    #[arg(long, default_value_t = 60)]
+    pub(crate) max_settings: usize,
+    /// Also measure this preset file (repeatable): its figures here, picked if it is the best
+    #[arg(long)]
+    pub(crate) also: Vec<PathBuf>,
+    /// Also measure the built-in quality levels
+    #[arg(long)]
+    pub(crate) also_levels: bool,
+    /// Output folder for tune.md, front.csv and preset.json
+    #[arg(long, default_value = "tune")]
+    pub(crate) out: PathBuf,
+}
+
+impl TuneArgs {
+    pub(crate) fn options(&self) -> ssdo::Result<ssdo::tune::TuneOptions> {
+        use ssdo::preset::{Preset, Quality};
+        use ssdo::tune::Budget;
+        let mut also = self.also.iter().map(|p| Preset::load(p)).collect::<ssdo::Result<Vec<_>>>()?;
+        if self.also_levels {
+            also.extend(Quality::ALL.map(Quality::preset));
+        }
+        Ok(ssdo::tune::TuneOptions {
+            scene: self.on.scene.clone(),
+            model: self.on.model.clone(),
+            no_surface_maps: self.on.no_surface_maps,
+            skybox: self.on.skybox.clone(),
+            size: (self.on.size.0, self.on.size.1),
+            lights: self.on.lights,
+            seed: self.on.seed,
+            mode: self.mode,
+            budget: self.budget_ms.map(Budget::Ms).or(self.budget_off.map(Budget::OffTimes)),
+            target_error: self.target_error,
+            views: self.views,
+            spread: self.spread,
+            frames: self.frames,
+            samples_per_pixel: self.spp,
+            max_settings: self.max_settings,
+            also,
+            out: self.out.clone(),
+        })
+    }
 }
 
 /// A size written as WIDTHxHEIGHT.
@@ -106,11 +210,11 @@ impl ReportArgs {
     /// The report's options from the flags (checked by `ReportOptions::check`).
     pub(crate) fn options(&self) -> ssdo::report::ReportOptions {
         ssdo::report::ReportOptions {
-            scene: self.scene.clone(),
-            model: self.model.clone(),
-            no_surface_maps: self.no_surface_maps,
-            skybox: self.skybox.clone(),
-            size: (self.size.0, self.size.1),
+            scene: self.on.scene.clone(),
+            model: self.on.model.clone(),
+            no_surface_maps: self.on.no_surface_maps,
+            skybox: self.on.skybox.clone(),
+            size: (self.on.size.0, self.on.size.1),
             samples: self.samples.clone(),
             march: self.march.clone(),
             radii: self.radius.clone(),
@@ -118,31 +222,29 @@ impl ReportArgs {
             frames: self.frames,
             accumulate: self.accumulate.clone(),
             orbit: self.orbit,
-            lights: self.lights,
-            seed: self.seed,
+            lights: self.on.lights,
+            seed: self.on.seed,
             out: self.out.clone(),
+            preset: None,
         }
+    }
+
+    /// The preset to measure beside the sweep: `--preset FILE` or a `--quality` level.
+    pub(crate) fn preset(&self) -> ssdo::Result<Option<ssdo::preset::Preset>> {
+        ssdo::preset::Preset::chosen(self.preset.as_deref(), self.quality)
     }
 }
 
 #[derive(Args)]
 pub(crate) struct ReportArgs {
-    /// Scene: cornell (the default scene), crevices (thin features, deep slots), open (redblue
-    /// sky) or stairs (stairs under an overhang, a scene nobody tuned on)
-    #[arg(long, default_value = "cornell")]
-    pub(crate) scene: String,
-    /// A model (OBJ or glTF) instead of a named scene
+    /// Also measure this preset file's setting (as `ssdo tune` writes), marked P in the table
+    #[arg(long, conflicts_with = "quality")]
+    pub(crate) preset: Option<PathBuf>,
+    /// Also measure a built-in quality level (low, medium, high, ultra), marked P in the table
     #[arg(long)]
-    pub(crate) model: Option<PathBuf>,
-    /// Leave out the model's normal maps and alpha cutouts, on the GPU and in the truth
-    #[arg(long)]
-    pub(crate) no_surface_maps: bool,
-    /// Skybox folder [default: the scene's own sky]
-    #[arg(long)]
-    pub(crate) skybox: Option<PathBuf>,
-    /// Image size, WIDTHxHEIGHT
-    #[arg(long, default_value = "320x240", value_parser = parse_size)]
-    pub(crate) size: Size,
+    pub(crate) quality: Option<ssdo::preset::Quality>,
+    #[command(flatten)]
+    pub(crate) on: TruthScene,
     /// Sample counts of the points and classic variants to sweep (the help states the range)
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     pub(crate) samples: Vec<usize>,
@@ -167,12 +269,6 @@ pub(crate) struct ReportArgs {
     /// truth's view: those rows are measured still and turning (0: still only)
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub(crate) orbit: f32,
-    /// Number of random point lights, 0-4096
-    #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = ssdo::spec::parse_lights)]
-    pub(crate) lights: usize,
-    /// Seed of the lights and of the reference's rays
-    #[arg(long, default_value_t = 1)]
-    pub(crate) seed: u64,
     /// Output folder for report.csv, report.md, report.png and the error maps
     #[arg(long, default_value = "report")]
     pub(crate) out: PathBuf,
@@ -240,20 +336,23 @@ impl Cli {
                 })
                 .mut_arg("slices", |a| {
                     a.help(format!(
-                        "The march: slices (directions around the view vector) per pixel, {}",
-                        range(&SLICES)
+                        "The march: slices (directions around the view vector) per pixel, {} [default: {}]",
+                        range(&SLICES),
+                        SLICES.default
                     ))
                 })
                 .mut_arg("steps", |a| {
                     a.help(format!(
-                        "The march: steps along each side of a slice, {} (half within the radius)",
-                        range(&STEPS)
+                        "The march: steps along each side of a slice, {} (half within the radius) [default: {}]",
+                        range(&STEPS),
+                        STEPS.default
                     ))
                 })
                 .mut_arg("accumulate", |a| {
                     a.help(format!(
-                        "Frames averaged with the camera still, {} (1: none); headless commands render this many frames of the still camera and keep the last",
-                        range(&ACCUMULATE)
+                        "Frames averaged with the camera still, {} (1: none); headless commands render this many frames of the still camera and keep the last [default: {}]",
+                        range(&ACCUMULATE),
+                        ACCUMULATE.default
                     ))
                 })
         };

@@ -12,6 +12,7 @@ pub mod gpu;
 pub mod guard;
 pub mod headless;
 pub mod output;
+pub mod preset;
 pub mod reference;
 pub mod render;
 pub mod report;
@@ -19,5 +20,6 @@ pub mod reproduce;
 pub mod scene;
 pub mod shaders;
 pub mod spec;
+pub mod tune;
 
 pub use error::{Error, Result};

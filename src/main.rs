@@ -17,10 +17,14 @@ mod progress;
 use cli::*;
 
 fn run_report(args: &ReportArgs) -> Result<()> {
-    let options = args.options();
+    let mut options = args.options();
     options.check()?;
+    options.preset = args.preset()?;
     output::check_folder(&options.out)?;
     let gpu = Gpu::headless()?;
+    if let Some(warning) = options.preset.as_ref().and_then(|p| p.elsewhere(&gpu.describe(), options.size)) {
+        log::warn!("{warning}");
+    }
     let started = Instant::now();
     let bar = progress::bar(ssdo::report::progress_steps(&options), "");
     let report = ssdo::report::run(&gpu, &options, &|message: &str| {
@@ -39,6 +43,41 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     ))
 }
 
+fn run_tune(args: &TuneArgs) -> Result<()> {
+    let options = args.options()?;
+    options.check()?;
+    output::check_folder(&options.out)?;
+    let gpu = Gpu::headless()?;
+    let bar = progress::bar(2 * options.size.1 as u64 * options.views as u64, " truth rows");
+    let tune = ssdo::tune::run(&gpu, &options, &|message: &str| {
+        if message == "reference row" {
+            bar.inc(1);
+        } else {
+            bar.set_message(message.to_owned());
+        }
+    })?;
+    bar.finish_and_clear();
+    let written = tune.write(&options)?;
+    output::print_line(tune.markdown(&options).trim_end())?;
+    if let Some(command) = tune.capture_command(&options) {
+        output::print_line(&format!("\nrender the pick: {command}"))?;
+    }
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    output::print_line(&format!("wrote {}", names.join(", ")))?;
+    match tune.verdict {
+        ssdo::tune::Verdict::BelowCheapest => Err(Error::Setting(tune.verdict_lines(&options).join(" "))),
+        _ => Ok(()),
+    }
+}
+
+/// A warning when the run's preset was measured on another device or at another size.
+fn warn_if_elsewhere(render: &RenderArgs, gpu: &Gpu, size: (u32, u32)) -> Result<()> {
+    if let Some(warning) = render.preset()?.and_then(|p| p.elsewhere(&gpu.describe(), size)) {
+        log::warn!("{warning}");
+    }
+    Ok(())
+}
+
 fn run_capture(args: &CaptureArgs) -> Result<()> {
     let modes: Vec<Mode> = match args.mode {
         ModeChoice::One(mode) => vec![mode],
@@ -52,6 +91,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     gpu.check_size(size.0, size.1)?;
+    warn_if_elsewhere(&args.render, &gpu, size)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     // --raw and --stats read the linear HDR image back; otherwise the frame tone-maps in place.
     renderer.keep_hdr(&gpu, args.raw || args.stats);
@@ -130,6 +170,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     gpu.check_size(size.0, size.1)?;
+    warn_if_elsewhere(&args.render, &gpu, size)?;
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     renderer.keep_hdr(&gpu, args.hdr);
     let timestamps = renderer.enable_timing(&gpu);
@@ -174,9 +215,10 @@ fn run_view(args: ViewArgs) -> Result<()> {
             size.0, size.1
         )));
     }
-    let settings = args.render.settings(args.mode)?;
+    let preset = args.render.preset()?;
+    let settings = args.render.settings_with(args.mode, preset.as_ref())?;
     let ViewArgs { scene, screenshot_dir, .. } = args;
-    ssdo::app::run(ssdo::app::ViewerOptions { scene, settings, size, screenshot_dir })
+    ssdo::app::run(ssdo::app::ViewerOptions { scene, settings, preset, size, screenshot_dir })
 }
 
 /// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` (installed with its drivers) only
@@ -229,6 +271,7 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => run_bench(&args),
         Some(Command::View(args)) => run_view(args),
         Some(Command::Report(args)) => run_report(&args),
+        Some(Command::Tune(args)) => run_tune(&args),
         None => run_view(ViewArgs::parse_default()),
     });
     match result {

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use crate::preset::{Knobs, Preset};
 use crate::render::sampling::DEFAULT_BIAS;
 use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
 use crate::scene::camera::{DISTANCE_RADII, REACH_RADII};
@@ -110,19 +111,28 @@ pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
 
 #[derive(Args)]
 pub struct RenderArgs {
+    /// Settings from a preset file (as `ssdo tune` writes): variant, counts, radius, blur,
+    /// resolution, accumulation and the bounce's senders; flags given beside it override it
+    #[arg(long, conflicts_with = "quality")]
+    pub preset: Option<PathBuf>,
+    /// A built-in quality level: low, medium, high (the default settings) or ultra, each tune's
+    /// pick on the default scene at a multiple of the Off frame's time (docs/quality.md); flags
+    /// given beside it override it
+    #[arg(long)]
+    pub quality: Option<crate::preset::Quality>,
     /// Algorithm family: march (the default), points (the paper's point sampling) or classic (the classic SSAO chapter and the SSDO course project)
-    #[arg(long, default_value = "default")]
-    pub variant: Variant,
+    #[arg(long)]
+    pub variant: Option<Variant>,
     /// Samples per pixel of the points and classic variants (the help states the range from
     /// `render::SAMPLES`)
     #[arg(long)]
     pub samples: Option<usize>,
     /// The march: slices per pixel (range: `render::SLICES`)
-    #[arg(long, default_value_t = SLICES.default)]
-    pub slices: usize,
+    #[arg(long)]
+    pub slices: Option<usize>,
     /// The march: steps along each side of a slice (range: `render::STEPS`)
-    #[arg(long, default_value_t = STEPS.default)]
-    pub steps: usize,
+    #[arg(long)]
+    pub steps: Option<usize>,
     /// The march's reach, in model units [default: 24 radii]
     #[arg(long, allow_hyphen_values = true)]
     pub reach: Option<f32>,
@@ -147,14 +157,14 @@ pub struct RenderArgs {
     /// Multiplier on SSDO's sky light
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub sky_strength: f32,
-    /// Multiplier on SSDO's indirect bounce
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub indirect_strength: f32,
+    /// Multiplier on SSDO's indirect bounce [default: 1]
+    #[arg(long, allow_hyphen_values = true)]
+    pub indirect_strength: Option<f32>,
     /// What lights the bounce's senders besides the point lights: march (the sky each sender
     /// sees, from a half-resolution march), irradiance (the sky's unoccluded irradiance for its
-    /// normal) or off (the point lights only); the first two add the ambient
-    #[arg(long, default_value = "march")]
-    pub sender_sky: SenderSky,
+    /// normal) or off (the point lights only); the first two add the ambient [default: march]
+    #[arg(long)]
+    pub sender_sky: Option<SenderSky>,
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
     pub no_blur: bool,
@@ -164,8 +174,8 @@ pub struct RenderArgs {
     pub full_res: bool,
     /// Frames averaged with the camera still (range: `render::ACCUMULATE`; 1: none): headless
     /// commands render this many frames of the still camera and keep the last
-    #[arg(long, default_value_t = ACCUMULATE.default)]
-    pub accumulate: usize,
+    #[arg(long)]
+    pub accumulate: Option<usize>,
     /// Exposure applied before tone mapping
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -180,10 +190,7 @@ pub struct RenderArgs {
     pub view: View,
 }
 
-/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
-/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
-/// would turn black instead of white.
-pub const MAX_GAIN: f32 = 1e6;
+pub use crate::render::settings::MAX_GAIN;
 /// The largest length setting (radius, reach, thickness), in model units.
 pub const MAX_LENGTH: f32 = 1e9;
 
@@ -314,40 +321,71 @@ impl SceneArgs {
 }
 
 impl RenderArgs {
-    /// The sampling flags as a [`Sampling`], each checked against its range.
-    pub fn sampling(&self) -> Result<Sampling> {
-        let base = Sampling::for_variant(self.variant);
+    /// The preset these flags name: `--preset FILE` or a `--quality` level.
+    pub fn preset(&self) -> Result<Option<Preset>> {
+        Preset::chosen(self.preset.as_deref(), self.quality)
+    }
+
+    /// The knobs: a preset's (or the defaults), with each flag given beside it taking its place.
+    /// A variant other than the preset's brings its own sample count unless `--samples` is given.
+    fn knobs(&self, preset: Option<&Preset>) -> Knobs {
+        let from = preset.map(|p| p.knobs);
+        let variant = self.variant.or(from.map(|k| k.variant)).unwrap_or_default();
+        let mut k = match from {
+            Some(k) if k.variant == variant => k,
+            Some(k) => Knobs { variant, samples: variant.decl().default_samples, ..k },
+            None => Knobs::from_settings(&Settings::for_variant(variant)),
+        };
+        k.samples = self.samples.unwrap_or(k.samples);
+        k.slices = self.slices.unwrap_or(k.slices);
+        k.steps = self.steps.unwrap_or(k.steps);
+        k.depth_pyramid |= self.depth_pyramid;
+        k.blur &= !self.no_blur;
+        k.half_resolution &= !self.full_res;
+        k.accumulate = self.accumulate.unwrap_or(k.accumulate);
+        k.sender_sky = self.sender_sky.unwrap_or(k.sender_sky);
+        k.indirect_strength = self.indirect_strength.unwrap_or(k.indirect_strength);
+        k
+    }
+
+    /// The settings of these flags over `preset` (see [`RenderArgs::preset`]), each checked
+    /// against its range.
+    pub fn settings_with(&self, mode: Mode, preset: Option<&Preset>) -> Result<Settings> {
+        let k = self.knobs(preset);
+        let base = Settings::for_variant(k.variant);
         let length = |name: &str, v: Option<f32>| v.map(|r| non_negative(name, r)).transpose();
-        Ok(Sampling {
-            variant: self.variant,
-            samples: SAMPLES.check(self.samples.unwrap_or(base.samples))?,
-            slices: SLICES.check(self.slices)?,
-            steps: STEPS.check(self.steps)?,
+        let sampling = Sampling {
+            variant: k.variant,
+            samples: SAMPLES.check(k.samples)?,
+            slices: SLICES.check(k.slices)?,
+            steps: STEPS.check(k.steps)?,
             radius: length("radius", self.radius)?,
+            radius_scale: k.radius_scale,
             reach: length("reach", self.reach)?,
             thickness: length("thickness", self.thickness)?,
             bias: non_negative("bias", self.bias)?,
-            depth_pyramid: self.depth_pyramid,
-        })
-    }
-
-    pub fn settings(&self, mode: Mode) -> Result<Settings> {
-        let base = Settings::for_variant(self.variant);
+            depth_pyramid: k.depth_pyramid,
+        };
         Ok(Settings {
             mode,
-            sampling: self.sampling()?,
+            sampling,
             ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
             ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
             sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
-            indirect_strength: in_range("indirect-strength", self.indirect_strength, 0.0, MAX_GAIN)?,
-            sender_sky: self.sender_sky,
-            blur: !self.no_blur,
-            half_resolution: !self.full_res,
-            accumulate: ACCUMULATE.check(self.accumulate)?,
+            indirect_strength: in_range("indirect-strength", k.indirect_strength, 0.0, MAX_GAIN)?,
+            sender_sky: k.sender_sky,
+            blur: k.blur,
+            half_resolution: k.half_resolution,
+            accumulate: ACCUMULATE.check(k.accumulate)?,
             exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
             sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,
             view: self.view,
         })
+    }
+
+    /// The settings of these flags (over their preset or quality level, if any).
+    pub fn settings(&self, mode: Mode) -> Result<Settings> {
+        self.settings_with(mode, self.preset()?.as_ref())
     }
 }

@@ -66,6 +66,20 @@ impl Viewer {
                 self.panel.fly = self.controls.fly;
                 log::info!("fly camera {}", if self.controls.fly { "on" } else { "off" });
             }
+            Action::LoadPreset(path) => match crate::preset::Preset::load(&path) {
+                Ok(preset) => {
+                    let s = &mut self.renderer.settings;
+                    preset.knobs.apply(s);
+                    s.sampling = s.sampling.resolved(self.scene.default_radius());
+                    self.panel.say(format!("preset '{}': {}", preset.name, preset.knobs.label()), false);
+                    if let Some(warning) = preset.elsewhere(&self.panel.adapter, self.renderer.size()) {
+                        self.panel.say(warning, true);
+                    }
+                    self.panel.preset = Some(preset);
+                }
+                // The settings stay as they were.
+                Err(e) => self.panel.say(format!("preset not loaded: {e}"), true),
+            },
             Action::CopyCommand => {
                 let command = self.command();
                 self.egui.egui_ctx().copy_text(command.clone());

@@ -36,6 +36,9 @@ pub struct ViewerOptions {
     /// layout also places every model loaded later.
     pub scene: SceneArgs,
     pub settings: Settings,
+    /// The preset or quality level the settings came from (`--preset`, `--quality`): the panel
+    /// shows its expected time and error.
+    pub preset: Option<crate::preset::Preset>,
     /// Window size in physical pixels (panel included).
     pub size: (u32, u32),
     pub screenshot_dir: PathBuf,
@@ -242,7 +245,13 @@ impl Viewer {
         let egui =
             egui_winit::State::new(egui_ctx, egui::ViewportId::ROOT, &window, Some(scale), None, Some(max_texture));
         let egui_renderer = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
-        let panel = PanelState::new((&options.scene, &options.settings), &gpu, (&scene, &sky), timing);
+        let mut panel = PanelState::new((&options.scene, &options.settings), &gpu, (&scene, &sky), timing);
+        if let Some(preset) = &options.preset {
+            if let Some(warning) = preset.elsewhere(&panel.adapter, view) {
+                panel.say(warning, true);
+            }
+            panel.preset = Some(preset.clone());
+        }
         Ok(Self {
             window,
             surface,

@@ -27,6 +27,8 @@ pub enum Action {
     ToggleFly,
     /// The `ssdo capture` command of the view onto the clipboard.
     CopyCommand,
+    /// Read a preset file and take its settings.
+    LoadPreset(PathBuf),
 }
 
 /// A line for the user: what happened, or what went wrong.
@@ -63,6 +65,9 @@ pub struct PanelState {
     pub fly: bool,
     /// The `ssdo capture` command that renders the view.
     pub command: String,
+    /// The preset file field, and the preset or quality level last taken.
+    pub preset_path: String,
+    pub preset: Option<crate::preset::Preset>,
 }
 
 impl PanelState {
@@ -134,6 +139,8 @@ impl PanelState {
             accumulate: if settings.accumulates() { settings.accumulate } else { crate::render::ACCUMULATE.default },
             fly: args.eye.is_some(),
             command: String::new(),
+            preset_path: String::new(),
+            preset: None,
         }
     }
 }
@@ -146,6 +153,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             status(ui, state);
             ui.separator();
             mode_section(ui, settings, &mut actions);
+            ui.separator();
+            preset_section(ui, state, settings, default_radius, &mut actions);
             ui.separator();
             sampling_section(ui, state, settings, default_radius);
             lighting_section(ui, settings);
@@ -196,6 +205,54 @@ fn mode_section(ui: &mut egui::Ui, settings: &mut Settings, actions: &mut Vec<Ac
             ui.selectable_value(&mut settings.view, v, v.title());
         }
     });
+}
+
+/// The quality levels, a preset file, and what the preset taken expects beside what this frame
+/// measures.
+fn preset_section(
+    ui: &mut egui::Ui,
+    state: &mut PanelState,
+    settings: &mut Settings,
+    default_radius: f32,
+    actions: &mut Vec<Action>,
+) {
+    use crate::preset::Quality;
+    // The level whose knobs the settings hold now, if any.
+    let current = Quality::ALL.into_iter().find(|q| {
+        let mut s = *settings;
+        q.knobs().apply(&mut s);
+        s.sampling = s.sampling.resolved(default_radius);
+        s == *settings
+    });
+    let mut chosen = current;
+    egui::ComboBox::from_label("quality")
+        .selected_text(current.map_or("custom", Quality::name))
+        .show_ui(ui, |ui| {
+            for q in Quality::ALL {
+                ui.selectable_value(&mut chosen, Some(q), q.name());
+            }
+        })
+        .response
+        .on_hover_text("tune's picks on the default scene at multiples of the Off frame's time (docs/quality.md)");
+    if let Some(level) = chosen.filter(|&q| Some(q) != current) {
+        level.knobs().apply(settings);
+        settings.sampling = settings.sampling.resolved(default_radius);
+        state.preset = Some(level.preset());
+    }
+    ui.label("Preset file (from ssdo tune)");
+    if let Some(path) = path_field(ui, &mut state.preset_path, "tune/preset.json") {
+        actions.push(Action::LoadPreset(path));
+    }
+    if let Some(preset) = &state.preset {
+        let now: f64 = state.timings.iter().map(|(_, ms)| ms).sum();
+        let expected = preset.measured.as_ref().map_or_else(
+            || "no figures in it".to_string(),
+            |m| {
+                format!("expected {:.2} ms, HDR RMSE {:.4} ({}x{}, {})", m.ms, m.hdr_rmse, m.size.0, m.size.1, m.device)
+            },
+        );
+        ui.label(format!("{}: {expected}; now {now:.2} ms (GPU)", preset.name));
+    }
 }
 
 /// The variant's counts and lengths, the bias, blur, half resolution and accumulation.

@@ -33,6 +33,9 @@ pub struct Sampling {
     pub slices: usize,
     pub steps: usize,
     pub radius: Option<f32>,
+    /// The default radius is the scene's times this (a preset's radius, which travels between
+    /// scenes); an explicit `radius` wins over it.
+    pub radius_scale: f32,
     pub reach: Option<f32>,
     pub thickness: Option<f32>,
     /// Depth bias of the occlusion test, as a fraction of the radius.
@@ -69,6 +72,7 @@ impl Sampling {
             slices: SLICES.default,
             steps: STEPS.default,
             radius: None,
+            radius_scale: 1.0,
             reach: None,
             thickness: None,
             bias: DEFAULT_BIAS,
@@ -111,9 +115,20 @@ impl Sampling {
         self.variant.decl().marched_lengths && self.depth_pyramid
     }
 
+    /// The same sampling with the radius scale made an explicit radius for a scene whose default
+    /// radius is `default_radius` (what the reproduce line and the panel show).
+    pub fn resolved(&self, default_radius: f32) -> Self {
+        match self.radius {
+            None if self.radius_scale != 1.0 => {
+                Self { radius: Some(default_radius * self.radius_scale), radius_scale: 1.0, ..*self }
+            }
+            _ => Self { radius_scale: 1.0, ..*self },
+        }
+    }
+
     /// The lengths in use for a scene whose default radius is `default_radius`.
     pub fn lengths(&self, default_radius: f32) -> Lengths {
-        let radius = self.radius.unwrap_or(default_radius);
+        let radius = self.radius.unwrap_or(default_radius * self.radius_scale);
         Lengths {
             radius,
             reach: self.reach.unwrap_or(REACH_RADII * default_radius).max(radius),

@@ -201,6 +201,11 @@ impl Settings {
     }
 }
 
+/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
+/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
+/// would turn black instead of white.
+pub const MAX_GAIN: f32 = 1e6;
+
 /// The most frames the temporal pass averages where the view moves (`shaders/temporal.wgsl`):
 /// screen-space occlusion changes with what the view shows, so a moving pixel keeps at most this
 /// many frames' worth of its past (a blend of at least 1/8, as kajiya's).

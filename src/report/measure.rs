@@ -17,7 +17,7 @@ use crate::{Error, Result};
 
 /// The truth at one radius: the mean of two independent traces, the pixels to measure, and the
 /// traces' own noise.
-pub(super) struct Truth {
+pub(crate) struct Truth {
     pub reference: Reference,
     /// The surface pixels both renderers see.
     pub valid: Vec<usize>,
@@ -62,12 +62,16 @@ impl Truth {
 }
 
 /// What every measurement of one report shares.
-pub(super) struct Bench<'a> {
+pub(crate) struct Bench<'a> {
     pub gpu: &'a Gpu,
     pub camera: &'a OrbitCamera,
     pub view: &'a wgpu::TextureView,
     pub options: &'a ReportOptions,
     pub ambient: f32,
+    /// Measure the bounce's ratio to the truth's too (one more capture a row).
+    pub diagnostics: bool,
+    /// Time the frame (`false`: the row's `ms` is 0, for a view whose time another view gives).
+    pub timed: bool,
 }
 
 impl Bench<'_> {
@@ -85,13 +89,17 @@ impl Bench<'_> {
         let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half_resolution } =
             config;
         renderer.settings = config.settings(radius);
-        let ms = crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms;
+        let ms = if self.timed {
+            crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms
+        } else {
+            0.0
+        };
         // The frames averaged, turning `orbit` degrees each, ending in the truth's view.
         let camera_at = |k: u32| OrbitCamera { yaw_deg: camera.yaw_deg - orbit * k as f32, ..*camera };
         let image = capture_path(gpu, renderer, camera_at)?;
         let frame = Frame::read(gpu, renderer, mode)?;
         let errors = frame.errors(truth, self.ambient);
-        let bounce_ratio = if frame.directional.is_some() && bounce.is_some() {
+        let bounce_ratio = if self.diagnostics && frame.directional.is_some() && bounce.is_some() {
             self.bounce_ratio(renderer, &camera_at, truth, frame.unexpose)?
         } else {
             None
@@ -120,6 +128,7 @@ impl Bench<'_> {
             hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
             flip,
             pareto: false,
+            preset: None,
         })
     }
 

@@ -15,7 +15,7 @@
 //! independent traces, whose difference gives its own noise floor.
 
 mod maps;
-mod measure;
+pub(crate) mod measure;
 pub mod metrics;
 mod options;
 mod plot;
@@ -73,7 +73,7 @@ pub struct Report {
 
 /// The report's scene (its model, or `--model`), its lights, its sky (the scene's, or
 /// `--skybox`, or the default) and the sky's name for messages.
-fn load_scene(options: &ReportOptions) -> Result<(Scene, Skybox, String)> {
+pub(crate) fn load_scene(options: &ReportOptions) -> Result<(Scene, Skybox, String)> {
     let (mut model, scene_sky) = match &options.model {
         Some(path) => (scene::load_model_file(path)?, None),
         None => scenes::by_name(&options.scene)?,
@@ -127,7 +127,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let bvh = ReferenceScene::new(&scene.model);
     let target = crate::headless::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-    let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient };
+    let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient, diagnostics: true, timed: true };
     let mut rows = Vec::new();
     let mut reference_seconds = 0.0;
     let mut kept = None;
@@ -151,6 +151,13 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         for config in sweep::configurations(options, r_index == 0) {
             let maps = r_index == 0 && config.is_the_default_both();
             let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
+            progress(&row.progress_line(config));
+            rows.push(row);
+        }
+        if let (0, Some(preset)) = (r_index, &options.preset) {
+            let (config, scale) = Config::of_knobs(preset.mode, &preset.knobs);
+            let mut row = bench.measure(&mut renderer, config, scale * default_radius, &truth, false)?;
+            row.preset = Some(preset.name.clone());
             progress(&row.progress_line(config));
             rows.push(row);
         }

@@ -61,6 +61,8 @@ pub struct ReportOptions {
     pub lights: usize,
     pub seed: u64,
     pub out: PathBuf,
+    /// A preset (`--preset`, `--quality`) measured as one more row, marked in the table.
+    pub preset: Option<crate::preset::Preset>,
 }
 
 /// The most values one list of a sweep takes (`--samples`, `--march`, `--radius`, `--accumulate`).

@@ -41,6 +41,8 @@ pub struct Row {
     pub flip: f64,
     /// No other row is both as fast and as accurate (HDR RMSE against the truth).
     pub pareto: bool,
+    /// The preset this row measures (`--preset`, `--quality`), by name.
+    pub preset: Option<String>,
 }
 
 /// The truth's own noise: RMSE of the mean of two independent traces (half their difference).

@@ -94,14 +94,35 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
     configs
 }
 
-/// Every configuration of the whole report, over all its radii.
+/// Every configuration of the whole report, over all its radii (and the preset's row).
 pub fn planned_configurations(options: &ReportOptions) -> usize {
-    (0..options.radii.len()).map(|i| configurations(options, i == 0).len()).sum()
+    (0..options.radii.len()).map(|i| configurations(options, i == 0).len()).sum::<usize>()
+        + usize::from(options.preset.is_some())
 }
 
 impl Config {
+    /// The configuration a preset's knobs give in `mode`, and its radius scale. A bounce's
+    /// strength is 1 or none (0), as tune writes it.
+    pub fn of_knobs(mode: Mode, k: &crate::preset::Knobs) -> (Self, f32) {
+        let marches = k.variant.decl().sampler == Sampler::March;
+        let directional = mode.declaration().directional_occlusion;
+        let config = Config {
+            mode,
+            variant: k.variant,
+            samples: if marches { k.slices } else { k.samples },
+            steps: if marches { k.steps } else { 0 },
+            blur: k.blur,
+            pyramid: k.depth_pyramid && marches,
+            bounce: (directional && k.indirect_strength > 0.0).then_some(k.sender_sky),
+            accumulate: k.accumulate,
+            orbit: 0.0,
+            half_resolution: k.half_resolution,
+        };
+        (config, k.radius_scale)
+    }
+
     /// Off under `variant`'s composite: no sampling pass, one still frame.
-    fn off(variant: Variant) -> Self {
+    pub(crate) fn off(variant: Variant) -> Self {
         Config {
             mode: Mode::Off,
             variant,
@@ -183,6 +204,7 @@ mod tests {
             lights: 0,
             seed: 1,
             out: "report".into(),
+            preset: None,
         }
     }
 

@@ -58,12 +58,12 @@ impl Row {
 impl Report {
     pub fn csv(&self) -> String {
         let mut out = String::from(
-            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto\n",
+            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto,preset\n",
         );
         for r in &self.rows {
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{:.5},{},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{}",
+                "{},{},{},{},{},{},{},{:.5},{},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{},{}",
                 r.mode.name(),
                 r.variant,
                 r.samples,
@@ -84,7 +84,8 @@ impl Report {
                 r.hdr_rmse_near,
                 r.hdr_psnr,
                 r.flip,
-                r.pareto
+                r.pareto,
+                r.preset.as_deref().map_or_else(String::new, |n| n.replace(',', " "))
             );
         }
         out
@@ -106,7 +107,8 @@ impl Report {
              - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
              over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
              cost of one frame with the average running\n\
-             - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); \
+             - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); P = the \
+             preset given (`--preset`, `--quality`){}; \
              \"within R\" columns compare with the image whose occluders and senders beyond the radius are removed\n\n",
             self.device,
             if self.software { " (a CPU rasteriser, not a GPU)" } else { "" },
@@ -128,6 +130,7 @@ impl Report {
             background,
             r.mismatched,
             r.covered,
+            options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", p.name)),
         );
         out.push_str(
             "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | frames (orbit) | ms a frame | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
@@ -138,7 +141,12 @@ impl Report {
             let _ = writeln!(
                 out,
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
-                if row.pareto { "★" } else { "" },
+                match (row.pareto, row.preset.is_some()) {
+                    (true, true) => "★ P",
+                    (false, true) => "P",
+                    (true, false) => "★",
+                    (false, false) => "",
+                },
                 row.mode.name(),
                 row.variant,
                 if off { "—".to_string() } else { row.label() },

@@ -20,6 +20,7 @@ mod cpu {
     mod fuzz_entries;
     mod fuzz_loaders;
     mod hostile_files;
+    mod presets;
     mod scene_loading;
     mod shaders;
     mod surface_maps_loading;
@@ -35,6 +36,7 @@ mod gpu {
     mod stability;
     mod surface_maps;
     mod temporal;
+    mod tune;
     mod winding;
 }
 

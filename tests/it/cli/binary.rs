@@ -376,3 +376,65 @@ fn camera_points_are_flags_and_bad_ones_are_refused() {
         shoot("moved", &["--target", "0.5,0.5,0", "--yaw", "0", "--pitch", "0", "--distance", "5", "--near", "0.005"]);
     assert_ne!(orbit, moved, "--target moves the view");
 }
+
+#[test]
+fn tune_names_the_cheapest_under_a_budget_below_it_and_its_preset_drives_capture() {
+    if !has_adapter() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("tune");
+    let small = ["--size", "32x24", "--lights", "1", "--views", "1", "--frames", "1", "--spp", "2"];
+    let mut args = vec!["tune", "--budget-ms", "0.0001", "--max-settings", "3", "--out", out.to_str().unwrap()];
+    args.extend(small);
+    let line = refused(&args, 2, "is below every setting measured: the cheapest is ");
+    assert!(line.contains(" ms"), "{line}");
+    assert!(out.join("front.csv").exists() && !out.join("preset.json").exists(), "the front, and no preset");
+    // A budget no setting reaches is not binding: the most accurate is picked and written.
+    let mut args = vec!["tune", "--budget-ms", "1e9", "--max-settings", "3", "--out", out.to_str().unwrap()];
+    args.extend(small);
+    let result = ssdo(&args);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    let printed = String::from_utf8_lossy(&result.stdout);
+    assert!(printed.contains("is not binding") && printed.contains("render the pick: ssdo capture"), "{printed}");
+    // The preset renders through capture, with a warning at another size than it was tuned at.
+    let preset = out.join("preset.json");
+    let shots = dir.path().join("shots");
+    let result = ssdo(&[
+        "capture",
+        "--mode",
+        "ssdo",
+        "--size",
+        "40x30",
+        "--lights",
+        "1",
+        "--preset",
+        preset.to_str().unwrap(),
+        "--out",
+        shots.to_str().unwrap(),
+    ]);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    assert!(stderr(&result).contains("at 32x24 (this run: 40x30)"), "{}", stderr(&result));
+    assert!(shots.join("ssdo.png").exists());
+}
+
+#[test]
+fn a_bad_preset_is_one_line_and_exit_3_everywhere() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.json");
+    std::fs::write(&bad, r#"{"ssdo_preset": 1, "settings": {"slices": 99}}"#).unwrap();
+    let bad = bad.to_str().unwrap();
+    let out = dir.path().join("out");
+    for command in ["capture", "bench", "report", "view"] {
+        let mut args = vec![command, "--preset", bad];
+        if command != "view" {
+            args.extend(["--out", out.to_str().unwrap()].iter().take(if command == "bench" { 0 } else { 2 }));
+        }
+        let line = refused(&args, 3, "bad.json: settings: --slices 99");
+        assert!(!line.contains('\n'));
+    }
+    refused(&["capture", "--preset", "no/such.json"], 3, "no/such.json: cannot read");
+    refused(&["capture", "--quality", "best"], 2, "best");
+    refused(&["tune", "--out", out.to_str().unwrap()], 2, "give --budget-ms");
+    assert!(!out.exists(), "nothing written on error");
+}

@@ -285,6 +285,7 @@ fn tiny_report(
         lights: 2,
         seed: 1,
         out: out.to_path_buf(),
+        preset: None,
     }
 }
 

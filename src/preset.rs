@@ -1,0 +1,564 @@
+//! Presets: the settings that trade error for time (the variant, its counts, the radius, blur, half
+//! resolution, accumulation and the bounce's senders), with what `ssdo tune` measured of them, as
+//! a small JSON file every front end loads (`--preset FILE`), and the built-in quality levels
+//! (`--quality`), which are tune's picks on the default scene.
+//!
+//! The file (`"ssdo_preset": 1`) holds `name`, `mode` (what it was tuned for), `settings` (each
+//! key optional: a missing one keeps its default; an unknown one is an error) and, when tune wrote
+//! it, `measured`: the device, scene, size, lights, budget and the figures. Numbers round-trip
+//! exactly (JSON keeps every digit of an f32 and an f64).
+
+use std::path::Path;
+
+use serde_json::{json, Map, Value};
+
+use crate::render::{Mode, SenderSky, Settings, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::{Error, Result};
+
+/// The version of the file format this build writes and reads.
+pub const FORMAT: u64 = 1;
+
+/// The radius scales a preset may hold: the default radius of the scene it is used on, times this.
+pub const RADIUS_SCALE: (f32, f32) = (0.125, 8.0);
+
+/// The settings a preset sets; everything else (exposure, ambient, strengths of AO and sky, the
+/// view) stays the user's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Knobs {
+    pub variant: Variant,
+    /// Samples of the points and classic variants.
+    pub samples: usize,
+    /// The march's slices and steps.
+    pub slices: usize,
+    pub steps: usize,
+    pub depth_pyramid: bool,
+    /// The sampling radius as a multiple of the scene's default (a preset travels between scenes).
+    pub radius_scale: f32,
+    pub blur: bool,
+    pub half_resolution: bool,
+    pub accumulate: usize,
+    pub sender_sky: SenderSky,
+    /// 0: no bounce.
+    pub indirect_strength: f32,
+}
+
+/// What tune measured of a preset, and where.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// The adapter, as `Gpu::describe` names it.
+    pub device: String,
+    /// The scene's name or model file, and its sky.
+    pub scene: String,
+    pub size: (u32, u32),
+    pub lights: usize,
+    /// The budget asked for (`None`: tune was given a target error only).
+    pub budget_ms: Option<f64>,
+    /// Median GPU milliseconds of a frame (on the first view).
+    pub ms: f64,
+    /// The Off frame's milliseconds in the same run (a scale that travels between devices).
+    pub off_ms: f64,
+    /// Errors against the ray-traced truth, averaged over the views.
+    pub hdr_rmse: f64,
+    pub do_rmse: Option<f64>,
+    pub flip: f64,
+    pub views: usize,
+    /// Frames timed for `ms`.
+    pub frames_timed: usize,
+    pub date: String,
+}
+
+/// A named set of [`Knobs`] for a mode, with its measurements.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Preset {
+    pub name: String,
+    pub mode: Mode,
+    pub knobs: Knobs,
+    pub measured: Option<Measured>,
+}
+
+impl Default for Knobs {
+    fn default() -> Self {
+        Self::from_settings(&Settings::default())
+    }
+}
+
+impl Knobs {
+    /// The knobs of `settings` (an explicit radius is not a scale: it stays the settings').
+    pub fn from_settings(s: &Settings) -> Self {
+        Self {
+            variant: s.sampling.variant,
+            samples: s.sampling.samples,
+            slices: s.sampling.slices,
+            steps: s.sampling.steps,
+            depth_pyramid: s.sampling.depth_pyramid,
+            radius_scale: s.sampling.radius_scale,
+            blur: s.blur,
+            half_resolution: s.half_resolution,
+            accumulate: s.accumulate,
+            sender_sky: s.sender_sky,
+            indirect_strength: s.indirect_strength,
+        }
+    }
+
+    /// Sets these knobs in `s`. The radius goes back to the scene's default times the scale.
+    pub fn apply(&self, s: &mut Settings) {
+        if s.sampling.variant != self.variant {
+            s.ambient = self.variant.decl().default_ambient;
+        }
+        s.sampling.variant = self.variant;
+        s.sampling.samples = self.samples;
+        s.sampling.slices = self.slices;
+        s.sampling.steps = self.steps;
+        s.sampling.depth_pyramid = self.depth_pyramid;
+        s.sampling.radius = None;
+        s.sampling.radius_scale = self.radius_scale;
+        s.blur = self.blur;
+        s.half_resolution = self.half_resolution;
+        s.accumulate = self.accumulate;
+        s.sender_sky = self.sender_sky;
+        s.indirect_strength = self.indirect_strength;
+    }
+
+    /// The settings: `base` with these knobs.
+    pub fn settings(&self, base: Settings) -> Settings {
+        let mut s = base;
+        self.apply(&mut s);
+        s
+    }
+
+    /// Every value within its range, or the error naming it.
+    pub fn check(&self) -> Result<()> {
+        SAMPLES.check(self.samples)?;
+        SLICES.check(self.slices)?;
+        STEPS.check(self.steps)?;
+        ACCUMULATE.check(self.accumulate)?;
+        // The flags' ranges, as `spec::in_range` states them (spec reads presets, so not through it).
+        let within = |name: &str, v: f32, (lo, hi): (f32, f32)| {
+            if v.is_finite() && (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(Error::Setting(format!("--{name} {v}: must be a finite number from {lo} to {hi}")))
+            }
+        };
+        within("radius-scale", self.radius_scale, RADIUS_SCALE)?;
+        within("indirect-strength", self.indirect_strength, (0.0, crate::render::settings::MAX_GAIN))
+    }
+
+    /// The flags that give these knobs on the command line (those at their defaults left out).
+    pub fn flags(&self, default_radius: f32) -> Vec<String> {
+        let base = Knobs::from_settings(&Settings::for_variant(self.variant));
+        let mut out = Vec::new();
+        let mut flag = |name: &str, value: Option<String>| {
+            out.push(format!("--{name}"));
+            out.extend(value);
+        };
+        if self.variant != Variant::default() {
+            flag("variant", Some(self.variant.name().into()));
+        }
+        if self.variant.decl().marched_lengths {
+            if self.slices != base.slices {
+                flag("slices", Some(self.slices.to_string()));
+            }
+            if self.steps != base.steps {
+                flag("steps", Some(self.steps.to_string()));
+            }
+            if self.depth_pyramid {
+                flag("depth-pyramid", None);
+            }
+        } else if self.samples != base.samples {
+            flag("samples", Some(self.samples.to_string()));
+        }
+        if self.radius_scale != 1.0 {
+            flag("radius", Some(format!("{}", default_radius * self.radius_scale)));
+        }
+        if !self.blur {
+            flag("no-blur", None);
+        }
+        if !self.half_resolution {
+            flag("full-res", None);
+        }
+        if self.accumulate != base.accumulate {
+            flag("accumulate", Some(self.accumulate.to_string()));
+        }
+        if self.sender_sky != base.sender_sky {
+            flag("sender-sky", Some(self.sender_sky.name().into()));
+        }
+        if self.indirect_strength != base.indirect_strength {
+            flag("indirect-strength", Some(self.indirect_strength.to_string()));
+        }
+        out
+    }
+
+    /// "march 2×16, radius 1x, blur, half, 16 frames, senders march": the knobs in a line.
+    pub fn label(&self) -> String {
+        let counts = self.variant.decl().count_label(self.samples, self.slices, self.steps);
+        let bounce = if self.indirect_strength == 0.0 {
+            "no bounce".to_string()
+        } else {
+            format!("senders {}", self.sender_sky)
+        };
+        format!(
+            "{} {counts}{}, radius {:.2}x, blur {}, {} res, {} frames, {bounce}",
+            self.variant,
+            if self.depth_pyramid && self.variant.decl().marched_lengths { " pyramid" } else { "" },
+            self.radius_scale,
+            if self.blur { "on" } else { "off" },
+            if self.half_resolution { "half" } else { "full" },
+            self.accumulate,
+        )
+    }
+
+    fn json(&self) -> Value {
+        json!({
+            "variant": self.variant.name(),
+            "samples": self.samples,
+            "slices": self.slices,
+            "steps": self.steps,
+            "depth_pyramid": self.depth_pyramid,
+            "radius_scale": self.radius_scale,
+            "blur": self.blur,
+            "half_resolution": self.half_resolution,
+            "accumulate": self.accumulate,
+            "sender_sky": self.sender_sky.name(),
+            "indirect_strength": self.indirect_strength,
+        })
+    }
+
+    fn from_json(v: &Value, at: &Reader) -> Result<Self> {
+        let object = at.object(v, "settings")?;
+        at.only(
+            object,
+            "settings",
+            &[
+                "variant",
+                "samples",
+                "slices",
+                "steps",
+                "depth_pyramid",
+                "radius_scale",
+                "blur",
+                "half_resolution",
+                "accumulate",
+                "sender_sky",
+                "indirect_strength",
+            ],
+        )?;
+        let variant = match object.get("variant") {
+            Some(v) => at.parse::<Variant>(v, "settings.variant")?,
+            None => Variant::default(),
+        };
+        let mut k = Knobs::from_settings(&Settings::for_variant(variant));
+        let count = |key: &str, n: &mut usize| -> Result<()> {
+            if let Some(v) = object.get(key) {
+                *n = at.count(v, &format!("settings.{key}"))?;
+            }
+            Ok(())
+        };
+        count("samples", &mut k.samples)?;
+        count("slices", &mut k.slices)?;
+        count("steps", &mut k.steps)?;
+        count("accumulate", &mut k.accumulate)?;
+        let flag = |key: &str, b: &mut bool| -> Result<()> {
+            if let Some(v) = object.get(key) {
+                *b = v.as_bool().ok_or_else(|| at.bad(&format!("settings.{key}"), "true or false"))?;
+            }
+            Ok(())
+        };
+        flag("depth_pyramid", &mut k.depth_pyramid)?;
+        flag("blur", &mut k.blur)?;
+        flag("half_resolution", &mut k.half_resolution)?;
+        if let Some(v) = object.get("radius_scale") {
+            k.radius_scale = at.number(v, "settings.radius_scale")? as f32;
+        }
+        if let Some(v) = object.get("indirect_strength") {
+            k.indirect_strength = at.number(v, "settings.indirect_strength")? as f32;
+        }
+        if let Some(v) = object.get("sender_sky") {
+            k.sender_sky = at.parse::<SenderSky>(v, "settings.sender_sky")?;
+        }
+        k.check().map_err(|e| at.error(&format!("settings: {e}")))?;
+        Ok(k)
+    }
+}
+
+impl Measured {
+    fn json(&self) -> Value {
+        json!({
+            "device": self.device,
+            "scene": self.scene,
+            "size": [self.size.0, self.size.1],
+            "lights": self.lights,
+            "budget_ms": self.budget_ms,
+            "ms": self.ms,
+            "off_ms": self.off_ms,
+            "hdr_rmse": self.hdr_rmse,
+            "do_rmse": self.do_rmse,
+            "flip": self.flip,
+            "views": self.views,
+            "frames_timed": self.frames_timed,
+            "date": self.date,
+        })
+    }
+
+    fn from_json(v: &Value, at: &Reader) -> Result<Self> {
+        let o = at.object(v, "measured")?;
+        let keys = [
+            "device",
+            "scene",
+            "size",
+            "lights",
+            "budget_ms",
+            "ms",
+            "off_ms",
+            "hdr_rmse",
+            "do_rmse",
+            "flip",
+            "views",
+            "frames_timed",
+            "date",
+        ];
+        at.only(o, "measured", &keys)?;
+        let get = |key: &str| o.get(key).ok_or_else(|| at.error(&format!("measured.{key} is missing")));
+        let text = |key: &str| -> Result<String> {
+            get(key)?.as_str().map(str::to_owned).ok_or_else(|| at.bad(&format!("measured.{key}"), "a string"))
+        };
+        let number = |key: &str| at.number(get(key)?, &format!("measured.{key}"));
+        let optional = |key: &str| match o.get(key) {
+            None | Some(Value::Null) => Ok(None),
+            Some(v) => at.number(v, &format!("measured.{key}")).map(Some),
+        };
+        let whole = |key: &str| -> Result<usize> {
+            get(key)?.as_u64().map(|n| n as usize).ok_or_else(|| at.bad(&format!("measured.{key}"), "a whole number"))
+        };
+        let size = match get("size")?.as_array().map(|a| a.iter().map(Value::as_u64).collect::<Vec<_>>()) {
+            Some(s) if s.len() == 2 && s.iter().all(|v| v.is_some_and(|n| (1..=65536).contains(&n))) => {
+                (s[0].unwrap_or(1) as u32, s[1].unwrap_or(1) as u32)
+            }
+            _ => return Err(at.bad("measured.size", "[width, height]")),
+        };
+        Ok(Self {
+            device: text("device")?,
+            scene: text("scene")?,
+            size,
+            lights: whole("lights")?,
+            budget_ms: optional("budget_ms")?,
+            ms: number("ms")?,
+            off_ms: number("off_ms")?,
+            hdr_rmse: number("hdr_rmse")?,
+            do_rmse: optional("do_rmse")?,
+            flip: number("flip")?,
+            views: whole("views")?,
+            frames_timed: whole("frames_timed")?,
+            date: text("date")?,
+        })
+    }
+
+    /// "38.2 ms (9.1× Off), HDR RMSE 0.0190, FLIP 0.045 on cornell 320x240, llvmpipe": the figures in a line.
+    pub fn summary(&self) -> String {
+        format!(
+            "{:.2} ms ({:.1}× Off), HDR RMSE {:.4}{}, FLIP {:.4} on {} {}x{}, {}",
+            self.ms,
+            self.ms / self.off_ms.max(1e-9),
+            self.hdr_rmse,
+            self.do_rmse.map_or_else(String::new, |d| format!(", DO RMSE {d:.4}")),
+            self.flip,
+            self.scene,
+            self.size.0,
+            self.size.1,
+            self.device
+        )
+    }
+}
+
+impl Preset {
+    pub fn json(&self) -> Value {
+        let mut o = Map::new();
+        o.insert("ssdo_preset".into(), json!(FORMAT));
+        o.insert("name".into(), json!(self.name));
+        o.insert("mode".into(), json!(self.mode.name()));
+        o.insert("settings".into(), self.knobs.json());
+        if let Some(m) = &self.measured {
+            o.insert("measured".into(), m.json());
+        }
+        Value::Object(o)
+    }
+
+    /// The file's text: pretty JSON with a final newline.
+    pub fn to_text(&self) -> String {
+        let mut text = serde_json::to_string_pretty(&self.json()).expect("JSON of numbers and strings");
+        text.push('\n');
+        text
+    }
+
+    /// Reads a preset from `text`; `path` names it in errors.
+    pub fn parse(path: &Path, text: &str) -> Result<Self> {
+        let at = Reader { path };
+        let value: Value = serde_json::from_str(text).map_err(|e| at.error(&format!("not a preset (JSON: {e})")))?;
+        let o = at.object(&value, "the file")?;
+        match o.get("ssdo_preset").and_then(Value::as_u64) {
+            Some(FORMAT) => {}
+            Some(n) => return Err(at.error(&format!("preset format {n}; this build reads format {FORMAT}"))),
+            None => return Err(at.error("not a preset (no \"ssdo_preset\": 1)")),
+        }
+        at.only(o, "the file", &["ssdo_preset", "name", "mode", "settings", "measured"])?;
+        let name = match o.get("name") {
+            Some(v) => v.as_str().ok_or_else(|| at.bad("name", "a string"))?.to_owned(),
+            None => path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
+        };
+        let mode = match o.get("mode") {
+            Some(v) => at.parse::<Mode>(v, "mode")?,
+            None => Mode::Ssdo,
+        };
+        let knobs = match o.get("settings") {
+            Some(v) => Knobs::from_json(v, &at)?,
+            None => Knobs::default(),
+        };
+        let measured = o.get("measured").map(|v| Measured::from_json(v, &at)).transpose()?;
+        Ok(Self { name, mode, knobs, measured })
+    }
+
+    /// Reads the preset file at `path`.
+    pub fn load(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+        Self::parse(path, &text)
+    }
+
+    /// The preset a command's flags name: `--preset FILE`, else a `--quality` level, else none.
+    pub fn chosen(file: Option<&Path>, level: Option<Quality>) -> Result<Option<Self>> {
+        match (file, level) {
+            (Some(path), _) => Self::load(path).map(Some),
+            (None, Some(level)) => Ok(Some(level.preset())),
+            (None, None) => Ok(None),
+        }
+    }
+
+    /// Writes the preset to `path` (a temporary name, then renamed).
+    pub fn save(&self, path: &Path) -> Result<()> {
+        crate::output::write_atomic(path, self.to_text().as_bytes())
+    }
+
+    /// A warning when the figures were measured on another device or at another size than
+    /// `device` and `size`: they say little about this run's time.
+    pub fn elsewhere(&self, device: &str, size: (u32, u32)) -> Option<String> {
+        let m = self.measured.as_ref()?;
+        let mut differences = Vec::new();
+        if m.device != device {
+            differences.push(format!("on {} (this run: {device})", m.device));
+        }
+        if m.size != size {
+            differences.push(format!("at {}x{} (this run: {}x{})", m.size.0, m.size.1, size.0, size.1));
+        }
+        (!differences.is_empty()).then(|| {
+            format!(
+                "preset '{}': its figures were measured {}; its time and error may differ here",
+                self.name,
+                differences.join(" and ")
+            )
+        })
+    }
+}
+
+/// Reads a preset's JSON, naming the file and the key in every error.
+struct Reader<'a> {
+    path: &'a Path,
+}
+
+impl Reader<'_> {
+    fn error(&self, problem: &str) -> Error {
+        Error::input(self.path, problem)
+    }
+
+    fn bad(&self, key: &str, expected: &str) -> Error {
+        self.error(&format!("{key}: expected {expected}"))
+    }
+
+    fn object<'v>(&self, v: &'v Value, key: &str) -> Result<&'v Map<String, Value>> {
+        v.as_object().ok_or_else(|| self.bad(key, "an object"))
+    }
+
+    /// Unknown keys are errors: a misspelt setting would otherwise be silently ignored.
+    fn only(&self, o: &Map<String, Value>, key: &str, known: &[&str]) -> Result<()> {
+        match o.keys().find(|k| !known.contains(&k.as_str())) {
+            Some(k) => Err(self.error(&format!("{key}: unknown key '{k}' (known: {})", known.join(", ")))),
+            None => Ok(()),
+        }
+    }
+
+    fn parse<T: std::str::FromStr<Err = Error>>(&self, v: &Value, key: &str) -> Result<T> {
+        let text = v.as_str().ok_or_else(|| self.bad(key, "a name"))?;
+        text.parse().map_err(|e: Error| self.error(&format!("{key}: {e}")))
+    }
+
+    fn count(&self, v: &Value, key: &str) -> Result<usize> {
+        v.as_u64().map(|n| n as usize).ok_or_else(|| self.bad(key, "a whole number"))
+    }
+
+    fn number(&self, v: &Value, key: &str) -> Result<f64> {
+        v.as_f64().filter(|n| n.is_finite()).ok_or_else(|| self.bad(key, "a number"))
+    }
+}
+
+/// The built-in quality levels: `ssdo tune`'s picks on the default scene (cornell, 320x240, 8
+/// lights, SSDO, three views) at fixed multiples of the Off frame's time, on the machine named in
+/// docs/quality.md. `High` is the default settings (what the report picked); the table that made
+/// the others, and how to make it again, is in docs/quality.md.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Quality {
+    Low,
+    Medium,
+    High,
+    Ultra,
+}
+
+impl Quality {
+    pub const ALL: [Quality; 4] = [Quality::Low, Quality::Medium, Quality::High, Quality::Ultra];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Quality::Low => "low",
+            Quality::Medium => "medium",
+            Quality::High => "high",
+            Quality::Ultra => "ultra",
+        }
+    }
+
+    /// The budget tune was given for this level, in Off frames (`None`: the default settings).
+    pub fn off_multiple(self) -> Option<f64> {
+        match self {
+            Quality::Low => Some(LEVEL_BUDGETS[0]),
+            Quality::Medium => Some(LEVEL_BUDGETS[1]),
+            Quality::High => None,
+            Quality::Ultra => Some(LEVEL_BUDGETS[2]),
+        }
+    }
+
+    /// The level's knobs.
+    pub fn knobs(self) -> Knobs {
+        let default = Knobs::default();
+        match self {
+            // No bounce, no blur: one slice of four steps a side, the radius a half octave up.
+            Quality::Low => Knobs {
+                slices: 1,
+                steps: 4,
+                radius_scale: std::f32::consts::SQRT_2,
+                blur: false,
+                indirect_strength: 0.0,
+                ..default
+            },
+            Quality::Medium => Knobs { slices: 1, steps: 8, blur: false, ..default },
+            Quality::High => default,
+            Quality::Ultra => Knobs { steps: 24, radius_scale: 2.0, ..default },
+        }
+    }
+
+    /// The level as a preset (the figures are in docs/quality.md, not carried here: they were
+    /// measured on one machine and would mislead on another).
+    pub fn preset(self) -> Preset {
+        Preset { name: format!("quality {}", self.name()), mode: Mode::Ssdo, knobs: self.knobs(), measured: None }
+    }
+}
+
+/// The budgets, in Off frames, tune picked `Low`, `Medium` and `Ultra` at.
+pub const LEVEL_BUDGETS: [f64; 3] = [2.0, 3.0, 8.0];
+
+crate::error::named_choice!(Quality, "quality level", Quality::ALL.map(|q| (q.name(), q)));

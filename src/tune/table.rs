@@ -1,0 +1,331 @@
+//! Tune's outputs: the front as a Markdown table and every measured setting as CSV, the pick as a
+//! preset and as an `ssdo capture` command, written together into the output folder.
+
+use std::fmt::Write as _;
+
+use super::{Point, Tune, TuneOptions, Verdict};
+use crate::preset::{Measured, Preset};
+use crate::{output, Result};
+
+fn cell(v: Option<f64>) -> String {
+    v.map_or_else(String::new, |v| format!("{v:.4}"))
+}
+
+impl Point {
+    /// The setting in words ("off" for the Off frame).
+    pub fn label(&self) -> String {
+        match (&self.name, self.knobs) {
+            (Some(name), Some(k)) => format!("{name} ({})", k.label()),
+            (_, Some(k)) => k.label(),
+            (_, None) => "off (no sampling)".to_string(),
+        }
+    }
+}
+
+impl Tune {
+    /// The lines that say what the pick is and why (the budget, the edges).
+    pub fn verdict_lines(&self, options: &TuneOptions) -> Vec<String> {
+        let budget = self.budget_ms.map_or_else(String::new, |b| format!("{b:.2} ms ({:.1}× Off)", b / self.off.ms));
+        let cheapest = self.cheapest();
+        let best = self.most_accurate();
+        let target = options.target_error.map_or_else(String::new, |e| format!("{e}"));
+        let line = match (&self.verdict, self.picked()) {
+            (Verdict::BelowCheapest, _) => format!(
+                "the budget of {budget} is below every setting measured: the cheapest is {} at {:.2} ms",
+                cheapest.label(),
+                cheapest.ms
+            ),
+            (Verdict::NotBinding, Some(p)) => format!(
+                "the budget of {budget} is not binding: the most accurate setting measured, {}, costs {:.2} ms",
+                p.label(),
+                p.ms
+            ),
+            (Verdict::TargetMissed, Some(p)) => format!(
+                "no setting measured reaches HDR RMSE {target}{}: the closest is {} at {:.4} (the most accurate \
+                 measured at any time: {:.4})",
+                if budget.is_empty() { String::new() } else { format!(" within {budget}") },
+                p.label(),
+                p.hdr_rmse,
+                best.hdr_rmse
+            ),
+            (Verdict::Target, Some(p)) => {
+                format!("the cheapest setting measured with HDR RMSE ≤ {target}: {} at {:.2} ms", p.label(), p.ms)
+            }
+            (_, Some(p)) => format!("the most accurate setting within {budget}: {} at {:.2} ms", p.label(), p.ms),
+            (_, None) => String::new(),
+        };
+        vec![line]
+    }
+
+    /// The front (sorted by time) as a Markdown document, with the run's facts.
+    pub fn markdown(&self, options: &TuneOptions) -> String {
+        let mut out = String::new();
+        let _ = writeln!(out, "# ssdo tune: {} in {}\n", options.mode, options.scene_name());
+        let software = if self.software { " (a CPU rasteriser, not a GPU)" } else { "" };
+        let _ = writeln!(out, "- device: {}{software}", self.device);
+        let _ = writeln!(
+            out,
+            "- {} at {}x{}, {} lights (seed {}); views: yaw {} degrees from the report's",
+            options.scene_name(),
+            options.size.0,
+            options.size.1,
+            options.lights,
+            options.seed,
+            self.views.iter().map(|d| format!("{d:+}")).collect::<Vec<_>>().join(", ")
+        );
+        let _ = writeln!(
+            out,
+            "- timing: {}, median of {} frames after two warm-up frames, on the report's view (a frame costs the same from the others); \
+             the {} front settings within {:.0}% of the budget timed again as long",
+            self.timing,
+            options.frames,
+            self.retimed,
+            100.0 * super::RETIME_MARGIN
+        );
+        let _ = writeln!(
+            out,
+            "- truth: as the report's, 2 × {} rays a pixel a view; its noise floor, HDR RMSE {:.4}",
+            options.samples_per_pixel, self.noise_hdr
+        );
+        let searched = self.points.iter().filter(|p| p.candidate.is_some()).count();
+        let presets = self.points.len() - searched;
+        let _ = writeln!(
+            out,
+            "- measured: {searched} settings of the search (at most {}){} and Off ({:.2} ms) in {:.0} s",
+            options.max_settings,
+            if presets > 0 { format!(", {presets} presets (--also)") } else { String::new() },
+            self.off.ms,
+            self.seconds
+        );
+        for line in self.verdict_lines(options) {
+            let _ = writeln!(out, "- **{line}**");
+        }
+        let _ = writeln!(
+            out,
+            "\nThe Pareto front (no measured setting both faster and closer to the truth); ▶ = the pick:\n"
+        );
+        out.push_str("| | ms a frame | × Off | HDR RMSE | DO RMSE | FLIP | setting |\n|---|--:|--:|--:|--:|--:|---|\n");
+        let mut front: Vec<(usize, &Point)> = self.points.iter().enumerate().filter(|(_, p)| p.front).collect();
+        front.sort_by(|a, b| a.1.ms.total_cmp(&b.1.ms));
+        for (i, p) in front {
+            let _ = writeln!(
+                out,
+                "| {} | {:.2} | {:.1} | {:.4} | {} | {:.4} | {} |",
+                if Some(i) == self.pick { "▶" } else { "" },
+                p.ms,
+                p.ms / self.off.ms,
+                p.hdr_rmse,
+                cell(p.do_rmse),
+                p.flip,
+                p.label()
+            );
+        }
+        out
+    }
+
+    /// Every measured setting, one row each, the front marked.
+    pub fn csv(&self, options: &TuneOptions) -> String {
+        let mut out = String::from(
+            "front,pick,ms,off_multiple,frames_timed,hdr_rmse,do_rmse,flip,hdr_rmse_per_view,mode,variant,samples,\
+             slices,steps,depth_pyramid,radius_scale,blur,half_resolution,accumulate,sender_sky,indirect_strength,preset\n",
+        );
+        for (i, p) in self.points.iter().enumerate() {
+            let Some(k) = p.knobs else { continue };
+            let per_view: Vec<String> = p.hdr_per_view.iter().map(|e| format!("{e:.6}")).collect();
+            let _ = writeln!(
+                out,
+                "{},{},{:.4},{:.3},{},{:.6},{},{:.6},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                p.front,
+                Some(i) == self.pick,
+                p.ms,
+                p.ms / self.off.ms,
+                p.frames_timed,
+                p.hdr_rmse,
+                p.do_rmse.map_or_else(String::new, |d| format!("{d:.6}")),
+                p.flip,
+                per_view.join(" "),
+                options.mode,
+                k.variant,
+                k.samples,
+                k.slices,
+                k.steps,
+                k.depth_pyramid,
+                k.radius_scale,
+                k.blur,
+                k.half_resolution,
+                k.accumulate,
+                k.sender_sky,
+                k.indirect_strength,
+                p.name.as_deref().map_or_else(String::new, |n| n.replace(',', " "))
+            );
+        }
+        out
+    }
+
+    /// The pick as a preset, with what was measured of it.
+    pub fn preset(&self, options: &TuneOptions) -> Option<Preset> {
+        let p = self.picked()?;
+        let knobs = p.knobs?;
+        let date = jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string();
+        let name = match self.budget_ms {
+            Some(b) => format!(
+                "{} {} {}x{} within {b:.1} ms",
+                options.mode,
+                options.scene_name(),
+                options.size.0,
+                options.size.1
+            ),
+            None => format!("{} {} {}x{}", options.mode, options.scene_name(), options.size.0, options.size.1),
+        };
+        Some(Preset {
+            name,
+            mode: options.mode,
+            knobs,
+            measured: Some(Measured {
+                device: self.device.clone(),
+                scene: options.scene_name(),
+                size: options.size,
+                lights: options.lights,
+                budget_ms: self.budget_ms,
+                ms: p.ms,
+                off_ms: self.off.ms,
+                hdr_rmse: p.hdr_rmse,
+                do_rmse: p.do_rmse,
+                flip: p.flip,
+                views: self.views.len(),
+                frames_timed: p.frames_timed,
+                date,
+            }),
+        })
+    }
+
+    /// The pick as a command that renders it, or `None` without a pick. A named scene built into
+    /// the report (crevices, open, stairs) has no file to load: the command then names what it
+    /// leaves out.
+    pub fn capture_command(&self, options: &TuneOptions) -> Option<String> {
+        let knobs = self.picked()?.knobs?;
+        let mut words = vec!["capture".to_string(), "--mode".into(), options.mode.name().into()];
+        words.extend(["--size".into(), format!("{}x{}", options.size.0, options.size.1)]);
+        if let Some(model) = &options.model {
+            words.extend(["--model".into(), model.display().to_string()]);
+        }
+        if let Some(sky) = &options.skybox {
+            words.extend(["--skybox".into(), sky.display().to_string()]);
+        }
+        if options.no_surface_maps {
+            words.push("--no-surface-maps".into());
+        }
+        if options.lights != crate::scene::DEFAULT_LIGHTS {
+            words.extend(["--lights".into(), options.lights.to_string()]);
+        }
+        if options.seed != 1 {
+            words.extend(["--seed".into(), options.seed.to_string()]);
+        }
+        words.extend(knobs.flags(self.default_radius));
+        let mut line = crate::reproduce::shell_line(&words);
+        if options.model.is_none() && options.scene != "cornell" {
+            let _ = write!(line, "   # the settings; scene '{}' is built into report and tune only", options.scene);
+        }
+        Some(line)
+    }
+
+    /// Writes front.csv, tune.md and (with a pick) preset.json into the output folder, together.
+    pub fn write(&self, options: &TuneOptions) -> Result<Vec<std::path::PathBuf>> {
+        output::remove_stale_temporaries(&options.out);
+        let mut batch = output::Batch::default();
+        batch.stage(&options.out.join("front.csv"), self.csv(options).as_bytes())?;
+        batch.stage(&options.out.join("tune.md"), self.markdown(options).as_bytes())?;
+        if let Some(preset) = self.preset(options) {
+            batch.stage(&options.out.join("preset.json"), preset.to_text().as_bytes())?;
+        }
+        batch.commit()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Candidate, Point, Tune, TuneOptions, Verdict};
+    use crate::render::{Mode, Variant};
+
+    fn point(ms: f64, hdr_rmse: f64, slices: usize) -> Point {
+        let candidate = Candidate { slices, ..Candidate::default_of(Mode::Ssdo, Variant::March) };
+        Point {
+            candidate: Some(candidate),
+            knobs: Some(candidate.knobs()),
+            name: None,
+            ms,
+            frames_timed: 18,
+            hdr_rmse,
+            do_rmse: Some(hdr_rmse),
+            flip: 0.1,
+            hdr_per_view: vec![hdr_rmse; 3],
+            front: true,
+        }
+    }
+
+    fn tune(pick: Option<usize>, verdict: Verdict, budget_ms: f64) -> Tune {
+        Tune {
+            points: vec![point(10.0, 0.05, 1), point(20.0, 0.02, 2)],
+            off: Point { candidate: None, knobs: None, ..point(5.0, 0.09, 1) },
+            pick,
+            verdict,
+            budget_ms: Some(budget_ms),
+            device: "llvmpipe".into(),
+            software: true,
+            timing: "GPU timestamp queries",
+            default_radius: 0.3,
+            views: vec![0.0, -20.0, 20.0],
+            noise_hdr: 0.01,
+            seconds: 1.0,
+            retimed: 0,
+        }
+    }
+
+    fn options() -> TuneOptions {
+        TuneOptions {
+            scene: "open".into(),
+            model: None,
+            no_surface_maps: false,
+            skybox: None,
+            size: (320, 240),
+            lights: 8,
+            seed: 1,
+            mode: Mode::Ssdo,
+            budget: None,
+            target_error: Some(0.01),
+            views: 3,
+            spread: 20.0,
+            frames: 6,
+            samples_per_pixel: 128,
+            max_settings: 60,
+            also: Vec::new(),
+            out: "tune".into(),
+        }
+    }
+
+    #[test]
+    fn each_edge_says_what_it_is() {
+        let o = options();
+        let below = tune(None, Verdict::BelowCheapest, 2.0).verdict_lines(&o).join(" ");
+        assert!(below.contains("budget of 2.00 ms (0.4× Off) is below every setting measured"), "{below}");
+        assert!(
+            below.contains("the cheapest is march 1 slices × 16 steps") && below.contains("at 10.00 ms"),
+            "{below}"
+        );
+        let free = tune(Some(1), Verdict::NotBinding, 100.0).verdict_lines(&o).join(" ");
+        assert!(free.contains("is not binding") && free.contains("costs 20.00 ms"), "{free}");
+        let missed = tune(Some(1), Verdict::TargetMissed, 100.0).verdict_lines(&o).join(" ");
+        assert!(missed.contains("no setting measured reaches HDR RMSE 0.01 within 100.00 ms"), "{missed}");
+        let t = tune(Some(0), Verdict::Best, 15.0);
+        let table = t.markdown(&o);
+        assert!(table.contains("median of 6 frames"), "{table}");
+        assert!(table.contains("the most accurate setting within 15.00 ms (3.0× Off)"), "{table}");
+        // No preset and no command without a pick; a built-in scene says the command renders
+        // the settings only.
+        let none = tune(None, Verdict::BelowCheapest, 2.0);
+        assert!(none.preset(&o).is_none() && none.capture_command(&o).is_none());
+        let command = t.capture_command(&o).unwrap();
+        assert!(command.starts_with("ssdo capture --mode ssdo --size 320x240 --slices 1"), "{command}");
+        assert!(command.contains("scene 'open' is built into report and tune only"), "{command}");
+    }
+}
