@@ -232,6 +232,8 @@ pub struct Tune {
     pub seconds: f64,
     /// Settings timed again for being near the budget.
     pub retimed: usize,
+    /// When the run ended (UTC, to the minute).
+    pub date: String,
 }
 
 impl Tune {
@@ -505,6 +507,7 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
         noise_hdr: noise,
         seconds: started.elapsed().as_secs_f64(),
         retimed,
+        date: jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string(),
     })
 }
 

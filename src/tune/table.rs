@@ -166,7 +166,6 @@ impl Tune {
     pub fn preset(&self, options: &TuneOptions) -> Option<Preset> {
         let p = self.picked()?;
         let knobs = p.knobs?;
-        let date = jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string();
         let name = match self.budget_ms {
             Some(b) => format!(
                 "{} {} {}x{} within {b:.1} ms",
@@ -194,7 +193,7 @@ impl Tune {
                 flip: p.flip,
                 views: self.views.len(),
                 frames_timed: p.frames_timed,
-                date,
+                date: self.date.clone(),
             }),
         })
     }
@@ -278,6 +277,7 @@ mod tests {
             noise_hdr: 0.01,
             seconds: 1.0,
             retimed: 0,
+            date: "2026-12-03 12:00 UTC".into(),
         }
     }
 

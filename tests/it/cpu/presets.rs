@@ -57,6 +57,14 @@ fn presets_round_trip_exactly() {
         assert_eq!(back, p);
         assert_eq!(back.to_text(), std::fs::read_to_string(&path).unwrap());
     }
+    // Every f64 of the figures survives to the last bit (serde_json's float_roundtrip).
+    let mut m = measured();
+    for k in 1..2000u64 {
+        m.off_ms = 1.0 + k as f64 * 0.000_123_456_789_012_3;
+        m.ms = (k as f64).sqrt() * 3.3;
+        let p = Preset { measured: Some(m.clone()), ..preset() };
+        assert_eq!(Preset::parse(Path::new("p.json"), &p.to_text()).unwrap(), p, "{k}");
+    }
     // The odd float survives to the last bit.
     let back = Preset::parse(Path::new("p.json"), &preset().to_text()).unwrap();
     assert_eq!(back.knobs.radius_scale.to_bits(), std::f32::consts::SQRT_2.to_bits());
