@@ -22,9 +22,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     options.preset = args.preset()?;
     output::check_folder(&options.out)?;
     let gpu = Gpu::headless()?;
-    if let Some(warning) = options.preset.as_ref().and_then(|p| p.elsewhere(&gpu.describe(), options.size)) {
-        log::warn!("{warning}");
-    }
+    warn_if_elsewhere(options.preset.as_ref(), &gpu, options.size);
     let started = Instant::now();
     let bar = progress::bar(ssdo::report::progress_steps(&options), "");
     let report = ssdo::report::run(&gpu, &options, &|message: &str| {
@@ -71,11 +69,10 @@ fn run_tune(args: &TuneArgs) -> Result<()> {
 }
 
 /// A warning when the run's preset was measured on another device or at another size.
-fn warn_if_elsewhere(render: &RenderArgs, gpu: &Gpu, size: (u32, u32)) -> Result<()> {
-    if let Some(warning) = render.preset()?.and_then(|p| p.elsewhere(&gpu.describe(), size)) {
+fn warn_if_elsewhere(preset: Option<&ssdo::preset::Preset>, gpu: &Gpu, size: (u32, u32)) {
+    if let Some(warning) = preset.and_then(|p| p.elsewhere(&gpu.describe(), size)) {
         log::warn!("{warning}");
     }
-    Ok(())
 }
 
 fn run_capture(args: &CaptureArgs) -> Result<()> {
@@ -83,7 +80,8 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::One(mode) => vec![mode],
         ModeChoice::All => Mode::ALL.to_vec(),
     };
-    let settings = args.render.settings(modes[0])?;
+    let preset = args.render.preset()?;
+    let settings = args.render.settings_with(modes[0], preset.as_ref())?;
     let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
     Renderer::check_memory(size, &settings, features, args.raw || args.stats, &modes)?;
     output::check_folder(&args.out)?;
@@ -91,7 +89,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     gpu.check_size(size.0, size.1)?;
-    warn_if_elsewhere(&args.render, &gpu, size)?;
+    warn_if_elsewhere(preset.as_ref(), &gpu, size);
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     // --raw and --stats read the linear HDR image back; otherwise the frame tone-maps in place.
     renderer.keep_hdr(&gpu, args.raw || args.stats);
@@ -163,14 +161,15 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
 }
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
-    let settings = args.render.settings(Mode::Off)?;
+    let preset = args.render.preset()?;
+    let settings = args.render.settings_with(Mode::Off, preset.as_ref())?;
     let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
     Renderer::check_memory(size, &settings, features, args.hdr, &Mode::ALL)?;
     let (scene, sky) = load_scene(&args.scene)?;
     let camera = args.scene.camera(&scene)?;
     let gpu = Gpu::headless()?;
     gpu.check_size(size.0, size.1)?;
-    warn_if_elsewhere(&args.render, &gpu, size)?;
+    warn_if_elsewhere(preset.as_ref(), &gpu, size);
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     renderer.keep_hdr(&gpu, args.hdr);
     let timestamps = renderer.enable_timing(&gpu);

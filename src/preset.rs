@@ -119,6 +119,13 @@ impl Knobs {
         s.indirect_strength = self.indirect_strength;
     }
 
+    /// Sets these knobs in `s` with the radius made a length for a scene whose default radius is
+    /// `default_radius` (what the viewer shows and its command line states).
+    pub fn apply_resolved(&self, s: &mut Settings, default_radius: f32) {
+        self.apply(s);
+        s.sampling = s.sampling.resolved(default_radius);
+    }
+
     /// The settings: `base` with these knobs.
     pub fn settings(&self, base: Settings) -> Settings {
         let mut s = base;
@@ -499,7 +506,7 @@ impl Reader<'_> {
 }
 
 /// The built-in quality levels: `ssdo tune`'s picks on the default scene (cornell, 320x240, 8
-/// lights, SSDO, three views) at fixed multiples of the Off frame's time, on the machine named in
+/// lights, SSDO, three views) at 2 (low), 3 (medium) and 8 (ultra) Off frames, on the machine named in
 /// docs/quality.md. `High` is the default settings (what the report picked); the table that made
 /// the others, and how to make it again, is in docs/quality.md.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -519,16 +526,6 @@ impl Quality {
             Quality::Medium => "medium",
             Quality::High => "high",
             Quality::Ultra => "ultra",
-        }
-    }
-
-    /// The budget tune was given for this level, in Off frames (`None`: the default settings).
-    pub fn off_multiple(self) -> Option<f64> {
-        match self {
-            Quality::Low => Some(LEVEL_BUDGETS[0]),
-            Quality::Medium => Some(LEVEL_BUDGETS[1]),
-            Quality::High => None,
-            Quality::Ultra => Some(LEVEL_BUDGETS[2]),
         }
     }
 
@@ -557,8 +554,5 @@ impl Quality {
         Preset { name: format!("quality {}", self.name()), mode: Mode::Ssdo, knobs: self.knobs(), measured: None }
     }
 }
-
-/// The budgets, in Off frames, tune picked `Low`, `Medium` and `Ultra` at.
-pub const LEVEL_BUDGETS: [f64; 3] = [2.0, 3.0, 8.0];
 
 crate::error::named_choice!(Quality, "quality level", Quality::ALL.map(|q| (q.name(), q)));

@@ -68,9 +68,7 @@ impl Viewer {
             }
             Action::LoadPreset(path) => match crate::preset::Preset::load(&path) {
                 Ok(preset) => {
-                    let s = &mut self.renderer.settings;
-                    preset.knobs.apply(s);
-                    s.sampling = s.sampling.resolved(self.scene.default_radius());
+                    preset.knobs.apply_resolved(&mut self.renderer.settings, self.scene.default_radius());
                     self.panel.say(format!("preset '{}': {}", preset.name, preset.knobs.label()), false);
                     if let Some(warning) = preset.elsewhere(&self.panel.adapter, self.renderer.size()) {
                         self.panel.say(warning, true);

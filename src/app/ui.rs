@@ -220,8 +220,7 @@ fn preset_section(
     // The level whose knobs the settings hold now, if any.
     let current = Quality::ALL.into_iter().find(|q| {
         let mut s = *settings;
-        q.knobs().apply(&mut s);
-        s.sampling = s.sampling.resolved(default_radius);
+        q.knobs().apply_resolved(&mut s, default_radius);
         s == *settings
     });
     let mut chosen = current;
@@ -235,8 +234,7 @@ fn preset_section(
         .response
         .on_hover_text("tune's picks on the default scene at multiples of the Off frame's time (docs/quality.md)");
     if let Some(level) = chosen.filter(|&q| Some(q) != current) {
-        level.knobs().apply(settings);
-        settings.sampling = settings.sampling.resolved(default_radius);
+        level.knobs().apply_resolved(settings, default_radius);
         state.preset = Some(level.preset());
     }
     ui.label("Preset file (from ssdo tune)");
@@ -246,10 +244,7 @@ fn preset_section(
     if let Some(preset) = &state.preset {
         let now: f64 = state.timings.iter().map(|(_, ms)| ms).sum();
         let expected = preset.measured.as_ref().map_or_else(
-            || {
-                let level = Quality::ALL.iter().any(|q| q.preset().name == preset.name);
-                if level { "figures in docs/quality.md" } else { "no figures in the file" }.to_string()
-            },
+            || "no measured figures (the levels': docs/quality.md)".to_string(),
             |m| {
                 format!("expected {:.2} ms, HDR RMSE {:.4} ({}x{}, {})", m.ms, m.hdr_rmse, m.size.0, m.size.1, m.device)
             },

@@ -24,6 +24,40 @@ pub(crate) struct Truth {
     pub noise: NoiseFloor,
 }
 
+/// What a truth is traced from: the scene, its sky and the settings every row renders with.
+pub(crate) struct TruthSource<'a> {
+    pub bvh: &'a crate::reference::ReferenceScene,
+    pub scene: &'a crate::scene::Scene,
+    pub sky: &'a crate::scene::Skybox,
+    pub sky_name: &'a str,
+    pub size: (u32, u32),
+    /// Rays per pixel in each of the two traces, and the first trace's seed.
+    pub samples_per_pixel: u32,
+    pub seed: u64,
+    pub sky_scale: f32,
+    pub ambient: f32,
+}
+
+impl TruthSource<'_> {
+    /// The truth in `camera`'s view, at `radius` (for the within-R images), on the surfaces of
+    /// `depth` (the G-buffer's, read back): the mean of two traces with independent seeds.
+    pub fn trace(&self, camera: &OrbitCamera, depth: &[f32], radius: f32, tick: &(dyn Fn() + Sync)) -> Result<Truth> {
+        let trace = |seed: u64| {
+            let settings = crate::reference::TraceSettings {
+                samples_per_pixel: self.samples_per_pixel,
+                seed,
+                radius,
+                sky_scale: self.sky_scale,
+                ambient: self.ambient,
+            };
+            let (lights, rig) = (&self.scene.lights, &self.scene.rig);
+            reference::trace(self.bvh, lights, rig, self.sky, camera, self.size, depth, &settings, tick)
+        };
+        let (a, b) = (trace(self.seed), trace(self.seed ^ 0x5DEE_CE66_D1CE_4E5B));
+        Truth::from_traces(&a, &b, self.ambient, self.sky_name, self.sky.max_value())
+    }
+}
+
 impl Truth {
     /// Joins two traces; nothing to measure, or a truth beyond 32-bit floats, is an error.
     pub fn from_traces(a: &Reference, b: &Reference, ambient: f32, sky_name: &str, sky_peak: f32) -> Result<Self> {

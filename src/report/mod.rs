@@ -29,7 +29,7 @@ use std::time::Instant;
 use crate::gpu::Gpu;
 use crate::headless::capture::{capture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
-use crate::reference::{self, ReferenceScene, TraceSettings};
+use crate::reference::{self, ReferenceScene};
 use crate::render::{Mode, Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
@@ -125,6 +125,17 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     capture(gpu, &mut renderer, &camera)?;
     let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
     let bvh = ReferenceScene::new(&scene.model);
+    let source = measure::TruthSource {
+        bvh: &bvh,
+        scene: &scene,
+        sky: &sky,
+        sky_name: &sky_name,
+        size: options.size,
+        samples_per_pixel: options.samples_per_pixel,
+        seed: options.seed,
+        sky_scale: base.sky_scale,
+        ambient,
+    };
     let target = crate::headless::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient, diagnostics: true, timed: true };
@@ -134,20 +145,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     for (r_index, choice) in options.radii.iter().enumerate() {
         let radius = choice.resolve(default_radius);
         let started = Instant::now();
-        let tick = || progress("reference row");
-        let trace = |seed: u64| {
-            let settings = TraceSettings {
-                samples_per_pixel: options.samples_per_pixel,
-                seed,
-                radius,
-                sky_scale: base.sky_scale,
-                ambient,
-            };
-            reference::trace(&bvh, &scene.lights, &scene.rig, &sky, &camera, options.size, &depth, &settings, &tick)
-        };
-        let (a, b) = (trace(options.seed), trace(options.seed ^ 0x5DEE_CE66_D1CE_4E5B));
+        let truth = source.trace(&camera, &depth, radius, &|| progress("reference row"))?;
         reference_seconds += started.elapsed().as_secs_f64();
-        let truth = measure::Truth::from_traces(&a, &b, ambient, &sky_name, sky.max_value())?;
         for config in sweep::configurations(options, r_index == 0) {
             let maps = r_index == 0 && config.is_the_default_both();
             let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;

@@ -22,9 +22,9 @@ use std::time::Instant;
 use crate::gpu::Gpu;
 use crate::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
-use crate::reference::{self, ReferenceScene, TraceSettings};
+use crate::reference::ReferenceScene;
 use crate::render::{Mode, Renderer, SceneFeatures, Settings, Variant};
-use crate::report::measure::{Bench, Truth};
+use crate::report::measure::{Bench, TruthSource};
 use crate::report::{Config, RadiusChoice, ReportOptions};
 use crate::scene::OrbitCamera;
 use crate::{Error, Result};
@@ -359,24 +359,23 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
 
     // One truth a view, as the report's.
     let bvh = ReferenceScene::new(&scene.model);
+    let source = TruthSource {
+        bvh: &bvh,
+        scene: &scene,
+        sky: &sky,
+        sky_name: &sky_name,
+        size: options.size,
+        samples_per_pixel: options.samples_per_pixel,
+        seed: options.seed,
+        sky_scale: base.sky_scale,
+        ambient: base.ambient,
+    };
     let mut truths = Vec::new();
     let mut noise = 0.0;
     for camera in &cameras {
         capture(gpu, &mut renderer, camera)?;
         let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
-        let tick = || progress("reference row");
-        let trace = |seed: u64| {
-            let settings = TraceSettings {
-                samples_per_pixel: options.samples_per_pixel,
-                seed,
-                radius: default_radius,
-                sky_scale: base.sky_scale,
-                ambient: base.ambient,
-            };
-            reference::trace(&bvh, &scene.lights, &scene.rig, &sky, camera, options.size, &depth, &settings, &tick)
-        };
-        let (a, b) = (trace(options.seed), trace(options.seed ^ 0x5DEE_CE66_D1CE_4E5B));
-        let truth = Truth::from_traces(&a, &b, base.ambient, &sky_name, sky.max_value())?;
+        let truth = source.trace(camera, &depth, default_radius, &|| progress("reference row"))?;
         noise += truth.noise.hdr / cameras.len() as f64;
         truths.push(truth);
     }

@@ -160,20 +160,10 @@ impl Candidate {
         }
     }
 
-    /// The report's configuration of this candidate (its radius is given apart, in model units).
+    /// The report's configuration of this candidate (its radius is given apart, as
+    /// [`Candidate::radius_scale`]): the one its knobs give, as for any preset.
     pub fn config(&self) -> Config {
-        Config {
-            mode: self.mode,
-            variant: self.variant,
-            samples: if self.marches() { self.slices } else { self.samples },
-            steps: if self.marches() { self.steps } else { 0 },
-            blur: self.blur,
-            pyramid: self.pyramid,
-            bounce: self.bounce,
-            accumulate: self.accumulate,
-            orbit: 0.0,
-            half_resolution: self.half_resolution,
-        }
+        Config::of_knobs(self.mode, &self.knobs()).0
     }
 
     /// The preset's knobs of this candidate.
