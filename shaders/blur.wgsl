@@ -38,19 +38,13 @@ fn finite4(v: vec4<f32>) -> bool {
 }
 
 
-// The packed normal's two octahedral coordinates, in codes (0-4095).
-fn octahedral_code(bits: u32) -> vec2<f32> {
-    return vec2<f32>(vec2<u32>(bits & 0xfffu, (bits >> 12u) & 0xfffu));
-}
-
 // How well two normals agree, from their octahedral codes rather than decoded vectors (decoding
 // 16 neighbours was a third of the blur's time on a CPU rasteriser). With δ their L1 distance in
 // octahedral units (about the angle in radians between facing normals), 1 - 3δ², clamped: 1 for
 // equal normals, 0.6 at 30°, 0.25 at 45°, 0 from about 55° — close to the cos⁴ it replaces
 // (0.56, 0.25, 0.06 at 60°).
 fn normal_agreement(a: vec2<f32>, b: vec2<f32>) -> f32 {
-    let e = abs(a - b) * (1.0 / 2047.5);
-    let spread = e.x + e.y;
+    let spread = octahedral_distance(a, b);
     return max(1.0 - 3.0 * spread * spread, 0.0);
 }
 

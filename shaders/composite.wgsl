@@ -107,8 +107,7 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     } else if HAS_DO {
         color = albedo.rgb * (directional.rgb + ambient * ao);
     } else {
-        let world_normal = (frame.view_to_world * vec4<f32>(normal.xyz, 0.0)).xyz;
-        color = albedo.rgb * (sky_irradiance(world_normal) + ambient) * ao;
+        color = albedo.rgb * (sky_irradiance(normal.xyz) + ambient) * ao;
     }
     if LIGHT_LOOP {
         let p = view_position(position, depth);

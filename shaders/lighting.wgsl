@@ -44,8 +44,7 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     }
     let ambient = frame.pre_exposure * frame.ambient;
     if SENDER_SKY == 1u {
-        let world_normal = (frame.view_to_world * vec4<f32>(normal.xyz, 0.0)).xyz;
-        bounce += albedo.rgb * (sky_irradiance(world_normal) + ambient);
+        bounce += albedo.rgb * (sky_irradiance(normal.xyz) + ambient);
     } else if SENDER_SKY == 2u {
         let last = vec2<i32>(textureDimensions(sender_sky)) - vec2<i32>(1);
         let seen = textureLoad(sender_sky, min(pixel >> vec2<u32>(1u), last), 0);

@@ -4,7 +4,7 @@
 // frame's world-to-clip transform. The four history texels around that point are each kept only
 // if they hold the same surface — their own position (from the depth they stored and the
 // previous camera) within a tenth of the sampling radius of this pixel's tangent plane, and
-// their world normal within 25° of this one — and are weighted bilinearly. What no kept texel
+// their normal within 25° of this one — and are weighted bilinearly. What no kept texel
 // covers (disoccluded, off screen, or the first frame after a reset) starts anew from this frame.
 //
 // Each pixel counts the frames it holds, n. It blends 1/n of this frame in, n rising by one a
@@ -24,8 +24,10 @@
 // chain samples there (HALF_INPUT), upsampled here as it is read.
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The last frame's average, and the surface each of its pixels holds: x the reverse-Z depth
-// (f32 bits), y the world normal packed as the G-buffer packs normals (bits 0-23) and the frames
-// averaged (bits 24-31; 0 where nothing is held).
+// (f32 bits), y its view-space normal as that frame's G-buffer packed it (bits 0-23) and the
+// frames averaged (bits 24-31; 0 where nothing is held). The normal is the G-buffer's code as
+// it is, so a still frame stores it without decoding; a moving one compares it in the previous
+// frame's view space.
 @group(1) @binding(5) var history: texture_2d<f32>;
 @group(1) @binding(6) var history_surface: texture_2d<u32>;
 
@@ -106,7 +108,11 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     }
     let p = view_position(in.position.xy, depth);
     let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
-    let n = normalize((frame.view_to_world * vec4<f32>(load_normal(pixel), 0.0)).xyz);
+    let normal_bits = textureLoad(g_normal, pixel, 0).r;
+    let view_normal = unpack_normal(normal_bits);
+    // The normal in world space (the plane test) and as the last frame's view saw it.
+    let n = normalize((frame.view_to_world * vec4<f32>(view_normal, 0.0)).xyz);
+    let n_then = (frame.view_to_previous_view * vec4<f32>(view_normal, 0.0)).xyz;
     let size = frame.viewport.xy;
 
     var past = vec4<f32>(0.0);
@@ -149,7 +155,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
             let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
             let q = h.xyz / h.w;
             let value = textureLoad(history, tap, 0);
-            let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n) >= MIN_NORMAL_COS;
+            let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
             if !same || !finite4(value) {
                 continue;
             }
@@ -185,7 +191,6 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     }
     out.shown = result;
     out.history = result;
-    let normal_bits = pack_surface(n, 0.0) & 0xffffffu;
-    out.surface = vec4<u32>(bitcast<u32>(depth), normal_bits | (u32(round(frames)) << 24u), 0u, 0u);
+    out.surface = vec4<u32>(bitcast<u32>(depth), (normal_bits & 0xffffffu) | (u32(round(frames)) << 24u), 0u, 0u);
     return out;
 }

@@ -6,7 +6,7 @@
 // is the full-resolution pixel (2x, 2y), so these are the nearest ones on either side of an odd
 // pixel, and an even pixel's own with the next), weighted by a tent over their distance and by whether they lie on this pixel's
 // surface — within a quarter of the sampling radius of its tangent plane, with normals that
-// agree (as the blur weighs its neighbours). So a silhouette takes nothing from the surface
+// agree (compared by their octahedral codes, as the blur compares its neighbours'). So a silhouette takes nothing from the surface
 // behind it, and a far wall nothing from the object before it: no halo. Where no sample is on
 // the same surface (a feature thinner than two pixels), the one nearest its plane stands in.
 //
@@ -27,7 +27,9 @@ fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
         return unoccluded;
     }
     let p = view_position(position, depth);
-    let n = load_normal(pixel);
+    let bits = textureLoad(g_normal, pixel, 0).r;
+    let n = unpack_normal(bits);
+    let code = octahedral_code(bits);
     let tolerance = max(0.25 * params.radius, 1e-30);
     let full = vec2<i32>(frame.viewport.xy);
     let half_last = vec2<i32>(textureDimensions(current)) - 1;
@@ -55,7 +57,9 @@ fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
             // A tent over the distance in full-resolution pixels: 1 at the pixel itself, 0 at 3.
             let gap = abs(vec2<f32>(at - pixel));
             let tent = max(1.0 - gap / 3.0, vec2<f32>(0.0));
-            let agree = clamp((dot(n, load_normal(at)) - 0.8) * 5.0, 0.0, 1.0);
+            // 1 − 2.5δ² ≈ (cos θ − 0.8)·5 for normals θ apart: 1 when equal, 0 from about 37°.
+            let spread = octahedral_distance(code, octahedral_code(textureLoad(g_normal, at, 0).r));
+            let agree = max(1.0 - 2.5 * spread * spread, 0.0);
             let w = tent.x * tent.y * max(1.0 - plane / tolerance, 0.0) * agree;
             sum += w * value;
             total += w;

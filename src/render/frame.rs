@@ -1,9 +1,10 @@
 //! Bind group 0: the per-frame uniforms and the light array, shared by every pass.
 
-use glam::{Vec3, Vec4Swizzles};
+use glam::{Mat3, Vec3, Vec4Swizzles};
 
 use super::uniforms::{mat, FrameUniforms, GpuLight};
 use crate::scene::{LightRig, OrbitCamera, PointLight};
+use crate::scene::skybox::irradiance_quadratic;
 
 /// What the frame uniforms are computed from, besides the camera and the scene.
 #[derive(Clone, Copy, Debug)]
@@ -34,8 +35,9 @@ pub struct FrameData {
     pub cube_order: wgpu::Buffer,
     light_capacity: usize,
     frame_index: u32,
-    /// The last frame's world-to-clip transform; `None` on a first frame and after a reset.
-    previous_world_to_clip: Option<glam::Mat4>,
+    /// The last frame's camera: its world-to-clip and world-to-view transforms; `None` on a
+    /// first frame and after a reset.
+    previous_camera: Option<(glam::Mat4, glam::Mat4)>,
     /// What the last `update` wrote (for tests and diagnostics).
     last: FrameUniforms,
     /// Whether the last frame's camera differs from the frame's before it (false on a first
@@ -79,7 +81,7 @@ impl FrameData {
         });
         let (lights, bind_group) = Self::light_buffer(device, &layout, &uniforms, 1);
         let cube_order = Self::order_buffer(device, 1);
-        let (light_capacity, frame_index, previous_world_to_clip) = (1, 0, None);
+        let (light_capacity, frame_index, previous_camera) = (1, 0, None);
         let last = bytemuck::Zeroable::zeroed();
         let camera_moved = false;
         Self {
@@ -90,7 +92,7 @@ impl FrameData {
             cube_order,
             light_capacity,
             frame_index,
-            previous_world_to_clip,
+            previous_camera,
             last,
             camera_moved,
         }
@@ -136,7 +138,7 @@ impl FrameData {
 
     /// The next frame has no previous one: its previous camera is its own.
     pub fn forget_previous(&mut self) {
-        self.previous_world_to_clip = None;
+        self.previous_camera = None;
     }
 
     /// Bytes held by the frame buffers.
@@ -158,7 +160,8 @@ impl FrameData {
         let world_to_view = camera.world_to_view();
         let view_to_clip = camera.view_to_clip(w as f32 / h as f32);
         let world_to_clip = view_to_clip * world_to_view;
-        let previous = self.previous_world_to_clip.replace(world_to_clip).unwrap_or(world_to_clip);
+        let this_camera = (world_to_clip, world_to_view);
+        let (previous, previous_world_to_view) = self.previous_camera.replace(this_camera).unwrap_or(this_camera);
         self.camera_moved = previous != world_to_clip;
         let uniforms = FrameUniforms {
             world_to_view: mat(world_to_view),
@@ -182,9 +185,11 @@ impl FrameData {
             _pad0: 0.0,
             output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32],
             _pad1: [0.0; 2],
-            sky_sh: inputs.sky_sh.map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
+            sky_irradiance: irradiance_quadratic(&inputs.sky_sh, Mat3::from_mat4(world_to_view.inverse()))
+                .map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
             previous_world_to_clip: mat(previous),
             previous_clip_to_world: mat(previous.inverse()),
+            view_to_previous_view: mat(previous_world_to_view * world_to_view.inverse()),
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.last = uniforms;

@@ -32,9 +32,10 @@ pub struct FrameUniforms {
     pub _pad0: f32,
     pub output_origin: [f32; 2],
     pub _pad1: [f32; 2],
-    pub sky_sh: [[f32; 4]; 9],
+    pub sky_irradiance: [[f32; 4]; 9],
     pub previous_world_to_clip: [[f32; 4]; 4],
     pub previous_clip_to_world: [[f32; 4]; 4],
+    pub view_to_previous_view: [[f32; 4]; 4],
 }
 
 /// One point light (bind group 0, binding 1, an array); `Light` in `uniforms.wgsl`.

@@ -103,9 +103,10 @@ fn uniform_structs_match_wgsl_member_for_member() {
             _pad0,
             output_origin,
             _pad1,
-            sky_sh,
+            sky_irradiance,
             previous_world_to_clip,
             previous_clip_to_world,
+            view_to_previous_view,
         }
     );
     same_layout!(
