@@ -24,7 +24,8 @@ override LIGHTS: bool = true;
 
 struct LightingOut {
     @location(0) hdr: vec4<f32>,
-    @location(1) bounce: vec4<f32>,
+    // pack_sender (common/surface_pack.wgsl): the bounce radiance and the sender's normal.
+    @location(1) bounce: vec4<u32>,
 }
 
 fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
@@ -34,7 +35,8 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
         return out;
     }
     let albedo = textureLoad(g_albedo, pixel, 0);
-    let normal = load_surface(pixel);
+    let normal_bits = textureLoad(g_normal, pixel, 0).r;
+    let normal = vec4<f32>(unpack_normal(normal_bits), unpack_shininess(normal_bits));
     var bounce = vec3<f32>(0.0);
     if LIGHTS {
         let p = view_position(position, depth);
@@ -50,7 +52,7 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
         let seen = textureLoad(sender_sky, min(pixel >> vec2<u32>(1u), last), 0);
         bounce += albedo.rgb * (seen.rgb + ambient * seen.a);
     }
-    out.bounce = vec4<f32>(bounce, 1.0);
+    out.bounce = vec4<u32>(pack_sender(bounce, normal_bits), 0u, 0u);
     return out;
 }
 
@@ -61,6 +63,6 @@ fn fs_main(in: FullscreenOut) -> LightingOut {
 
 // No point lights: the bounce alone (no HDR target is written).
 @fragment
-fn fs_bounce(in: FullscreenOut) -> @location(0) vec4<f32> {
+fn fs_bounce(in: FullscreenOut) -> @location(0) vec4<u32> {
     return direct(vec2<i32>(in.position.xy), in.position.xy).bounce;
 }

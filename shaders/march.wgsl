@@ -30,7 +30,8 @@
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(3) var<uniform> occ: SamplingParams;
-@group(1) @binding(4) var bounce_map: texture_2d<f32>;
+// The senders: radiance and facing, packed (pack_sender in common/surface_pack.wgsl).
+@group(1) @binding(4) var bounce_map: texture_2d<u32>;
 // The closest depth per 2^(k+1)-pixel block at level k, as f32 bits (shaders/depth_pyramid.wgsl),
 // read by the far steps when the plan built it (USE_PYRAMID); a 1x1 stand-in otherwise.
 @group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
@@ -279,16 +280,16 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                     near_mask |= bits;
                 }
                 if HAS_DO && INDIRECT && fresh != 0u {
-                    let n_s = load_normal(texel);
+                    let sender = textureLoad(bounce_map, texel, 0).xy;
                     // Only a sender facing the receiver sends its light this way.
-                    if dot(n_s, -front) > 0.0 {
+                    if dot(sender_normal(sender), -front) > 0.0 {
                         // The measure of the sectors it occludes first, group by group.
                         var w = 0.0;
                         for (var g = 0u; g < GROUPS; g += 1u) {
                             let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
                             w += weights[g] * f32(countOneBits(fresh & group_bits));
                         }
-                        indirect += (w / f32(PER_GROUP)) * textureLoad(bounce_map, texel, 0).rgb;
+                        indirect += (w / f32(PER_GROUP)) * sender_radiance(sender);
                     }
                 }
             }

@@ -33,7 +33,8 @@
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(3) var<uniform> occ: SamplingParams;
-@group(1) @binding(4) var bounce_map: texture_2d<f32>;
+// The senders' radiance (and facing), packed (pack_sender in common/surface_pack.wgsl).
+@group(1) @binding(4) var bounce_map: texture_2d<u32>;
 // The sky's mip chain, read at one whole level per pass (the sampler's mip filter is nearest):
 // the level already matches a sample's solid angle, and bilinear costs half of trilinear.
 #include "common/sky.wgsl"
@@ -162,7 +163,7 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
                     let cos_s = max(dot(n_s, w), 0.0);
                     let cos_rs = max(dot(n, -w), 0.0);
                     let solid = min(radius * radius * cos_s / d2, 2.0);
-                    indirect += o * textureLoad(bounce_map, texel, 0).rgb * cos_rs * solid;
+                    indirect += o * sender_radiance(textureLoad(bounce_map, texel, 0).xy) * cos_rs * solid;
                 }
             }
         }

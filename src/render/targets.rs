@@ -129,10 +129,12 @@ pub const DEPTH: TargetId = TargetId::new("gbuffer_depth", DEPTH_FORMAT, Place::
 /// Linear HDR radiance before tone mapping: written by the lighting pass, the composite, the
 /// skybox and the light cubes, read by the tone map.
 pub const HDR: TargetId = TargetId::new("hdr_color", HDR_FORMAT, Place::Screen);
-/// The diffuse radiance of each surface under its direct light, SSDO's bounce source: written by
-/// the lighting pass, read by the sampling pass.
+/// The diffuse radiance of each surface under its direct light, SSDO's bounce source, and which
+/// way the surface faces: written by the lighting pass, read by the sampling pass. Three halves
+/// and a 16-bit normal code in two u32s (`pack_sender` in shaders/common/surface_pack.wgsl), so
+/// the march's gather reads a sender in one 8-byte load instead of two.
 pub const BOUNCE: TargetId = TargetId::new("bounce_radiance", BOUNCE_FORMAT, Place::Screen);
-pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// What the frame is drawn into.
 pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Output);
 
