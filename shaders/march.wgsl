@@ -50,6 +50,7 @@ override USE_PYRAMID: bool = false;
 // slice instead of 32; a group's partial visibility scales its read). Fewer groups cost fewer
 // cube-map reads and blur the sky's directions within a slice more.
 const SECTORS: u32 = 32u;
+// (group_counts counts the groups as the mask's bytes: 4 groups of 8.)
 const GROUPS: u32 = 4u;
 const PER_GROUP: u32 = 8u;
 const HALF_PI: f32 = 1.5707963;
@@ -86,6 +87,17 @@ fn fast_atan2(y: f32, x: f32) -> f32 {
 }
 
 // The bits of sectors [first, last] (inclusive, 0..31).
+// How many of the sectors in `bits` fall in each of the four groups (the mask's four bytes),
+// counted at once by the parallel bit count run only to the bytes. Exactly what a
+// countOneBits per group gives; the gather does it on every step that occludes something new,
+// and a CPU rasteriser on every step: four separate counts were an eighth of the SSDO pass.
+fn group_counts(bits: u32) -> vec4<f32> {
+    var x = bits - ((bits >> 1u) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2u) & 0x33333333u);
+    x = (x + (x >> 4u)) & 0x0f0f0f0fu;
+    return vec4<f32>(vec4<u32>(x & 0xffu, (x >> 8u) & 0xffu, (x >> 16u) & 0xffu, x >> 24u));
+}
+
 fn bit_range(first: u32, last: u32) -> u32 {
     let count = last - first + 1u;
     let ones = select((1u << count) - 1u, 0xffffffffu, count >= 32u);
@@ -189,6 +201,8 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             f_a = f_b;
         }
 
+        let group_weights = vec4<f32>(weights[0], weights[1], weights[2], weights[3]);
+
         // Sectors below the surface's plane count as taken: no sky, no bounce, and they leave
         // the slice's measure (`total`) below.
         var mask = ~inside;
@@ -284,11 +298,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                     // Only a sender facing the receiver sends its light this way.
                     if dot(sender_normal(sender), -front) > 0.0 {
                         // The measure of the sectors it occludes first, group by group.
-                        var w = 0.0;
-                        for (var g = 0u; g < GROUPS; g += 1u) {
-                            let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
-                            w += weights[g] * f32(countOneBits(fresh & group_bits));
-                        }
+                        let w = dot(group_weights, group_counts(fresh));
                         indirect += (w / f32(PER_GROUP)) * sender_radiance(sender);
                     }
                 }
