@@ -86,7 +86,6 @@ fn fast_atan2(y: f32, x: f32) -> f32 {
     return select(a, -a, y < 0.0);
 }
 
-// The bits of sectors [first, last] (inclusive, 0..31).
 // How many of the sectors in `bits` fall in each of the four groups (the mask's four bytes),
 // counted at once by the parallel bit count run only to the bytes. Exactly what a
 // countOneBits per group gives; the gather does it on every step that occludes something new,
@@ -98,6 +97,7 @@ fn group_counts(bits: u32) -> vec4<f32> {
     return vec4<f32>(vec4<u32>(x & 0xffu, (x >> 8u) & 0xffu, (x >> 16u) & 0xffu, x >> 24u));
 }
 
+// The bits of sectors [first, last] (inclusive, 0..31).
 fn bit_range(first: u32, last: u32) -> u32 {
     let count = last - first + 1u;
     let ones = select((1u << count) - 1u, 0xffffffffu, count >= 32u);
