@@ -292,6 +292,7 @@ fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_tru
     let (e_cut, e_solid) = (relative_rmse(&truth_cut, &cut, s), relative_rmse(&truth_solid, &solid, s));
     let e_off = relative_rmse(&truth_cut, &cut, settings(Mode::Off));
     assert!(e_cut < 0.1 && e_cut < 1.5 * e_solid, "relative RMSE {e_cut:.4} cut, {e_solid:.4} solid");
+    assert!(e_cut < 0.7 * e_off, "relative RMSE {e_cut:.4} cut, {e_off:.4} Off on the cut scene");
 }
 
 /// A glTF leaf (a unit quad, `doubleSided`, a normal map and a `MASK` cutout) seen from behind
