@@ -141,6 +141,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     let slices = max(slice_count, 1u);
     let steps = max(occ.steps, 1u);
     let reach = max(occ.reach, radius);
+    // The far steps grow geometrically from R to the reach: R·(reach/R)^x, as exp2 of a log
+    // taken once here rather than a pow (a log and an exp) on every step.
+    let log2_span = log2(reach / radius);
     let thickness = max(occ.thickness, 0.0);
     let size = frame.viewport.xy;
     // Pixels per view unit at the receiver's depth.
@@ -224,7 +227,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                     distance = radius * x * x;
                 } else {
                     let x = (j - f32(near_steps)) / f32(max(far_steps, 1u));
-                    distance = radius * pow(reach / radius, x);
+                    distance = radius * exp2(x * log2_span);
                 }
                 let offset = max(distance * pixels_per_unit, f32(i + 1u));
                 let spacing = offset - previous_offset;
