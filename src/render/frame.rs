@@ -3,8 +3,8 @@
 use glam::{Mat3, Vec3, Vec4Swizzles};
 
 use super::uniforms::{mat, FrameUniforms, GpuLight};
-use crate::scene::{LightRig, OrbitCamera, PointLight};
 use crate::scene::skybox::irradiance_quadratic;
+use crate::scene::{LightRig, OrbitCamera, PointLight};
 
 /// What the frame uniforms are computed from, besides the camera and the scene.
 #[derive(Clone, Copy, Debug)]
