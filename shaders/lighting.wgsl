@@ -36,7 +36,7 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     }
     let albedo = textureLoad(g_albedo, pixel, 0);
     let normal_bits = textureLoad(g_normal, pixel, 0).r;
-    let normal = vec4<f32>(unpack_normal(normal_bits), unpack_shininess(normal_bits));
+    let normal = surface_of(normal_bits);
     var bounce = vec3<f32>(0.0);
     if LIGHTS {
         let p = view_position(position, depth);

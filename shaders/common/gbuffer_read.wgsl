@@ -26,7 +26,12 @@ fn load_normal(pixel: vec2<i32>) -> vec3<f32> {
 
 // Normal in xyz and shininess in w at `pixel`.
 fn load_surface(pixel: vec2<i32>) -> vec4<f32> {
-    let bits = textureLoad(g_normal, pixel, 0).r;
+    return surface_of(textureLoad(g_normal, pixel, 0).r);
+}
+
+// Normal in xyz and shininess in w of the G-buffer's packed `bits` (for a pass that also keeps
+// the bits themselves).
+fn surface_of(bits: u32) -> vec4<f32> {
     return vec4<f32>(unpack_normal(bits), unpack_shininess(bits));
 }
 

@@ -26,7 +26,7 @@ pub(crate) struct Truth {
 
 /// What a truth is traced from: the scene, its sky and the settings every row renders with.
 pub(crate) struct TruthSource<'a> {
-    pub bvh: &'a crate::reference::ReferenceScene,
+    pub bvh: crate::reference::ReferenceScene,
     pub scene: &'a crate::scene::Scene,
     pub sky: &'a crate::scene::Skybox,
     pub sky_name: &'a str,
@@ -38,7 +38,29 @@ pub(crate) struct TruthSource<'a> {
     pub ambient: f32,
 }
 
-impl TruthSource<'_> {
+impl<'a> TruthSource<'a> {
+    /// The truth of `scene` under `sky` as the report's `options` ask for it (size, rays, seed),
+    /// lit as `base` lights the GPU's frames.
+    pub fn new(
+        scene: &'a crate::scene::Scene,
+        sky: &'a crate::scene::Skybox,
+        sky_name: &'a str,
+        options: &ReportOptions,
+        base: &crate::render::Settings,
+    ) -> Self {
+        Self {
+            bvh: crate::reference::ReferenceScene::new(&scene.model),
+            scene,
+            sky,
+            sky_name,
+            size: options.size,
+            samples_per_pixel: options.samples_per_pixel,
+            seed: options.seed,
+            sky_scale: base.sky_scale,
+            ambient: base.ambient,
+        }
+    }
+
     /// The truth in `camera`'s view, at `radius` (for the within-R images), on the surfaces of
     /// `depth` (the G-buffer's, read back): the mean of two traces with independent seeds.
     pub fn trace(&self, camera: &OrbitCamera, depth: &[f32], radius: f32, tick: &(dyn Fn() + Sync)) -> Result<Truth> {
@@ -51,7 +73,7 @@ impl TruthSource<'_> {
                 ambient: self.ambient,
             };
             let (lights, rig) = (&self.scene.lights, &self.scene.rig);
-            reference::trace(self.bvh, lights, rig, self.sky, camera, self.size, depth, &settings, tick)
+            reference::trace(&self.bvh, lights, rig, self.sky, camera, self.size, depth, &settings, tick)
         };
         let (a, b) = (trace(self.seed), trace(self.seed ^ 0x5DEE_CE66_D1CE_4E5B));
         Truth::from_traces(&a, &b, self.ambient, self.sky_name, self.sky.max_value())

@@ -29,7 +29,7 @@ use std::time::Instant;
 use crate::gpu::Gpu;
 use crate::headless::capture::{capture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
-use crate::reference::{self, ReferenceScene};
+use crate::reference;
 use crate::render::{Mode, Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
@@ -124,18 +124,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     // The G-buffer is the same in every mode: one frame gives the depth the reference checks.
     capture(gpu, &mut renderer, &camera)?;
     let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
-    let bvh = ReferenceScene::new(&scene.model);
-    let source = measure::TruthSource {
-        bvh: &bvh,
-        scene: &scene,
-        sky: &sky,
-        sky_name: &sky_name,
-        size: options.size,
-        samples_per_pixel: options.samples_per_pixel,
-        seed: options.seed,
-        sky_scale: base.sky_scale,
-        ambient,
-    };
+    let source = measure::TruthSource::new(&scene, &sky, &sky_name, options, &base);
     let target = crate::headless::capture::output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient, diagnostics: true, timed: true };

@@ -22,7 +22,6 @@ use std::time::Instant;
 use crate::gpu::Gpu;
 use crate::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
-use crate::reference::ReferenceScene;
 use crate::render::{Mode, Renderer, SceneFeatures, Settings, Variant};
 use crate::report::measure::{Bench, TruthSource};
 use crate::report::{Config, RadiusChoice, ReportOptions};
@@ -358,18 +357,7 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
         offsets.iter().map(|&d| OrbitCamera { yaw_deg: framing.yaw_deg + d, ..framing }).collect();
 
     // One truth a view, as the report's.
-    let bvh = ReferenceScene::new(&scene.model);
-    let source = TruthSource {
-        bvh: &bvh,
-        scene: &scene,
-        sky: &sky,
-        sky_name: &sky_name,
-        size: options.size,
-        samples_per_pixel: options.samples_per_pixel,
-        seed: options.seed,
-        sky_scale: base.sky_scale,
-        ambient: base.ambient,
-    };
+    let source = TruthSource::new(&scene, &sky, &sky_name, &report_options, &base);
     let mut truths = Vec::new();
     let mut noise = 0.0;
     for camera in &cameras {
