@@ -27,6 +27,7 @@ use crate::budget::{self, Share};
 use crate::gpu::Gpu;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
+pub use accumulation::BLURRED_FRAMES;
 use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};
@@ -378,7 +379,8 @@ impl Renderer {
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;
         let camera_moved = self.frame.camera_moved;
-        let state = FrameState { plan: &self.plan, frame_index, history: &self.history, camera_moved };
+        let blur = self.blurs();
+        let state = FrameState { plan: &self.plan, frame_index, history: &self.history, camera_moved, blur };
         self.passes.each(|pass| pass.begin_frame(&state));
         for (index, &step) in self.plan.steps.iter().enumerate() {
             encoder.push_debug_group(step.name_in(self.plan.mode));

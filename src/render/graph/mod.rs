@@ -120,6 +120,22 @@ impl<'a> Recording<'a> {
         [self.origin.0 as f32, self.origin.1 as f32, w as f32, h as f32]
     }
 
+    /// Records a step that does no work this frame (the plan has it, the frame skips it): an
+    /// empty render pass over `writes`, kept as they are, only where the step's time is
+    /// measured, so its timestamps exist and read zero.
+    pub fn skip(self, writes: &[super::targets::TargetId]) {
+        let Some(timestamps) = self.timestamps else { return };
+        let attachments = io::attachments(writes, self.targets, self.history, self.output, false);
+        self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("skipped_step"),
+            color_attachments: &attachments,
+            depth_stencil_attachment: None,
+            timestamp_writes: Some(timestamps),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+    }
+
     /// A colour attachment for each of `writes` (see [`io::attachments`]), cleared or kept.
     pub fn attachments(
         &self,
@@ -189,6 +205,9 @@ pub struct FrameState<'a> {
     pub history: &'a History,
     /// The camera differs from the last frame's.
     pub camera_moved: bool,
+    /// The blur runs this frame (`Renderer::blurs_this_frame`): the plan blurs, and the view
+    /// moves or its average is young. Where it does not, the temporal pass reads the raw samples.
+    pub blur: bool,
 }
 
 /// Everything that distinguishes one full-screen pipeline from another.

@@ -2,11 +2,13 @@
 //! distance and normal agreement) in the default variant, the classic box blur otherwise. Where
 //! the samples were taken at half resolution it runs there, on a quarter of the pixels, before
 //! the upsample: its window is that of the rotation tile the samples were taken with.
+//! A still view's frames after its first few skip it (`BLURRED_FRAMES`): the temporal pass then
+//! reads the raw samples.
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
+use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::Stage;
 use crate::render::variant::Blur;
@@ -31,11 +33,13 @@ struct Key {
 
 pub struct BlurPass {
     state: PassState<Key>,
+    /// This frame skips the blur (set in `begin_frame`).
+    skip: bool,
 }
 
 impl BlurPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "blur", "blur.wgsl", false)? })
+        Ok(Self { state: PassState::new(cx, "blur", "blur.wgsl", false)?, skip: false })
     }
 
     /// The G-buffer, the parameters and the sampling output; the output blurred (at half size
@@ -67,7 +71,15 @@ impl Pass for BlurPass {
         });
     }
 
+    fn begin_frame(&mut self, frame: &FrameState<'_>) {
+        self.skip = !frame.blur;
+    }
+
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec);
+        if self.skip {
+            rec.skip(self.state.writes());
+        } else {
+            self.state.record(rec);
+        }
     }
 }

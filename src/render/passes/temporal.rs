@@ -4,7 +4,9 @@
 //! reads (`shaders/common/upsample.wgsl`): there is then no upsample pass.
 //! It writes three targets at once: what the composite reads this frame (`ao_accumulated` /
 //! `do_accumulated`), and the two histories the next frame reads (`history.rs`). Its bind group
-//! reads one side of each history pair, so it keeps one group a parity and binds the frame's.
+//! reads one side of each history pair, so it keeps one group a parity and binds the frame's;
+//! and where the plan blurs, one set reading the blurred samples and one the raw, for the frames
+//! that skip the blur (`FrameState::blur`).
 
 use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
@@ -42,25 +44,33 @@ pub struct TemporalPass {
     /// whose camera moved (reprojecting), and the one for a still camera (each pixel its own).
     state: PassState<Key>,
     still: PassState<Key>,
-    /// This frame's camera moved (set in `begin_frame`).
+    /// This frame's camera moved, and its samples were blurred (set in `begin_frame`).
     camera_moved: bool,
-    /// Group 1 for a frame that writes side 0 of the histories, and for one that writes side 1.
-    groups: Option<[wgpu::BindGroup; 2]>,
+    blurred: bool,
+    /// Group 1 for a frame that writes side 0 of the histories, and for one that writes side 1:
+    /// reading the raw samples, then (where the plan blurs) the blurred ones.
+    groups: Vec<[wgpu::BindGroup; 2]>,
 }
 
 impl TemporalPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let state = PassState::new(cx, "temporal", "temporal.wgsl", false)?;
         let still = state.sibling("temporal_still");
-        Ok(Self { state, still, camera_moved: false, groups: None })
+        Ok(Self { state, still, camera_moved: false, blurred: false, groups: Vec::new() })
     }
 
     /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
     /// histories; the average and this frame's histories. After a half-resolution sampling
     /// pass it reads the half-size samples and upsamples them itself (no upsample pass).
     pub fn io(plan: &Plan) -> PassIo {
+        Self::io_reading(plan, plan.blur)
+    }
+
+    /// [`TemporalPass::io`] reading the blurred samples or, in a frame that skips the blur, the
+    /// raw ones.
+    fn io_reading(plan: &Plan, blurred: bool) -> PassIo {
         let d = plan.decl.directional_occlusion;
-        let filtered = match (plan.half_resolution, plan.blur) {
+        let filtered = match (plan.half_resolution, blurred) {
             (true, true) => Stage::HalfBlurred,
             (true, false) => Stage::Half,
             (false, true) => Stage::Blurred,
@@ -95,11 +105,13 @@ impl Pass for TemporalPass {
         if !plan.accumulates() {
             self.state.clear();
             self.still.clear();
-            self.groups = None;
+            self.groups.clear();
             return;
         }
         let io = Self::io(plan);
-        self.groups = Some([0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
+        let inputs = if plan.blur { vec![Self::io_reading(plan, false), io.clone()] } else { vec![io.clone()] };
+        self.groups =
+            inputs.iter().map(|io| [0, 1].map(|parity| self.state.group(device, io, &p.inputs, parity))).collect();
         self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
             let key = Key { outputs: Outputs::of(plan), half_input: plan.half_resolution };
@@ -121,6 +133,7 @@ impl Pass for TemporalPass {
 
     fn begin_frame(&mut self, frame: &FrameState<'_>) {
         self.camera_moved = frame.camera_moved;
+        self.blurred = frame.blur;
     }
 
     fn record(&self, rec: Recording<'_>) {
@@ -130,7 +143,8 @@ impl Pass for TemporalPass {
         };
         let parity = occlusion.parity();
         debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
-        let groups = self.groups.as_ref().expect("the temporal pass recorded before `prepare`");
+        let set = if self.blurred { self.groups.last() } else { self.groups.first() };
+        let groups = set.expect("the temporal pass recorded before `prepare`");
         let attachments = rec.attachments(self.state.writes(), true);
         let state = if self.camera_moved { &self.state } else { &self.still };
         state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, &groups[parity], None), None);

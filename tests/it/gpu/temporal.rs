@@ -143,6 +143,48 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
 }
 
 #[test]
+fn a_still_ssao_view_blurs_its_first_frames_only_and_then_averages_the_raw_samples() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = cornell();
+    let first = ssdo::render::BLURRED_FRAMES as usize;
+    // The average after the first frames and after 16, and which frames blurred.
+    let render = |mode: Mode, blur: bool| {
+        let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { blur, ..settings(mode, 16) });
+        let (mut blurred, mut young) = (Vec::new(), Vec::new());
+        for frame in 1..=16 {
+            render_frames(gpu, &mut r, [camera]).unwrap();
+            blurred.push(r.blurs());
+            if frame == first && mode == Mode::Ssao {
+                young = ao(gpu, &r);
+            }
+        }
+        let settled = if mode == Mode::Ssao { ao(gpu, &r) } else { Vec::new() };
+        let turned = OrbitCamera { yaw_deg: camera.yaw_deg + 1.0, ..camera };
+        render_frames(gpu, &mut r, [turned]).unwrap();
+        let depth = ssdo::headless::readback::read_depth(gpu, &r.targets().depth().texture).unwrap();
+        (young, settled, blurred, r.blurs(), depth)
+    };
+    let (young, settled, blurred, moving, _) = render(Mode::Ssao, true);
+    let want: Vec<bool> = (0..16).map(|i| i < first).collect();
+    assert_eq!(blurred, want, "a still SSAO view blurs its first {first} frames only");
+    assert!(moving, "a moving view blurs every frame");
+    for mode in [Mode::Ssdo, Mode::Both] {
+        let (_, _, blurred, _, _) = render(mode, true);
+        assert!(blurred.iter().all(|&b| b), "{mode}: the DO modes blur every frame");
+    }
+    let (raw_young, raw_settled, never, _, depth) = render(Mode::Ssao, false);
+    assert!(never.iter().all(|b| !b), "a plan without the blur never blurs");
+    let valid: Vec<bool> = depth.iter().map(|&d| d > 0.0).collect();
+    // The same frames' samples unblurred: the averages differ by the first frames' blur alone,
+    // which weighs 4/16 of the 16 frames' average. Had frames 5-16 read the blur's target (left
+    // from frame 4) rather than their own raw samples, the gap would not shrink.
+    let (at_first, at_16) = (rmse(&young, &raw_young, &valid), rmse(&settled, &raw_settled, &valid));
+    println!("blurred against raw averages of AO: {at_first:.4} after {first} frames, {at_16:.4} after 16");
+    assert!(at_first > 1e-3, "the blur changes the samples ({at_first:.5})");
+    assert!(at_16 < 0.5 * at_first, "{at_16:.4} after 16 frames, {at_first:.4} after {first}");
+}
+
+#[test]
 fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = cornell();
