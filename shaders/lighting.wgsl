@@ -5,6 +5,7 @@
 //             1 (irradiance): the sky's unoccluded E(n)/π for its normal, plus A;
 //             2 (march):      the sky it sees through the open sectors of its own march and A
 //                             times their share (the sender-sky pass, half resolution);
+//             3 (march-quarter): the same from the sender-sky pass at quarter resolution;
 //   hdr:    (fs_main, with point lights) the point lights' light as displayed (diffuse +
 //           specular), which the composite adds to.
 
@@ -14,10 +15,12 @@
 #include "common/sky_irradiance.wgsl"
 #include "common/fullscreen.wgsl"
 
-// rgb: visible sky light (E/π, pre-exposed), a: open share, at half resolution (SENDER_SKY 2).
+// rgb: visible sky light (E/π, pre-exposed), a: open share, at half (SENDER_SKY 2) or quarter
+// (3) resolution.
 @group(1) @binding(3) var sender_sky: texture_2d<f32>;
 
-// What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march.
+// What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march, 3 march at
+// quarter resolution.
 override SENDER_SKY: u32 = 2u;
 // There are point lights to evaluate (fs_main); fs_bounce is the entry point without them.
 override LIGHTS: bool = true;
@@ -47,9 +50,10 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     let ambient = frame.pre_exposure * frame.ambient;
     if SENDER_SKY == 1u {
         bounce += albedo.rgb * (sky_irradiance(normal.xyz) + ambient);
-    } else if SENDER_SKY == 2u {
+    } else if SENDER_SKY >= 2u {
         let last = vec2<i32>(textureDimensions(sender_sky)) - vec2<i32>(1);
-        let seen = textureLoad(sender_sky, min(pixel >> vec2<u32>(1u), last), 0);
+        let shift = vec2<u32>(select(1u, 2u, SENDER_SKY == 3u));
+        let seen = textureLoad(sender_sky, min(pixel >> shift, last), 0);
         bounce += albedo.rgb * (seen.rgb + ambient * seen.a);
     }
     out.bounce = vec4<u32>(pack_sender(bounce, normal_bits), 0u, 0u);

@@ -357,14 +357,19 @@ fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, HAS_AO));
 }
 
-// The sender-sky pass (built with HAS_DO on, HAS_AO and INDIRECT off): at half
-// resolution, the sky the full-resolution pixel (2x, 2y) sees through one slice — rgb the visible
+// The sender-sky pass's resolution: half (1) or a quarter (2) of the screen's width and height.
+override SENDER_SHIFT: u32 = 1u;
+
+// The sender-sky pass (built with HAS_DO on, HAS_AO and INDIRECT off): at half (quarter)
+// resolution, the sky the full-resolution pixel (2x, 2y) ((4x + 1, 4y + 1), about the middle of
+// its block) sees through one slice — rgb the visible
 // sky light (E/π, pre-exposed), a the open share — which the lighting pass turns into the light
 // that surface sends in the bounce. One slice is noisy per sender; the gather averages many.
 @fragment
 fn fs_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
-    let half = vec2<i32>(in.position.xy);
-    let o = evaluate(vec2<f32>(2 * half) + 0.5, 1u, half);
+    let cell = vec2<i32>(in.position.xy);
+    let scale = 1 << SENDER_SHIFT;
+    let o = evaluate(vec2<f32>(scale * cell + (scale / 2 - 1)) + 0.5, 1u, cell);
     // The sky strength the senders' unoccluded irradiance carries too (in the frame's SH).
     return vec4<f32>(o.direct * occ.sender_sky_strength, o.open);
 }

@@ -161,8 +161,9 @@ pub struct RenderArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub indirect_strength: Option<f32>,
     /// What lights the bounce's senders besides the point lights: march (the sky each sender
-    /// sees, from a half-resolution march), irradiance (the sky's unoccluded irradiance for its
-    /// normal) or off (the point lights only); the first two add the ambient [default: march]
+    /// sees, from a half-resolution march), march-quarter (the same march at quarter resolution),
+    /// irradiance (the sky's unoccluded irradiance for its normal) or off (the point lights
+    /// only); all but off add the ambient [default: march]
     #[arg(long)]
     pub sender_sky: Option<SenderSky>,
     /// Leave the AO/DO noise unfiltered

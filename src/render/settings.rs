@@ -74,6 +74,11 @@ pub enum SenderSky {
     /// ambient by the open share), read by the lighting pass at each sender.
     #[default]
     March,
+    /// The same march at a quarter of the width and height: a sixteenth of the pixels, each
+    /// standing for its 4x4 block. A sender's sky is smooth across a surface and the gather
+    /// averages many senders, so it loses little (the report measures it) for a quarter of the
+    /// cost.
+    MarchQuarter,
     /// The sender's unoccluded sky irradiance for its normal (the spherical harmonics the
     /// composite already has) plus the constant ambient: no extra pass, but blind to what
     /// occludes the sender, so too bright wherever a sender stands on a floor or in a crevice.
@@ -84,7 +89,12 @@ pub enum SenderSky {
 }
 
 impl SenderSky {
-    pub const ALL: [SenderSky; 3] = [SenderSky::March, SenderSky::Irradiance, SenderSky::Off];
+    pub const ALL: [SenderSky; 4] = [SenderSky::March, SenderSky::MarchQuarter, SenderSky::Irradiance, SenderSky::Off];
+
+    /// Whether the senders' sky comes from a march of their own (the sender-sky pass).
+    pub fn marches(self) -> bool {
+        matches!(self, SenderSky::March | SenderSky::MarchQuarter)
+    }
 
     /// The value of the lighting shader's `SENDER_SKY` constant.
     pub fn shader_code(self) -> f64 {
@@ -92,12 +102,14 @@ impl SenderSky {
             SenderSky::Off => 0.0,
             SenderSky::Irradiance => 1.0,
             SenderSky::March => 2.0,
+            SenderSky::MarchQuarter => 3.0,
         }
     }
 
     pub fn name(self) -> &'static str {
         match self {
             SenderSky::March => "march",
+            SenderSky::MarchQuarter => "march-quarter",
             SenderSky::Irradiance => "irradiance",
             SenderSky::Off => "off",
         }

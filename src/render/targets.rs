@@ -41,6 +41,9 @@ pub enum Place {
     Screen,
     /// A screen texture of half the screen's size, rounded up ([`half_size`]).
     HalfScreen,
+    /// A screen texture of a quarter of the screen's width and height, rounded up
+    /// ([`quarter_size`]).
+    QuarterScreen,
     /// The closest-depth pyramid: half the screen at level 0, halving down (see [`Target`]).
     Pyramid,
     /// A texture that outlives the frame (`history.rs`): read as the last frame left it.
@@ -101,7 +104,7 @@ impl TargetId {
 
     /// Whether [`Targets`] allocates it (the histories and the output live elsewhere).
     pub fn allocated(self) -> bool {
-        matches!(self.place, Place::Screen | Place::HalfScreen | Place::Pyramid)
+        matches!(self.place, Place::Screen | Place::HalfScreen | Place::QuarterScreen | Place::Pyramid)
     }
 
     /// The bytes it takes for a screen of `size`.
@@ -109,6 +112,7 @@ impl TargetId {
         match self.place {
             Place::Screen => texel_bytes(size, self.format),
             Place::HalfScreen => texel_bytes(half_size(size), self.format),
+            Place::QuarterScreen => texel_bytes(quarter_size(size), self.format),
             Place::Pyramid => {
                 let (base, count) = pyramid_shape(size);
                 (0..count).map(|l| texel_bytes(((base.0 >> l).max(1), (base.1 >> l).max(1)), self.format)).sum()
@@ -243,6 +247,7 @@ impl Target {
     fn of(device: &wgpu::Device, id: TargetId, size: (u32, u32)) -> Self {
         match id.place {
             Place::HalfScreen => Self::new(device, id.name, half_size(size), id.format),
+            Place::QuarterScreen => Self::new(device, id.name, quarter_size(size), id.format),
             Place::Pyramid => {
                 let (base, count) = pyramid_shape(size);
                 Self::with_levels(device, id.name, base, id.format, Some(count))
@@ -272,6 +277,12 @@ fn pyramid_shape(size: (u32, u32)) -> ((u32, u32), u32) {
 /// full-resolution pixel (2x, 2y)).
 pub fn half_size(size: (u32, u32)) -> (u32, u32) {
     (size.0.div_ceil(2).max(1), size.1.div_ceil(2).max(1))
+}
+
+/// A quarter of `size`'s width and height, rounded up: the quarter-resolution sender sky's size
+/// (its pixel (x, y) is the full-resolution pixel (4x + 1, 4y + 1), about its 4x4 block's middle).
+pub fn quarter_size(size: (u32, u32)) -> (u32, u32) {
+    (size.0.div_ceil(4).max(1), size.1.div_ceil(4).max(1))
 }
 
 /// A stage of the sampling chain as it exists in a plan: AO alone, or DO + AO, or neither.

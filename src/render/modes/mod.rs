@@ -18,7 +18,8 @@
 //! the default chain has one full-screen denoise pass.
 //!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
-//! senders' sky and ambient light; no HDR target in a display plan); with `--sender-sky off` and
+//! senders' sky and ambient light; no HDR target in a display plan); `--sender-sky march-quarter`
+//! marches the senders' sky into `sender_sky_quarter` instead; with `--sender-sky off` and
 //! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a
 //! debug view) adds `hdr_color`, the skybox and the tone map; `--no-blur` drops the blur and its

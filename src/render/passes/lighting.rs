@@ -5,7 +5,7 @@
 //! their displayed light into HDR. The pipeline is specialised to the plan: without lights it
 //! has one target and runs no light loop.
 
-use super::sender_sky::SENDER_SKY;
+use super::sender_sky;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
@@ -58,7 +58,7 @@ impl LightingPass {
             Read::Target(ALBEDO),
             Read::Target(NORMAL),
             Read::Target(DEPTH),
-            Read::target_if(plan.sender_march, SENDER_SKY),
+            Read::target_if(plan.sender_march, sender_sky::target(plan)),
         ];
         let direct = plan.lighting_writes_direct().then_some(HDR);
         PassIo { reads, attached: vec![], writes: direct.into_iter().chain([BOUNCE]).collect() }

@@ -1,4 +1,5 @@
-//! The sender-sky march (`--sender-sky march`): before the lighting pass, at half resolution, the
+//! The sender-sky march (`--sender-sky march`, or `march-quarter` at a quarter of the width and
+//! height): before the lighting pass, at half resolution, the
 //! sky each surface sees through one slice of the march (`fs_sender` in `shaders/march.wgsl`,
 //! built with DO on and AO and the bounce off). The lighting pass turns it into the sky light each
 //! sender bounces, so the bounce carries the sky with the sender's own visibility.
@@ -18,7 +19,7 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(
     Step::SENDER_SKY,
-    |f| f.sender_sky() == SenderSky::March,
+    |f| f.sender_sky().marches(),
     SenderSkyPass::io,
     |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
 )
@@ -28,11 +29,21 @@ pub const ENTRY: Entry = Entry::new(
 /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a), at
 /// half resolution: read by the lighting pass.
 pub const SENDER_SKY: TargetId = TargetId::new("sender_sky", DO_FORMAT, Place::HalfScreen);
+/// The same at a quarter of the width and height (`--sender-sky march-quarter`).
+pub const SENDER_SKY_QUARTER: TargetId = TargetId::new("sender_sky_quarter", DO_FORMAT, Place::QuarterScreen);
+
+/// The senders' sky target of a plan: at half or at quarter resolution.
+pub fn target(plan: &Plan) -> TargetId {
+    match plan.sender_sky {
+        SenderSky::MarchQuarter => SENDER_SKY_QUARTER,
+        _ => SENDER_SKY,
+    }
+}
 
 pub struct SenderSkyPass {
-    /// Keyed by whether the far steps read the depth pyramid, and whether the G-buffer's normals
-    /// are mapped.
-    state: PassState<(bool, bool)>,
+    /// Keyed by whether the far steps read the depth pyramid, whether the G-buffer's normals
+    /// are mapped, and whether it runs at quarter resolution.
+    state: PassState<(bool, bool, bool)>,
 }
 
 impl SenderSkyPass {
@@ -42,23 +53,27 @@ impl SenderSkyPass {
 
     /// The sampling pass's reads but the bounce, which this pass feeds; the senders' sky.
     pub fn io(plan: &Plan) -> PassIo {
-        PassIo { reads: SamplingPass::reads(plan, false), attached: vec![], writes: vec![SENDER_SKY] }
+        PassIo { reads: SamplingPass::reads(plan, false), attached: vec![], writes: vec![target(plan)] }
     }
 }
 
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || (p.plan.pyramid, p.plan.features.normal_mapped);
-        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |(pyramid, mapped)| PipelineSpec {
-            entry: "fs_sender",
-            targets: vec![Some(DO_FORMAT.into())],
-            constants: vec![
-                ("HAS_AO", 0.0),
-                ("HAS_DO", 1.0),
-                ("INDIRECT", 0.0),
-                ("USE_PYRAMID", flag(pyramid)),
-                ("NORMAL_MAPPED", flag(mapped)),
-            ],
+        let quarter = p.plan.sender_sky == SenderSky::MarchQuarter;
+        let key = || (p.plan.pyramid, p.plan.features.normal_mapped, quarter);
+        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |(pyramid, mapped, quarter)| {
+            PipelineSpec {
+                entry: "fs_sender",
+                targets: vec![Some(DO_FORMAT.into())],
+                constants: vec![
+                    ("HAS_AO", 0.0),
+                    ("HAS_DO", 1.0),
+                    ("INDIRECT", 0.0),
+                    ("USE_PYRAMID", flag(pyramid)),
+                    ("NORMAL_MAPPED", flag(mapped)),
+                    ("SENDER_SHIFT", if quarter { 2.0 } else { 1.0 }),
+                ],
+            }
         });
     }
 

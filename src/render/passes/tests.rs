@@ -10,7 +10,7 @@ use crate::render::targets::{
     DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
 };
 use depth_pyramid::PYRAMID;
-use sender_sky::SENDER_SKY;
+use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
 
 /// The old set of flags, read from the plan's targets.
 struct Set {
@@ -37,7 +37,8 @@ fn set(plan: &Plan) -> Set {
         accumulated: has(AO_ACCUMULATED) || has(DO_ACCUMULATED),
         half: has(AO_HALF) || has(DO_HALF),
         pyramid: has(PYRAMID),
-        sender_sky: has(SENDER_SKY),
+        // At half or at quarter size, never both.
+        sender_sky: has(SENDER_SKY) || has(SENDER_SKY_QUARTER),
     }
 }
 
@@ -94,6 +95,9 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
         assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
         assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
+        let quarter = plan.sender_sky == SenderSky::MarchQuarter;
+        assert!(!plan.allocates(SENDER_SKY) || !quarter, "{:?}", plan.steps);
+        assert!(!plan.allocates(SENDER_SKY_QUARTER) || quarter, "{:?}", plan.steps);
     }
 }
 

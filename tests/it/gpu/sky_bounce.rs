@@ -140,6 +140,13 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
     eprintln!("wall on a floor strip at d = {d}: GPU bounce {got:.4}, truth {:.4} ± {sigma:.4}", want.x);
     assert!((got / want.x - 1.0).abs() < 0.1, "GPU bounce {got} against the truth {} (±10%)", want.x);
 
+    // The senders' sky marched at quarter resolution: each sender stands for its 4x4 block, and
+    // the bounce holds as well.
+    let quarter = Settings { sender_sky: SenderSky::MarchQuarter, ..s };
+    let got = common::window_mean(&frame(gpu, &scene, &sky, &camera, quarter).1, project(&camera, receiver), 1).x;
+    eprintln!("the same with the senders' sky at quarter resolution: {got:.4}");
+    assert!((got / want.x - 1.0).abs() < 0.1, "quarter-resolution senders: {got} against the truth {}", want.x);
+
     // The senders' unoccluded irradiance ignores the floor below the wall: measurably too bright.
     let s = Settings { sender_sky: SenderSky::Irradiance, ..s };
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
@@ -155,7 +162,7 @@ fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
     let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
     let lit = |sender_sky| frame(gpu, &scene, &sky, &camera, Settings { sender_sky, ..settings(Mode::Both) }).1;
     let before = lit(SenderSky::Off);
-    for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
+    for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::Irradiance] {
         let now = lit(sender_sky);
         let worst = now.iter().zip(&before).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max));
         let worst = worst.fold(0.0, f32::max);
@@ -172,7 +179,7 @@ fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
     let sky = Skybox::constant(Vec3::ONE);
     let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
     let near = project(&camera, Vec3::new(0.15, 0.0, 0.0));
-    for sender_sky in [SenderSky::March, SenderSky::Irradiance] {
+    for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::Irradiance] {
         let bounce = |sky_strength| {
             let s = Settings { sender_sky, sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) };
             common::window_mean(&frame(gpu, &scene, &sky, &camera, s).1, near, 1).x
