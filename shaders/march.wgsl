@@ -67,8 +67,11 @@ struct Occlusion {
 // F(θ) = ∫ cos(θ − γ) sin θ dθ = (θ sin γ − cos(2θ − γ)/2) / 2. F falls where sin θ < 0 and rises
 // where sin θ > 0 (cos(θ − γ) ≥ 0 inside the hemisphere), so ∫_a^b cos(θ − γ)|sin θ| dθ is
 // |F(b) − F(a)| for an interval on one side of θ = 0, and F(a) + F(b) − 2F(0) across it.
-fn antiderivative(theta: f32, gamma: f32, sin_gamma: f32) -> f32 {
-    return 0.5 * (theta * sin_gamma - 0.5 * cos(2.0 * theta - gamma));
+// At the group boundaries θ_g = γ − π/2 + g·π/4, 2θ_g − γ = γ − π + g·π/2, so cos(2θ_g − γ) is
+// −cos γ, sin γ, cos γ, −sin γ, −cos γ for g = 0..4 (`cos_term`): one cosine and one sine a
+// slice instead of five cosines; and F(0) = −cos γ / 4.
+fn antiderivative(theta: f32, cos_term: f32, sin_gamma: f32) -> f32 {
+    return 0.5 * (theta * sin_gamma - 0.5 * cos_term);
 }
 
 // atan2 to within 0.004 rad (a sector is 0.098 rad wide), without the library call's cost.
@@ -138,6 +141,7 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     // The receiver, lifted off its surface by the depth bias so its own plane does not occlude it.
     let p = surface + n_g * occ.bias_length;
     let v = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
+    let v_world = (frame.view_to_world * vec4<f32>(v, 0.0)).xyz;
     let slices = max(slice_count, 1u);
     let steps = max(occ.steps, 1u);
     let reach = max(occ.reach, radius);
@@ -176,6 +180,9 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
         let gamma = slice_angle(n_p, v, t);
         let lo = gamma - HALF_PI;
         let sin_gamma = dot(n_p, t) / n_len;
+        // The cosine and sine of γ as the sectors place it (fast_atan2's angle, within 0.004 rad
+        // of the normal's own): every group boundary's and group middle's follow from them.
+        let turned = vec2<f32>(cos(gamma), sin(gamma));
         // The sectors above the surface's own plane: all of them unless the normals are mapped.
         var inside = 0xffffffffu;
         if NORMAL_MAPPED {
@@ -187,15 +194,17 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 inside = select(0u, bit_range(first, last), first <= last);
             }
         }
-        // The cosine-weighted measure of each sector group, times |n_p|.
+        // The cosine-weighted measure of each sector group, times |n_p| (four groups: the
+        // boundaries' cosines below are those of quarter turns).
         let width = PI / f32(GROUPS);
-        let f_zero = antiderivative(0.0, gamma, sin_gamma);
+        let f_zero = -0.25 * turned.x;
+        let cos_terms = array<f32, 5>(-turned.x, turned.y, turned.x, -turned.y, -turned.x);
         var weights: array<f32, GROUPS>;
-        var f_a = antiderivative(lo, gamma, sin_gamma);
+        var f_a = antiderivative(lo, cos_terms[0], sin_gamma);
         for (var g = 0u; g < GROUPS; g += 1u) {
             let a = lo + f32(g) * width;
             let b = a + width;
-            let f_b = antiderivative(b, gamma, sin_gamma);
+            let f_b = antiderivative(b, cos_terms[g + 1u], sin_gamma);
             var w = abs(f_b - f_a);
             if a < 0.0 && b > 0.0 {
                 w = f_a + f_b - 2.0 * f_zero;
@@ -272,8 +281,10 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 // Without this the sectors between the horizon and a wall's first sample showed
                 // the sky, and sent no bounce.
                 let above = dot(front, n_g) > 0.0;
-                if connected && above
-                    && length(s - previous) < thickness + 2.0 * (distance - previous_distance) {
+                // (Squared: the bound is never negative, the distances growing step by step.)
+                let gap = s - previous;
+                let bound = thickness + 2.0 * (distance - previous_distance);
+                if connected && above && dot(gap, gap) < bound * bound {
                     a_min = min(a_min, previous_angle);
                     a_max = max(a_max, previous_angle);
                 }
@@ -308,9 +319,18 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
             }
         }
 
-        // Integrate the slice over the sector groups.
+        // Integrate the slice over the sector groups. Group g's middle direction is at
+        // θ = γ + δ_g, δ_g = (2g − 3)π/8: its cosine and sine from cos γ and sin γ by the angle
+        // sum (no cosine or sine of its own), and in world space from v and t turned there once
+        // a slice (no transform of its own).
+        let t_world = (frame.view_to_world * vec4<f32>(t, 0.0)).xyz;
+        let turns = array<vec2<f32>, 4>(
+            vec2<f32>(0.38268343, -0.92387953),
+            vec2<f32>(0.92387953, -0.38268343),
+            vec2<f32>(0.92387953, 0.38268343),
+            vec2<f32>(0.38268343, 0.92387953),
+        );
         for (var g = 0u; g < GROUPS; g += 1u) {
-            let a = lo + f32(g) * width;
             let w = weights[g];
             let group_bits = bit_range(g * PER_GROUP, g * PER_GROUP + PER_GROUP - 1u);
             total += w * f32(countOneBits(inside & group_bits)) / f32(PER_GROUP);
@@ -321,9 +341,10 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 let visible = f32(countOneBits(~mask & group_bits)) / f32(PER_GROUP);
                 open += w * visible;
                 if visible > 0.0 {
-                    let theta = a + 0.5 * width;
-                    let omega = v * cos(theta) + t * sin(theta);
-                    let world = (frame.view_to_world * vec4<f32>(omega, 0.0)).xyz;
+                    let turn = turns[g];
+                    let cos_theta = turned.x * turn.x - turned.y * turn.y;
+                    let sin_theta = turned.y * turn.x + turned.x * turn.y;
+                    let world = v_world * cos_theta + t_world * sin_theta;
                     direct += w * visible * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
                 }
             }
