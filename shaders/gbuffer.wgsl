@@ -43,6 +43,9 @@ struct MaterialParams {
 // Each is false where a material does not need it: its pipeline never touches that map, and an
 // opaque untextured material draws with none of them (no texture read, no discard).
 override TEXTURED: bool = false;
+// Where the specular strength's map is: 0 none, 1 its own texture, 2 the diffuse map's alpha
+// (packed at upload where the two maps are one size: one sample for both).
+override SPECULAR_MAP: u32 = 0u;
 override NORMAL_MAPPED: bool = false;
 override CUT_OUT: bool = false;
 
@@ -130,8 +133,13 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     var specular = material.specular;
     if TEXTURED {
         // Trilinear: the maps carry mip chains (src/render/passes/gbuffer.rs, `mip_chain`).
-        albedo *= textureSample(diffuse_map, material_sampler, in.uv).rgb;
-        specular *= textureSample(specular_map, material_sampler, in.uv).r;
+        let colour = textureSample(diffuse_map, material_sampler, in.uv);
+        albedo *= colour.rgb;
+        if SPECULAR_MAP == 2u {
+            specular *= colour.a;
+        } else if SPECULAR_MAP == 1u {
+            specular *= textureSample(specular_map, material_sampler, in.uv).r;
+        }
     }
     let vertex_normal = safe_normalize(in.normal, vec3<f32>(0.0, 0.0, 1.0));
     var n = vertex_normal;

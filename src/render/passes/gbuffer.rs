@@ -32,8 +32,54 @@ pub const ENTRY: Entry = Entry::new(Step::GBUFFER, |_| true, GBufferPass::io, |c
 pub struct Features {
     /// Colour maps (diffuse, specular).
     pub textured: bool,
+    /// Where the specular strength's map is: none, its own, or the diffuse map's alpha.
+    pub specular: SpecularMap,
     pub normal_mapped: bool,
     pub cut_out: bool,
+}
+
+/// Where a material's specular map is read from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SpecularMap {
+    /// No map: the material's constant strength.
+    #[default]
+    None,
+    /// A texture of its own.
+    Own,
+    /// The diffuse map's alpha (the specular map's red, packed there at upload: one sample
+    /// for both maps, with the same texels and the same mips, since the alpha of an sRGB texture
+    /// is linear like the specular map's own format).
+    DiffuseAlpha,
+}
+
+impl SpecularMap {
+    /// Where material `m`'s specular map goes: into its diffuse map's alpha when the two maps
+    /// are one size.
+    pub fn of(m: &crate::scene::Material) -> Self {
+        match (&m.diffuse_map, &m.specular_map) {
+            (_, None) => SpecularMap::None,
+            (Some(d), Some(s)) if (d.width, d.height) == (s.width, s.height) => SpecularMap::DiffuseAlpha,
+            (_, Some(_)) => SpecularMap::Own,
+        }
+    }
+
+    /// The value of the G-buffer shader's `SPECULAR_MAP` constant.
+    fn shader_code(self) -> f64 {
+        match self {
+            SpecularMap::None => 0.0,
+            SpecularMap::Own => 1.0,
+            SpecularMap::DiffuseAlpha => 2.0,
+        }
+    }
+}
+
+/// The diffuse map's colour with the specular map's red as its alpha (two maps of one size).
+fn pack_specular(diffuse: &TextureImage, specular: &TextureImage) -> TextureImage {
+    let mut rgba = diffuse.rgba.to_vec();
+    for (texel, spec) in rgba.chunks_exact_mut(4).zip(specular.rgba.chunks_exact(4)) {
+        texel[3] = spec[0];
+    }
+    TextureImage { width: diffuse.width, height: diffuse.height, rgba: std::sync::Arc::new(rgba) }
 }
 
 impl Features {
@@ -41,6 +87,7 @@ impl Features {
     pub fn of(m: &crate::scene::Material, has_tangents: bool) -> Self {
         Self {
             textured: m.is_textured(),
+            specular: SpecularMap::of(m),
             normal_mapped: m.normal_map.is_some() && has_tangents,
             cut_out: m.cutout.is_some(),
         }
@@ -96,6 +143,7 @@ impl GBufferPass {
         let flag = |on: bool| if on { 1.0 } else { 0.0 };
         let constants = [
             ("TEXTURED", flag(features.textured)),
+            ("SPECULAR_MAP", features.specular.shader_code()),
             ("NORMAL_MAPPED", flag(features.normal_mapped)),
             ("CUT_OUT", flag(features.cut_out)),
         ];
@@ -169,6 +217,8 @@ impl GBufferPass {
         // A texture that several materials share is uploaded once (by its pixels' identity).
         let mut uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView> =
             std::collections::HashMap::new();
+        // The diffuse maps with a specular map packed in, by the two maps' identities.
+        let mut packed: std::collections::HashMap<(usize, usize), TextureImage> = std::collections::HashMap::new();
         let (white_srgb, _) =
             upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
         let (white_linear, _) =
@@ -207,8 +257,19 @@ impl GBufferPass {
                         }
                         None => fallback.clone(),
                     };
-                let diffuse = map(&m.diffuse_map, "diffuse", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
-                let specular = map(&m.specular_map, "specular", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
+                let (diffuse, specular) = match (&m.diffuse_map, &m.specular_map, SpecularMap::of(m)) {
+                    (Some(d), Some(s), SpecularMap::DiffuseAlpha) => {
+                        let key = (std::sync::Arc::as_ptr(&d.rgba) as usize, std::sync::Arc::as_ptr(&s.rgba) as usize);
+                        let both = packed.entry(key).or_insert_with(|| pack_specular(d, s)).clone();
+                        let view =
+                            map(&Some(both), "diffuse_specular", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
+                        (view, white_linear.clone())
+                    }
+                    _ => (
+                        map(&m.diffuse_map, "diffuse", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb),
+                        map(&m.specular_map, "specular", wgpu::TextureFormat::Rgba8Unorm, &white_linear),
+                    ),
+                };
                 let normals = m.normal_map.as_ref().map(|n| n.image.clone());
                 let normals = map(&normals, "normals", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
                 // sRGB like the colour map it often is (alpha is linear in either), so the two

@@ -189,3 +189,54 @@ fn textured_model_renders_its_texture() {
     assert!(bottom_left.y > 150.0 && bottom_left.x < 60.0, "bottom left green: {bottom_left}");
     assert!(bottom_right.min_element() > 150.0, "bottom right white: {bottom_right}");
 }
+
+#[test]
+fn the_specular_map_reaches_the_gbuffer_in_its_own_texture_or_in_the_diffuse_maps_alpha() {
+    use ssdo::scene::model::{Material, TextureImage};
+    let Some(gpu) = gpu() else { return };
+    let image = |size: u32, texel: [u8; 4]| TextureImage {
+        width: size,
+        height: size,
+        rgba: std::sync::Arc::new(texel.repeat((size * size) as usize)),
+    };
+    let with = |diffuse: Option<TextureImage>, specular: Option<TextureImage>| Material {
+        specular: [0.5; 3],
+        diffuse_map: diffuse,
+        specular_map: specular,
+        ..Material::plain("m", [1.0; 3])
+    };
+    // Diffuse maps with an alpha of 0, which is not a specular strength: it must not be read as one.
+    let colour = [200, 100, 50, 0];
+    let cases = [
+        // Two maps of one size: packed into one texture. Strength 0.5 × 0.2.
+        (with(Some(image(4, colour)), Some(image(4, [51, 0, 0, 255]))), 0.1),
+        // Two sizes: the specular map keeps its own texture. 0.5 × 0.8.
+        (with(Some(image(4, colour)), Some(image(2, [204, 0, 0, 255]))), 0.4),
+        // A specular map alone. 0.5 × 1.
+        (with(None, Some(image(4, [255, 0, 0, 255]))), 0.5),
+        // A diffuse map alone: the material's strength, whatever the map's alpha.
+        (with(Some(image(4, colour)), None), 0.5),
+    ];
+    let mut b = builtin::MeshBuilder::default();
+    for (i, (material, _)) in cases.iter().enumerate() {
+        let m = b.material(material.clone());
+        let x = i as f32 - 2.0;
+        let v = |x: f32, z: f32| Vec3::new(x, 0.0, z);
+        b.quad(m, [v(x, 0.5), v(x + 1.0, 0.5), v(x + 1.0, -0.5), v(x, -0.5)]);
+    }
+    let scene = Scene::new(b.build("maps").unwrap(), 0, 1);
+    let mut r = renderer(gpu, &scene, &Skybox::constant(Vec3::ZERO), (W, H), no_ambient());
+    let camera = looking(Vec3::ZERO, 0.0, 89.9, 4.0);
+    shoot(gpu, &mut r, &camera);
+    let albedo = ssdo::headless::readback::read_texture(gpu, &r.targets().albedo().texture).unwrap();
+    for (i, (material, strength)) in cases.iter().enumerate() {
+        let (x, y) = common::project(&camera, Vec3::new(i as f32 - 1.5, 0.0, 0.0));
+        let texel = &albedo[4 * (y * W as usize + x)..][..4];
+        let got = texel[3] as f32 / 255.0;
+        assert!((got - strength).abs() < 1.5 / 255.0, "case {i}: specular strength {got}, want {strength}");
+        if material.diffuse_map.is_some() {
+            let off = (0..3).map(|c| (texel[c] as i32 - colour[c] as i32).abs()).max().unwrap();
+            assert!(off <= 1, "case {i}: the diffuse colour {:?} as the map has it, {:?}", &texel[..3], &colour[..3]);
+        }
+    }
+}
