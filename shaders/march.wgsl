@@ -231,7 +231,8 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
                 // Dense within R, then geometric out to the reach; jittered per pixel.
                 let j = f32(i) + noise.w;
                 var distance: f32;
-                if i < near_steps {
+                // (AO alone takes the near steps only: its pipeline has no far branch to run.)
+                if !HAS_DO || i < near_steps {
                     let x = j / f32(near_steps);
                     distance = radius * x * x;
                 } else {
