@@ -14,8 +14,9 @@
 //
 // Two outputs. Into the HDR target (pre-exposed radiance; the skybox and tone-map passes follow)
 // when something reads HDR afterwards: the report, `--raw`, `--stats`, the debug views. Otherwise
-// (DISPLAY) straight into the output: the sky where nothing was drawn, exposure, tone curve and
-// sRGB here, in the output's viewport — no HDR write, no skybox or tone-map pass.
+// (DISPLAY) straight into the output: exposure, tone curve and sRGB here, in the output's
+// viewport — no HDR write, no skybox or tone-map pass; where nothing was drawn, the sky as the
+// G-buffer pass drew it for display into the albedo (src/render/passes/gbuffer.rs).
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
@@ -23,8 +24,6 @@
 #include "common/fullscreen.wgsl"
 #include "common/tone_curve.wgsl"
 #include "common/sky_irradiance.wgsl"
-// The sky, for the background (DISPLAY only).
-#include "common/sky.wgsl"
 
 // AO alone (SSAO, r channel).
 @group(1) @binding(3) var ao_map: texture_2d<f32>;
@@ -57,8 +56,11 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         // own top-left corner.
         let size = frame.viewport.xy;
         let pixel = vec2<i32>(min(in.position.xy - frame.output_origin, size - 1.0));
-        var color = radiance(pixel, vec2<f32>(pixel) + 0.5);
-        color = tone_map(color * frame.display_scale);
+        var color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5) * frame.display_scale);
+        if load_depth(pixel) <= 0.0 {
+            // The sky, displayed as the G-buffer pass drew it.
+            color = textureLoad(g_albedo, pixel, 0).rgb;
+        }
         if !OUTPUT_SRGB {
             color = linear_to_srgb(color);
         }
@@ -71,9 +73,6 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
 fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     let depth = load_depth(pixel);
     if depth <= 0.0 {
-        if DISPLAY {
-            return background((vec2<f32>(pixel) + 0.5) * frame.viewport.zw);
-        }
         return vec3<f32>(0.0);
     }
     var albedo = textureLoad(g_albedo, pixel, 0);

@@ -5,8 +5,17 @@
 #include "common/uniforms.wgsl"
 #include "common/fullscreen.wgsl"
 #include "common/sky.wgsl"
+#include "common/tone_curve.wgsl"
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     return vec4<f32>(background(in.uv), 1.0);
+}
+
+// A display plan's sky, drawn by the G-buffer pass into the albedo of the pixels nothing covers:
+// the colour the composite shows there as it is (exposure and tone curve applied; the target's
+// sRGB encoding, like the output's, done by the format).
+@fragment
+fn fs_display(in: FullscreenOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(tone_map(background(in.uv) * frame.display_scale), 0.0);
 }

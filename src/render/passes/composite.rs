@@ -1,6 +1,6 @@
 //! Composite: ambient·albedo·AO + DO + direct point lighting into the linear HDR target, or, in a
-//! display plan, with the sky and the tone curve straight into the output (no HDR write, no
-//! skybox or tone-map pass). The pipeline is specialised to the plan (override constants):
+//! display plan, with the tone curve straight into the output (no HDR write, no skybox or
+//! tone-map pass; the sky's pixels as the G-buffer pass drew them for display). The pipeline is specialised to the plan (override constants):
 //! without lights there is no light loop in the shader, without AO no AO read, and so on. After a
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
 //! (display).
@@ -57,7 +57,7 @@ pub struct CompositePass {
 
 impl CompositePass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", true)?, output: cx.output })
+        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", false)?, output: cx.output })
     }
 
     /// The G-buffer, the averaged (or filtered) AO or DO + AO, and in a display plan the
@@ -138,6 +138,6 @@ impl Pass for CompositePass {
         let keep = key.additive && !key.display;
         let attachments = rec.attachments(self.state.writes(), !keep);
         let viewport = key.display.then(|| rec.viewport());
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, Some(&rec.sky.bind_group)), viewport);
+        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), viewport);
     }
 }
