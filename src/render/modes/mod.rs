@@ -160,8 +160,9 @@ pub struct Plan {
     /// The sampling output is blurred.
     pub blur: bool,
     /// Nothing reads HDR after the frame (the final image is shown or saved as it is): the
-    /// composite draws the sky and tone-maps straight into the output, and there is no skybox or
-    /// tone-map pass, and no HDR target unless a lighting pass writes its direct light there.
+    /// G-buffer pass draws the displayed sky behind the geometry, the composite tone-maps
+    /// straight into the output, and there is no skybox or tone-map pass, and no HDR target
+    /// unless a lighting pass writes its direct light there.
     pub display: bool,
     /// What lights the bounce's senders besides the point lights; `Off` wherever the plan has no
     /// bounce.

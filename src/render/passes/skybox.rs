@@ -1,5 +1,5 @@
 //! Skybox: the cube map drawn into HDR behind everything, in HDR plans (a display plan's
-//! composite draws the sky itself). The sky's GPU resources are `resources/sky.rs`.
+//! G-buffer pass draws the displayed sky behind the geometry and the composite shows it). The sky's GPU resources are `resources/sky.rs`.
 
 use crate::render::graph::io::PassIo;
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
@@ -12,7 +12,7 @@ impl Step {
     pub const SKYBOX: Step = Step::new("skybox");
 }
 
-// A display plan's composite draws the sky itself.
+// A display plan's G-buffer pass draws the displayed sky itself.
 pub const ENTRY: Entry =
     Entry::new(Step::SKYBOX, |f| !f.options.display, SkyboxPass::io, |cx| Ok(Box::new(SkyboxPass::new(cx)?)));
 

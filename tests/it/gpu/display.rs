@@ -1,5 +1,6 @@
-//! Display plans: with nothing reading HDR after the frame, the composite draws the sky and
-//! tone-maps straight into the output (no HDR write, no skybox or tone-map pass) and the light
+//! Display plans: with nothing reading HDR after the frame, the G-buffer pass draws the displayed
+//! sky, the composite tone-maps straight into the output (no HDR write, no skybox or tone-map
+//! pass) and the light
 //! cubes test depth in their shader. The image must be the one the HDR path makes, and it must
 //! land at the origin it is given in a larger output (the viewer's window beside its panel).
 
