@@ -38,9 +38,10 @@ fn the_pick_is_on_the_front_and_no_setting_within_the_budget_is_cheaper_and_clos
     let result = tune::run(gpu, &options, &|_| {}).unwrap();
     let budget = result.budget_ms.unwrap();
     assert!(result.points.len() <= options.max_settings && result.points.len() >= 5);
+    // Timed on the first view; a front setting whose time lies near the budget, once more.
     assert!(
-        result.points.iter().all(|p| p.hdr_per_view.len() == 2 && p.frames_timed == 2),
-        "timed once on the first view"
+        result.points.iter().all(|p| p.hdr_per_view.len() == 2 && [2, 4].contains(&p.frames_timed)),
+        "timed once on the first view (twice near the budget)"
     );
     let Some(pick) = result.picked() else {
         assert_eq!(result.verdict, Verdict::BelowCheapest);
