@@ -205,7 +205,7 @@ pub struct FrameState<'a> {
     pub history: &'a History,
     /// The camera differs from the last frame's.
     pub camera_moved: bool,
-    /// The blur runs this frame (`Renderer::blurs_this_frame`): the plan blurs, and the view
+    /// The blur runs this frame (`Renderer::blurs`): the plan blurs, and it computes DO or the view
     /// moves or its average is young. Where it does not, the temporal pass reads the raw samples.
     pub blur: bool,
 }

@@ -19,7 +19,7 @@ use wgpu::util::DeviceExt;
 use crate::gpu::Gpu;
 use crate::render::bindings::{sampler_entry, texture_entry, uniform_entry};
 use crate::render::graph::io::PassIo;
-use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, Pass, PassContext, Recording};
+use crate::render::graph::{Entry, Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::resources::scene::{upload_texture, Draw, SceneGpu};
 use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
@@ -135,34 +135,11 @@ impl GBufferPass {
         });
         let plain = Self::pipeline(device, &pipeline_layout, &module, Features::default());
         let pipelines = [(Features::default(), plain)].into_iter().collect();
-        let sky_module = shaders::module(device, "skybox.wgsl")?;
-        let sky = fullscreen_pipeline(
-            device,
-            &FullscreenDesc {
-                label: "gbuffer_sky_pipeline",
-                module: &sky_module,
-                bind_group_layouts: &[Some(frame_layout), None, Some(cx.sky_layout)],
-                entry: "fs_display",
-                // The albedo alone; the normal is left as cleared.
-                targets: &[
-                    Some(ALBEDO_FORMAT.into()),
-                    Some(wgpu::ColorTargetState {
-                        format: NORMAL_FORMAT,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::empty(),
-                    }),
-                ],
-                // At the far plane (0): `GreaterEqual` passes only where nothing was drawn.
-                depth: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                constants: &[],
-            },
-        );
+        // The albedo alone; the normal is left as cleared.
+        let normal_kept =
+            wgpu::ColorTargetState { format: NORMAL_FORMAT, blend: None, write_mask: wgpu::ColorWrites::empty() };
+        let targets = [Some(ALBEDO_FORMAT.into()), Some(normal_kept)];
+        let sky = super::skybox::behind_geometry(cx, "gbuffer_sky_pipeline", "fs_display", &targets)?;
         Ok(Self { material_layout, sampler, pipelines, pipeline_layout, module, sky })
     }
 

@@ -22,32 +22,42 @@ pub struct SkyboxPass {
 
 impl SkyboxPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        let module = shaders::module(cx.device, "skybox.wgsl")?;
-        let pipeline = fullscreen_pipeline(
-            cx.device,
-            &FullscreenDesc {
-                label: "skybox_pipeline",
-                module: &module,
-                bind_group_layouts: &[Some(cx.frame_layout), None, Some(cx.sky_layout)],
-                entry: "fs_main",
-                targets: &[Some(HDR_FORMAT.into())],
-                depth: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                constants: &[],
-            },
-        );
-        Ok(Self { pipeline })
+        Ok(Self { pipeline: behind_geometry(cx, "skybox_pipeline", "fs_main", &[Some(HDR_FORMAT.into())])? })
     }
 
     /// The depth (through the depth attachment, tested read-only); HDR where nothing was drawn.
     pub fn io(_plan: &Plan) -> PassIo {
         PassIo { reads: vec![], attached: vec![DEPTH], writes: vec![HDR] }
     }
+}
+
+/// A pipeline of `shaders/skybox.wgsl`'s `entry` drawing the sky where nothing was drawn: the
+/// full-screen triangle at the far plane (0) behind a `GreaterEqual` test, which passes only
+/// where the depth is still 0, so a covered pixel costs its test alone. The skybox pass draws
+/// HDR with it; a display plan's G-buffer pass the displayed sky into the albedo.
+pub fn behind_geometry(
+    cx: &PassContext<'_>,
+    label: &str,
+    entry: &str,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> Result<wgpu::RenderPipeline> {
+    let module = shaders::module(cx.device, "skybox.wgsl")?;
+    let desc = FullscreenDesc {
+        label,
+        module: &module,
+        bind_group_layouts: &[Some(cx.frame_layout), None, Some(cx.sky_layout)],
+        entry,
+        targets,
+        depth: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        constants: &[],
+    };
+    Ok(fullscreen_pipeline(cx.device, &desc))
 }
 
 impl Pass for SkyboxPass {
