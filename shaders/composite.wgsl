@@ -10,7 +10,9 @@
 // The classic variant keeps the SSDO course project's composite: A·ρ·AO + DO (DO without ρ), no
 // sky irradiance. Which terms exist is decided when the pipeline is built (override constants),
 // so a mode or a scene that lacks a term pays nothing for it. After a lighting pass the composite
-// adds the direct light that pass wrote; otherwise it runs the light loop.
+// adds the direct light that pass wrote; otherwise it runs the light loop. After a half-size
+// sampling chain it upsamples AO / DO as it reads them (common/upsample.wgsl): the chain's last
+// stage stays where the samples are, and no full-screen pass stands between them and this one.
 //
 // Two outputs. Into the HDR target (pre-exposed radiance; the skybox and tone-map passes follow)
 // when something reads HDR afterwards: the report, `--raw`, `--stats`, the debug views. Otherwise
@@ -24,11 +26,13 @@
 #include "common/fullscreen.wgsl"
 #include "common/tone_curve.wgsl"
 #include "common/sky_irradiance.wgsl"
+#include "common/filter_params.wgsl"
 
-// AO alone (SSAO, r channel).
-@group(1) @binding(3) var ao_map: texture_2d<f32>;
-// DO in rgb, AO in a (SSDO, SSAO+SSDO).
-@group(1) @binding(4) var do_map: texture_2d<f32>;
+// The upsample's tolerances (HALF_INPUT).
+@group(1) @binding(3) var<uniform> params: FilterParams;
+// The sampling chain's last stage: AO alone in r (SSAO), or DO in rgb and AO in a (SSDO,
+// SSAO+SSDO); at half size with HALF_INPUT.
+@group(1) @binding(4) var current: texture_2d<f32>;
 // The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
 @group(1) @binding(5) var direct_map: texture_2d<f32>;
 
@@ -48,6 +52,10 @@ override DISPLAY: bool = false;
 override OUTPUT_SRGB: bool = true;
 // DISPLAY after a lighting pass: read its direct light from `direct_map`.
 override DIRECT_INPUT: bool = false;
+// `current` holds half-size samples: upsampled here as they are read.
+override HALF_INPUT: bool = false;
+
+#include "common/upsample.wgsl"
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
@@ -79,13 +87,31 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     if WHITE_ALBEDO {
         albedo = vec4<f32>(1.0, 1.0, 1.0, albedo.a);
     }
+    // The surface, where a term needs it: its packed normal and its view-space position.
+    var bits = 0u;
+    if LIGHT_LOOP || (!CLASSIC && !HAS_DO) || HALF_INPUT {
+        bits = textureLoad(g_normal, pixel, 0).r;
+    }
+    var p = vec3<f32>(0.0);
+    if LIGHT_LOOP || HALF_INPUT {
+        p = view_position(position, depth);
+    }
+    // The sampling chain's value here: AO in r, or DO + AO.
+    var occlusion = unoccluded_value();
+    if HAS_AO || HAS_DO {
+        if HALF_INPUT {
+            occlusion = upsample_surface(pixel, p, bits);
+        } else {
+            occlusion = textureLoad(current, pixel, 0);
+        }
+    }
     var directional = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if HAS_DO {
-        directional = textureLoad(do_map, pixel, 0);
+        directional = occlusion;
     }
     var ao = 1.0;
     if HAS_AO {
-        let raw = clamp(select(textureLoad(ao_map, pixel, 0).r, directional.a, HAS_DO), 0.0, 1.0);
+        let raw = clamp(select(occlusion.r, occlusion.a, HAS_DO), 0.0, 1.0);
         ao = mix(1.0, pow(raw, frame.ao_power), frame.ao_strength);
     } else if HAS_DO && !CLASSIC {
         // SSDO: the ambient's visibility, from the sampling pass (the march's open share; 1 for
@@ -94,10 +120,7 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
     }
     let ambient = frame.pre_exposure * frame.ambient;
     var color: vec3<f32>;
-    var normal = vec4<f32>(0.0);
-    if LIGHT_LOOP || (!CLASSIC && !HAS_DO) {
-        normal = load_surface(pixel);
-    }
+    let normal = surface_of(bits);
     if CLASSIC {
         color = ambient * albedo.rgb * ao;
         if HAS_DO {
@@ -109,7 +132,6 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
         color = albedo.rgb * (sky_irradiance(normal.xyz) + ambient) * ao;
     }
     if LIGHT_LOOP {
-        let p = view_position(position, depth);
         let direct = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
         color += direct.diffuse + direct.specular;
     }

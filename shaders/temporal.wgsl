@@ -13,6 +13,11 @@
 // in); while it moves, up to `motion_accumulate`, with the history clamped to the range of this
 // frame's 3x3 neighbourhood: screen-space occlusion depends on what the view shows, so a moving
 // view keeps less of the past.
+//
+// After a half-resolution sampling pass (HALF) it runs where the samples are: each texel is the
+// sample of the full-resolution pixel (2x, 2y), its surface that pixel's, and the histories are
+// half size too; the composite upsamples the average as it reads it. A full-screen pass here
+// would upsample every frame's samples first, at four times the pixels.
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
@@ -20,8 +25,7 @@
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(3) var<uniform> params: FilterParams;
-// This frame's output of the blur (or of the sampling pass without blur): at half size where the
-// chain samples there (HALF_INPUT), upsampled here as it is read.
+// This frame's output of the blur (or of the sampling pass without blur), at this pass's size.
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The last frame's average, and the surface each of its pixels holds: x the reverse-Z depth
 // (f32 bits), y its view-space normal as that frame's G-buffer packed it (bits 0-23) and the
@@ -42,21 +46,15 @@ const STILL_PIXELS: f32 = 0.01;
 // pixel is still and reads its own texel alone, which on a CPU rasteriser (where a branch not
 // taken still costs its work) keeps the pass to a fifth of its moving cost.
 override CAMERA_MOVED: bool = true;
-// `current` holds half-size samples: each pixel upsamples them as it reads them (the upsample
-// pass's own function, common/upsample.wgsl), so a half-resolution chain that accumulates has
-// no upsample pass of its own.
-override HALF_INPUT: bool = false;
-// The input is DO + AO rather than AO alone (what a pixel with no surface holds).
-override HAS_DO: bool = true;
+// The pass runs at half size, over half-size samples, into half-size histories.
+override HALF: bool = false;
 
-#include "common/upsample.wgsl"
-
-// This frame's value at full-resolution `pixel` (centre `position`).
-fn this_frame(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
-    if HALF_INPUT {
-        return upsample(pixel, position);
+// The full-resolution pixel whose surface texel `texel` of this pass's targets holds.
+fn surface_pixel(texel: vec2<i32>) -> vec2<i32> {
+    if HALF {
+        return min(2 * texel, vec2<i32>(frame.viewport.xy) - 1);
     }
-    return textureLoad(current, pixel, 0);
+    return texel;
 }
 
 struct TemporalOut {
@@ -71,20 +69,16 @@ fn finite4(v: vec4<f32>) -> bool {
     return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
 }
 
-// The range of this frame's values over the 3x3 pixels around `pixel` on a surface (of the
-// half-size samples around it, with HALF_INPUT).
-fn neighbourhood(pixel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
+// The range of this frame's values over the 3x3 texels around `texel` on a surface.
+fn neighbourhood(texel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
     let last = vec2<i32>(textureDimensions(current)) - 1;
-    let full_last = vec2<i32>(frame.viewport.xy) - 1;
-    let middle = select(pixel, pixel >> vec2<u32>(1u), HALF_INPUT);
     var lo = centre;
     var hi = centre;
     for (var y = -1; y <= 1; y += 1) {
         for (var x = -1; x <= 1; x += 1) {
-            let t = clamp(middle + vec2<i32>(x, y), vec2<i32>(0), last);
+            let t = clamp(texel + vec2<i32>(x, y), vec2<i32>(0), last);
             let v = textureLoad(current, t, 0);
-            let at = select(t, min(2 * t, full_last), HALF_INPUT);
-            if load_depth(at) > 0.0 && finite4(v) {
+            if load_depth(surface_pixel(t)) > 0.0 && finite4(v) {
                 lo = min(lo, v);
                 hi = max(hi, v);
             }
@@ -95,8 +89,12 @@ fn neighbourhood(pixel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
 
 @fragment
 fn fs_main(in: FullscreenOut) -> TemporalOut {
-    let pixel = vec2<i32>(in.position.xy);
-    let now = this_frame(pixel, in.position.xy);
+    // This texel of the pass's targets, and the full-resolution pixel (centre `position`) whose
+    // surface it holds.
+    let texel = vec2<i32>(in.position.xy);
+    let pixel = surface_pixel(texel);
+    let position = vec2<f32>(pixel) + 0.5;
+    let now = textureLoad(current, texel, 0);
     var out: TemporalOut;
     out.shown = now;
     out.history = now;
@@ -106,7 +104,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     if depth <= 0.0 || !finite4(now) {
         return out;
     }
-    let p = view_position(in.position.xy, depth);
+    let p = view_position(position, depth);
     let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
     let normal_bits = textureLoad(g_normal, pixel, 0).r;
     let view_normal = unpack_normal(normal_bits);
@@ -119,10 +117,10 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     var held = 0.0;
     var moved = 0.0;
     if !CAMERA_MOVED && params.history_frames > 0u {
-        // The camera has not moved: the pixel's own texel holds the same surface exactly when it
-        // holds the same depth (the scene is static).
-        let s = textureLoad(history_surface, pixel, 0);
-        let value = textureLoad(history, pixel, 0);
+        // The camera has not moved: the texel holds the same surface exactly when it holds the
+        // same depth (the scene is static).
+        let s = textureLoad(history_surface, texel, 0);
+        let value = textureLoad(history, texel, 0);
         if bitcast<f32>(s.x) == depth && finite4(value) {
             past = value;
             held = f32(s.y >> 24u);
@@ -132,15 +130,19 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     if CAMERA_MOVED && params.history_frames > 0u && clip.w > 0.0 {
         let ndc = clip.xy / clip.w;
         let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
-        moved = length(was - in.position.xy);
-        let base = floor(was - 0.5);
-        let frac = was - 0.5 - base;
+        moved = length(was - position);
+        // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF) or
+        // t + 0.5.
+        let at = select(was - 0.5, (was - 0.5) * 0.5, HALF);
+        let base = floor(at);
+        let frac = at - base;
+        let texels = vec2<i32>(textureDimensions(history_surface));
         let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
         var weight = 0.0;
         for (var i = 0u; i < 4u; i += 1u) {
             let corner = vec2<u32>(i & 1u, i >> 1u);
             let tap = vec2<i32>(base) + vec2<i32>(corner);
-            if any(tap < vec2<i32>(0)) || any(tap >= vec2<i32>(size)) {
+            if any(tap < vec2<i32>(0)) || any(tap >= texels) {
                 continue;
             }
             let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(1u));
@@ -151,7 +153,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
                 continue;
             }
             // The texel's own surface point, from its pixel and depth through the previous camera.
-            let uv = (vec2<f32>(tap) + 0.5) / size;
+            let uv = (vec2<f32>(surface_pixel(tap)) + 0.5) / size;
             let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
             let q = h.xyz / h.w;
             let value = textureLoad(history, tap, 0);
@@ -183,7 +185,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
             frames = most;
         } else {
             if CAMERA_MOVED && !still {
-                let range = neighbourhood(pixel, now);
+                let range = neighbourhood(texel, now);
                 past = clamp(past, range[0], range[1]);
             }
             result = mix(past, now, 1.0 / frames);

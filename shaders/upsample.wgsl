@@ -1,5 +1,5 @@
-// The upsample after a half-resolution sampling pass (without accumulation; with it the
-// temporal pass upsamples as it reads): see common/upsample.wgsl.
+// The full-size copy of a half-size sampling chain's last stage, for what reads one besides the
+// composite (which upsamples as it reads): see common/upsample.wgsl.
 
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
@@ -7,8 +7,8 @@
 #include "common/fullscreen.wgsl"
 
 @group(1) @binding(3) var<uniform> params: FilterParams;
-// The sampling pass's half-resolution output (blurred, where the plan blurs): AO (r) or DO + AO
-// (rgb + a).
+// The chain's last half-size stage (the average over frames, or the samples, blurred where the
+// plan blurs): AO (r) or DO + AO (rgb + a).
 @group(1) @binding(4) var current: texture_2d<f32>;
 
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).

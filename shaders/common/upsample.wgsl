@@ -1,6 +1,6 @@
-// The edge-aware upsample of half-resolution samples, shared by the upsample pass
-// (shaders/upsample.wgsl) and the temporal pass, which folds it in where it follows a
-// half-resolution sampling chain (shaders/temporal.wgsl).
+// The edge-aware upsample of half-resolution samples, shared by the composite, which upsamples
+// the chain's last half-size stage as it reads it (shaders/composite.wgsl), and the upsample
+// pass, which makes a full-size copy for the readers of one (shaders/upsample.wgsl).
 //
 // Each full-resolution pixel takes the 2x2 half-resolution samples at and after it (each sample
 // is the full-resolution pixel (2x, 2y), so these are the nearest ones on either side of an odd
@@ -21,13 +21,17 @@ fn unoccluded_value() -> vec4<f32> {
 // The upsampled value at full-resolution `pixel` (its centre `position`), from the half-size
 // samples in `current`.
 fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
-    let unoccluded = unoccluded_value();
     let depth = load_depth(pixel);
     if depth <= 0.0 {
-        return unoccluded;
+        return unoccluded_value();
     }
-    let p = view_position(position, depth);
-    let bits = textureLoad(g_normal, pixel, 0).r;
+    return upsample_surface(pixel, view_position(position, depth), textureLoad(g_normal, pixel, 0).r);
+}
+
+// The same for a `pixel` that shows a surface, given its view-space position `p` and its packed
+// normal `bits` (for a caller that has read them already).
+fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32) -> vec4<f32> {
+    let unoccluded = unoccluded_value();
     let n = unpack_normal(bits);
     let code = octahedral_code(bits);
     let tolerance = max(0.25 * params.radius, 1e-30);

@@ -265,7 +265,7 @@ impl Renderer {
             let plan = Self::plan_for(&Settings { mode, ..*settings }, features, keep_hdr);
             // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
             let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
-            let history: u64 = plan.history.iter().map(|h| 2 * targets::texel_bytes(size, h.format)).sum();
+            let history: u64 = plan.history.iter().map(|h| h.bytes(size)).sum();
             let bytes = Targets::bytes_for(size, &plan.targets()) + history + output;
             budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
                 .map_err(Error::Setting)?;

@@ -145,7 +145,9 @@ pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Outpu
 /// The sampling chain's outputs, each for AO alone (SSAO) or DO + AO (SSDO and SSAO+SSDO: rgb
 /// sky light and bounce before albedo, a AO): what the sampling pass (or the upsample) writes,
 /// what a half-resolution sampling pass writes and its blurred copy, the blurred copy at full
-/// resolution (the blur's, or the upsample's of the half-size one) and the average over frames.
+/// resolution (the blur's, or the upsample's of the half-size one) and the average over frames
+/// (at half size where the samples are: the composite upsamples it as it reads; the full-size
+/// copy is the upsample's, made only where something else reads it).
 pub const AO_RAW: TargetId = TargetId::new("ao_raw", AO_FORMAT, Place::Screen);
 pub const DO_RAW: TargetId = TargetId::new("do_raw", DO_FORMAT, Place::Screen);
 pub const AO_HALF: TargetId = TargetId::new("ao_half", AO_FORMAT, Place::HalfScreen);
@@ -156,6 +158,8 @@ pub const AO_BLURRED: TargetId = TargetId::new("ao_blurred", AO_FORMAT, Place::S
 pub const DO_BLURRED: TargetId = TargetId::new("do_blurred", DO_FORMAT, Place::Screen);
 pub const AO_ACCUMULATED: TargetId = TargetId::new("ao_accumulated", AO_FORMAT, Place::Screen);
 pub const DO_ACCUMULATED: TargetId = TargetId::new("do_accumulated", DO_FORMAT, Place::Screen);
+pub const AO_HALF_ACCUMULATED: TargetId = TargetId::new("ao_half_accumulated", AO_FORMAT, Place::HalfScreen);
+pub const DO_HALF_ACCUMULATED: TargetId = TargetId::new("do_half_accumulated", DO_FORMAT, Place::HalfScreen);
 
 /// A stage of the sampling chain, and its pair of targets (AO alone, DO + AO).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -166,6 +170,8 @@ pub enum Stage {
     HalfBlurred,
     Blurred,
     Accumulated,
+    /// The average over frames where the samples are (half-resolution plans that accumulate).
+    HalfAccumulated,
 }
 
 impl Stage {
@@ -177,6 +183,7 @@ impl Stage {
             Stage::HalfBlurred => (AO_HALF_BLURRED, DO_HALF_BLURRED),
             Stage::Blurred => (AO_BLURRED, DO_BLURRED),
             Stage::Accumulated => (AO_ACCUMULATED, DO_ACCUMULATED),
+            Stage::HalfAccumulated => (AO_HALF_ACCUMULATED, DO_HALF_ACCUMULATED),
         };
         if directional {
             d

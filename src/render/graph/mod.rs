@@ -12,7 +12,7 @@ pub mod io;
 pub mod state;
 
 use super::history::{History, HistorySpec};
-use super::modes::{ModeDecl, Plan, PlanFacts, Step};
+use super::modes::{Plan, PlanFacts, Step};
 use super::resources::scene::SceneGpu;
 use super::resources::sky::SkyGpu;
 use super::settings::View;
@@ -26,7 +26,7 @@ pub struct Entry {
     pub step: Step,
     pub runs: fn(&PlanFacts) -> bool,
     pub io: fn(&Plan) -> io::PassIo,
-    pub histories: fn(&ModeDecl) -> Vec<HistorySpec>,
+    pub histories: fn(&PlanFacts) -> Vec<HistorySpec>,
     /// The WGSL files whose bind group 1 is built from the pass's reads (none where the pass
     /// makes its own groups): a test holds the two against each other.
     pub group_shaders: &'static [&'static str],
@@ -80,14 +80,14 @@ impl Entry {
         Self { group_shaders: shaders, ..self }
     }
 
-    /// The histories the pass keeps in a mode.
-    pub const fn keeping(self, histories: fn(&ModeDecl) -> Vec<HistorySpec>) -> Self {
+    /// The histories the pass keeps in a plan.
+    pub const fn keeping(self, histories: fn(&PlanFacts) -> Vec<HistorySpec>) -> Self {
         Self { histories, ..self }
     }
 }
 
 /// For an [`Entry`] of a pass that keeps no history.
-pub fn no_history(_: &ModeDecl) -> Vec<HistorySpec> {
+pub fn no_history(_: &PlanFacts) -> Vec<HistorySpec> {
     Vec::new()
 }
 

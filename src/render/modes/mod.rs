@@ -10,24 +10,27 @@
 //! | mode | steps (the defaults: lights, half resolution, blur, accumulation, display plan) | targets besides the G-buffer and histories |
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
-//! | SSAO | gbuffer, ssao, blur, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_accumulated` |
-//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_accumulated` |
+//! | SSAO | gbuffer, ssao, blur, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_half_accumulated` |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_half_accumulated` |
 //! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
 //!
-//! The sampling pass and the blur run at half size; the temporal pass upsamples as it reads, so
-//! the default chain has one full-screen denoise pass.
+//! The sampling pass, the blur and the temporal pass run at half size, over the samples; the
+//! composite upsamples the average as it reads it, so no full-screen pass lies between the
+//! samples and the composite.
 //!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
 //! senders' sky and ambient light; no HDR target in a display plan); `--sender-sky march-quarter`
 //! marches the senders' sky into `sender_sky_quarter` instead; with `--sender-sky off` and
 //! no lights, or with `--indirect-strength 0`, there is no lighting pass and no bounce target at
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a
-//! debug view) adds `hdr_color`, the skybox and the tone map; `--no-blur` drops the blur and its
-//! half-size target (the upsample then writes `ao_raw` / `do_raw`); `--accumulate 1` drops the temporal pass, its target and its two histories (a
-//! half-resolution chain then runs an upsample pass, into `ao_blurred` / `do_blurred`);
-//! `--full-res` the upsample and the half-size targets (the blur then reads `ao_raw` / `do_raw`
-//! and writes `ao_blurred` / `do_blurred`); the march with `--depth-pyramid` adds the
-//! pyramid in the DO modes.
+//! debug view) adds `hdr_color`, the skybox and the tone map, and after a half-size chain the
+//! upsample pass with the full-size copy of its last stage (`ao_accumulated` / `do_accumulated`),
+//! which the debug views and the report read; `--no-blur` drops the blur and its half-size
+//! target; `--accumulate 1` drops the temporal pass, its target and its two histories (the
+//! composite then upsamples `ao_half_blurred` / `do_half_blurred`; an HDR plan's copy is
+//! `ao_blurred` / `do_blurred`); `--full-res` the half-size targets (the blur then reads `ao_raw`
+//! / `do_raw` and writes `ao_blurred` / `do_blurred`, the temporal pass `ao_accumulated` /
+//! `do_accumulated`); the march with `--depth-pyramid` adds the pyramid in the DO modes.
 
 pub mod table;
 
@@ -115,6 +118,11 @@ impl PlanFacts {
     pub fn samples(&self) -> bool {
         self.decl.runs_sampling()
     }
+
+    /// Whether the mode samples at half resolution.
+    pub fn half_resolution(&self) -> bool {
+        self.samples() && self.options.half_resolution
+    }
 }
 
 /// One step of a frame: a pass, by name. Each pass declares its step beside its code
@@ -167,8 +175,9 @@ pub struct Plan {
     /// What lights the bounce's senders besides the point lights; `Off` wherever the plan has no
     /// bounce.
     pub sender_sky: SenderSky,
-    /// The sampling pass runs at half resolution (an upsample follows it, or the temporal pass
-    /// upsamples as it reads).
+    /// The sampling pass runs at half resolution, and so do the blur and the temporal pass after
+    /// it: the composite upsamples as it reads (the upsample pass makes a full-size copy only
+    /// where something else reads one).
     pub half_resolution: bool,
     /// The sampling output is averaged over frames (a temporal pass and its histories).
     pub accumulates: bool,

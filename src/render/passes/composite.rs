@@ -3,7 +3,7 @@
 //! tone-map pass; the sky's pixels as the G-buffer pass drew them for display). The pipeline is specialised to the plan (override constants):
 //! without lights there is no light loop in the shader, without AO no AO read, and so on. After a
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
-//! (display).
+//! (display). After a half-size sampling chain it upsamples the chain's last stage as it reads it.
 
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
@@ -33,6 +33,8 @@ struct Key {
     classic: bool,
     white_albedo: bool,
     display: bool,
+    /// The sampling chain's last stage is at half size.
+    half_input: bool,
 }
 
 impl Key {
@@ -45,6 +47,7 @@ impl Key {
             classic: variant.decl().composite == Composite::ClassicAmbient,
             white_albedo,
             display: plan.display,
+            half_input: plan.half_resolution,
         }
     }
 }
@@ -60,29 +63,24 @@ impl CompositePass {
         Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", false)?, output: cx.output })
     }
 
-    /// The G-buffer, the averaged (or filtered) AO or DO + AO, and in a display plan the
+    /// The G-buffer, the filters' parameters (the upsample's), the sampling chain's last stage
+    /// (AO alone or DO + AO, at half size where the samples are) and in a display plan the
     /// lighting pass's direct light (blended onto otherwise, where it is the attachment and
     /// cannot also be bound); HDR, or in a display plan the output.
     pub fn io(plan: &Plan) -> PassIo {
-        let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH)];
-        reads.extend(occlusion_reads(plan));
+        let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter];
+        let stage = match (plan.half_resolution, plan.accumulates(), plan.blur) {
+            (true, true, _) => Stage::HalfAccumulated,
+            (true, false, true) => Stage::HalfBlurred,
+            (true, false, false) => Stage::Half,
+            (false, true, _) => Stage::Accumulated,
+            (false, false, true) => Stage::Blurred,
+            (false, false, false) => Stage::Raw,
+        };
+        reads.push(Read::target_if(plan.decl.runs_sampling(), stage.target(plan.decl.directional_occlusion)));
         reads.push(Read::target_if(plan.display && plan.lighting_writes_direct(), HDR));
         PassIo { reads, attached: vec![], writes: vec![if plan.display { OUTPUT } else { HDR }] }
     }
-}
-
-/// What the composite (and the tone map's debug views) read of the sampling chain: its last
-/// stage, AO alone or DO + AO, the other absent.
-pub fn occlusion_reads(plan: &Plan) -> [Read; 2] {
-    let stage = if plan.accumulates() {
-        Stage::Accumulated
-    } else if plan.blur {
-        Stage::Blurred
-    } else {
-        Stage::Raw
-    };
-    let (sampled, d) = (plan.decl.runs_sampling(), plan.decl.directional_occlusion);
-    [Read::target_if(sampled && !d, stage.target(false)), Read::target_if(sampled && d, stage.target(true))]
 }
 
 impl Pass for CompositePass {
@@ -126,6 +124,7 @@ impl Pass for CompositePass {
                         ("DISPLAY", f(key.display)),
                         ("OUTPUT_SRGB", f(output.is_srgb())),
                         ("DIRECT_INPUT", f(key.display && key.additive)),
+                        ("HALF_INPUT", f(key.half_input)),
                     ],
                 },
             )

@@ -41,10 +41,11 @@ pub const PASSES: [Entry; 12] = [
     sampling::ENTRY,
     // Denoise AO/DO, where the samples are (at half resolution when they were taken there).
     blur::ENTRY,
-    // Half-resolution AO/DO to full resolution, on each pixel's own surface.
-    upsample::ENTRY,
-    // Average AO/DO over frames, where the same surface was.
+    // Average AO/DO over frames, where the same surface was (at the samples' size).
     temporal::ENTRY,
+    // A full-size copy of a half-size chain for an HDR plan's readers (the composite upsamples
+    // as it reads), each pixel from the samples on its own surface.
+    upsample::ENTRY,
     // The sky and ambient terms with AO/DO, direct light (and, in a display plan, the sky behind
     // and the tone curve, into the output).
     composite::ENTRY,
@@ -87,7 +88,7 @@ impl Plan {
         let facts = PlanFacts { decl: *mode.declaration(), features, options: o };
         let steps: Vec<Step> = PASSES.iter().filter(|e| (e.runs)(&facts)).map(|e| e.step).collect();
         let has = |step: Step| steps.contains(&step);
-        let history = PASSES.iter().filter(|e| has(e.step)).flat_map(|e| (e.histories)(&facts.decl)).collect();
+        let history = PASSES.iter().filter(|e| has(e.step)).flat_map(|e| (e.histories)(&facts)).collect();
         Self {
             mode,
             decl: facts.decl,
@@ -95,9 +96,9 @@ impl Plan {
             blur: has(Step::BLUR),
             display: o.display,
             sender_sky: facts.sender_sky(),
-            // The sampling pass runs at half size: an upsample follows it, or the temporal pass
-            // upsamples as it reads.
-            half_resolution: facts.samples() && o.half_resolution,
+            // The sampling pass runs at half size, and so do its blur and the temporal pass;
+            // the composite upsamples as it reads.
+            half_resolution: facts.half_resolution(),
             accumulates: has(Step::TEMPORAL),
             lighting: has(Step::LIGHTING),
             pyramid: has(Step::DEPTH_PYRAMID),

@@ -1,9 +1,11 @@
 //! The temporal pass (`shaders/temporal.wgsl`): the blurred (or raw) sampling output averaged
 //! with the last frames' where the same surface was, reprojected through the previous camera.
-//! After a half-resolution sampling pass it reads the half-size samples and upsamples them as it
-//! reads (`shaders/common/upsample.wgsl`): there is then no upsample pass.
-//! It writes three targets at once: what the composite reads this frame (`ao_accumulated` /
-//! `do_accumulated`), and the two histories the next frame reads (`history.rs`). Its bind group
+//! It runs where the samples are: after a half-resolution sampling pass at half size, over the
+//! half-size samples, into half-size histories; the composite upsamples the average as it reads
+//! it (`shaders/common/upsample.wgsl`), so the chain after the samples has no full-screen pass.
+//! It writes three targets at once: what the composite reads this frame (`ao_half_accumulated`
+//! / `do_half_accumulated`, or the full-size `ao_accumulated` / `do_accumulated`), and the two
+//! histories the next frame reads (`history.rs`). Its bind group
 //! reads one side of each history pair, so it keeps one group a parity and binds the frame's;
 //! and where the plan blurs, one set reading the blurred samples and one the raw, for the frames
 //! that skip the blur (`FrameState::blur`).
@@ -13,7 +15,7 @@ use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::history::HistorySpec;
-use crate::render::modes::{ModeDecl, Plan, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
+use crate::render::modes::{Plan, PlanFacts, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
 use crate::render::targets::{Stage, ALBEDO, DEPTH, NORMAL};
 use crate::Result;
 
@@ -32,11 +34,11 @@ pub const ENTRY: Entry = Entry::new(
 .role(Role::Denoise);
 
 /// What distinguishes one temporal pipeline from another: what the sampling pass produces, and
-/// whether its input is at half size (upsampled as it is read).
+/// whether it runs at half size (over half-size samples).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     outputs: Outputs,
-    half_input: bool,
+    half: bool,
 }
 
 pub struct TemporalPass {
@@ -60,8 +62,7 @@ impl TemporalPass {
     }
 
     /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
-    /// histories; the average and this frame's histories. After a half-resolution sampling
-    /// pass it reads the half-size samples and upsamples them itself (no upsample pass).
+    /// histories; the average and this frame's histories, all at the samples' size.
     pub fn io(plan: &Plan) -> PassIo {
         Self::io_reading(plan, plan.blur)
     }
@@ -79,22 +80,20 @@ impl TemporalPass {
         .target(d);
         let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Filter]);
         let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
-        PassIo {
-            reads,
-            attached: vec![],
-            writes: vec![Stage::Accumulated.target(d), OCCLUSION_HISTORY, SURFACE_HISTORY],
-        }
+        let average = if plan.half_resolution { Stage::HalfAccumulated } else { Stage::Accumulated };
+        PassIo { reads, attached: vec![], writes: vec![average.target(d), OCCLUSION_HISTORY, SURFACE_HISTORY] }
     }
 
-    /// Its two histories: the averaged sampling output (in its own format) and the surface each
-    /// pixel of it belongs to. What a channel means depends on what the mode computes, so the
-    /// mode is the key: another mode starts anew.
-    pub fn histories(decl: &ModeDecl) -> Vec<HistorySpec> {
-        let format = Stage::Raw.target(decl.directional_occlusion).format;
-        let key = decl.mode as u64;
+    /// Its two histories, at the samples' size: the averaged sampling output (in its own
+    /// format) and the surface each texel of it belongs to. What a channel means depends on what
+    /// the mode computes, so the mode is the key: another mode starts anew.
+    pub fn histories(facts: &PlanFacts) -> Vec<HistorySpec> {
+        let format = Stage::Raw.target(facts.decl.directional_occlusion).format;
+        let key = facts.decl.mode as u64;
+        let half = facts.half_resolution();
         vec![
-            HistorySpec { name: OCCLUSION_HISTORY.name, format, key },
-            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, key },
+            HistorySpec { name: OCCLUSION_HISTORY.name, format, half, key },
+            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, half, key },
         ]
     }
 }
@@ -114,7 +113,7 @@ impl Pass for TemporalPass {
             inputs.iter().map(|io| [0, 1].map(|parity| self.state.group(device, io, &p.inputs, parity))).collect();
         self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
-            let key = Key { outputs: Outputs::of(plan), half_input: plan.half_resolution };
+            let key = Key { outputs: Outputs::of(plan), half: plan.half_resolution };
             state.ensure_fullscreen(device, key, |key| PipelineSpec {
                 entry: "fs_main",
                 targets: vec![
@@ -122,11 +121,7 @@ impl Pass for TemporalPass {
                     Some(key.outputs.format().into()),
                     Some(SURFACE_HISTORY_FORMAT.into()),
                 ],
-                constants: vec![
-                    ("CAMERA_MOVED", flag(moved)),
-                    ("HALF_INPUT", flag(key.half_input)),
-                    ("HAS_DO", flag(key.outputs.directional)),
-                ],
+                constants: vec![("CAMERA_MOVED", flag(moved)), ("HALF", flag(key.half))],
             });
         }
     }

@@ -6,8 +6,8 @@ use crate::render::graph::io::{Kind, Read};
 use crate::render::modes::MODES;
 use crate::render::settings::SenderSky;
 use crate::render::targets::{
-    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_HALF_BLURRED, AO_RAW, BOUNCE, DO_ACCUMULATED, DO_BLURRED, DO_HALF,
-    DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
+    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_HALF_ACCUMULATED, AO_HALF_BLURRED, AO_RAW, BOUNCE, DO_ACCUMULATED,
+    DO_BLURRED, DO_HALF, DO_HALF_ACCUMULATED, DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
 };
 use depth_pyramid::PYRAMID;
 use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
@@ -34,7 +34,7 @@ fn set(plan: &Plan) -> Set {
         ao: has(AO_RAW) || has(AO_HALF),
         directional: has(DO_RAW) || has(DO_HALF),
         blurred: [AO_BLURRED, DO_BLURRED, AO_HALF_BLURRED, DO_HALF_BLURRED].into_iter().any(has),
-        accumulated: has(AO_ACCUMULATED) || has(DO_ACCUMULATED),
+        accumulated: [AO_ACCUMULATED, DO_ACCUMULATED, AO_HALF_ACCUMULATED, DO_HALF_ACCUMULATED].into_iter().any(has),
         half: has(AO_HALF) || has(DO_HALF),
         pyramid: has(PYRAMID),
         // At half or at quarter size, never both.
@@ -90,8 +90,13 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(t.blurred, plan.blur);
         assert_eq!(t.accumulated, plan.accumulates());
         assert_eq!(t.half, plan.half_resolution);
-        // A half-resolution chain has an upsample pass unless the temporal pass upsamples.
-        assert_eq!(plan.has(Step::UPSAMPLE), plan.half_resolution && !plan.accumulates());
+        // The composite upsamples a half-size chain as it reads it; an upsample pass makes a
+        // full-size copy only for an HDR plan's readers (the debug views, the report).
+        assert_eq!(plan.has(Step::UPSAMPLE), plan.half_resolution && !plan.display);
+        // The average over frames lives where the samples are.
+        let half_average = plan.allocates(AO_HALF_ACCUMULATED) || plan.allocates(DO_HALF_ACCUMULATED);
+        assert_eq!(half_average, plan.half_resolution && plan.accumulates(), "{:?}", plan.steps);
+        assert!(plan.history.iter().all(|h| h.half == plan.half_resolution), "{:?}", plan.steps);
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
         assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
         assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
@@ -184,8 +189,12 @@ fn a_display_plan_has_no_skybox_or_tonemap_pass_and_keeps_hdr_only_for_the_light
         assert!(hdr.has(Step::SKYBOX) && hdr.has(Step::TONEMAP) && hdr.keeps_hdr());
         assert!(!display.has(Step::SKYBOX) && !display.has(Step::TONEMAP));
         assert_eq!(display.keeps_hdr(), display.has(Step::LIGHTING), "{mode}");
-        let without = |p: &Plan| p.steps.iter().filter(|s| !matches!(**s, Step::SKYBOX | Step::TONEMAP)).count();
+        // ... nor the upsample's full-size copy of the half-size chain, which only the HDR
+        // plan's readers (the debug views, the report) read.
+        let hdr_only = |s: &Step| matches!(*s, Step::SKYBOX | Step::TONEMAP | Step::UPSAMPLE);
+        let without = |p: &Plan| p.steps.iter().filter(|s| !hdr_only(s)).count();
         assert_eq!(without(&hdr), display.steps.len(), "{mode}: the same passes otherwise");
+        assert!(!display.has(Step::UPSAMPLE), "{mode}");
     }
     let dark = Plan::new(Mode::Ssdo, SceneFeatures::lit(0), PlanOptions::default());
     assert!(dark.has(Step::LIGHTING), "under a sky alone the senders' sky light is bounced");
@@ -366,6 +375,6 @@ fn each_pass_role_is_what_its_reads_and_writes_make_it() {
     }
     assert_eq!(
         PASSES.iter().filter(|e| e.role == Role::Denoise).map(|e| e.step.name()).collect::<Vec<_>>(),
-        ["blur", "upsample", "temporal"]
+        ["blur", "temporal", "upsample"]
     );
 }

@@ -3,14 +3,13 @@
 //! linear one the shader does (`OUTPUT_SRGB = false`). The debug views (G-buffer channels, AO, DO)
 //! are variants of this pass, so showing one costs no extra pass.
 
-use super::composite::occlusion_reads;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::Entry;
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
-use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
+use crate::render::targets::{Stage, ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
 use crate::Result;
 
 impl Step {
@@ -60,6 +59,20 @@ impl TonemapPass {
         reads.extend(occlusion_reads(plan));
         PassIo { reads, attached: vec![], writes: vec![OUTPUT] }
     }
+}
+
+/// What the debug views read of the sampling chain: its last stage at full size (after a
+/// half-size chain, the upsample pass's copy), AO alone or DO + AO, the other absent.
+fn occlusion_reads(plan: &Plan) -> [Read; 2] {
+    let stage = if plan.accumulates() {
+        Stage::Accumulated
+    } else if plan.blur {
+        Stage::Blurred
+    } else {
+        Stage::Raw
+    };
+    let (sampled, d) = (plan.decl.runs_sampling(), plan.decl.directional_occlusion);
+    [Read::target_if(sampled && !d, stage.target(false)), Read::target_if(sampled && d, stage.target(true))]
 }
 
 impl Pass for TonemapPass {

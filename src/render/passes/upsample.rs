@@ -1,10 +1,11 @@
-//! The upsample after a half-resolution sampling pass (`shaders/upsample.wgsl`): the half-size
+//! The upsample after a half-resolution sampling chain (`shaders/upsample.wgsl`): the half-size
 //! AO or DO + AO brought to full resolution, each pixel taking only the samples on its own
-//! surface, so silhouettes keep no halo. It reads the half-size samples blurred where the plan
-//! blurs (the blur runs before it, at half size) and writes the full-resolution target the
-//! composite reads: the blurred one, or the raw one without a blur. It runs only where nothing
-//! is accumulated: the temporal pass upsamples as it reads (the same function,
-//! `shaders/common/upsample.wgsl`), one full-screen pass fewer.
+//! surface, so silhouettes keep no halo. The composite upsamples the chain's last half-size
+//! stage itself as it reads it (the same function, `shaders/common/upsample.wgsl`), so this pass
+//! runs only in an HDR plan, where the full-size copy has readers of its own: the debug views,
+//! `--stats` and the report's AO and DO errors. It reads the average over frames, or without
+//! accumulation the samples blurred where the plan blurs, and writes the full-size target of the
+//! same stage.
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
@@ -20,8 +21,8 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(
     Step::UPSAMPLE,
-    // With accumulation the temporal pass upsamples as it reads: one full-screen pass fewer.
-    |f| f.samples() && f.options.half_resolution && !f.options.accumulate,
+    // A display plan's composite upsamples as it reads, and nothing else reads a full-size copy.
+    |f| f.half_resolution() && !f.options.display,
     UpsamplePass::io,
     |cx| Ok(Box::new(UpsamplePass::new(cx)?)),
 )
@@ -37,12 +38,12 @@ impl UpsamplePass {
         Ok(Self { state: PassState::new(cx, "upsample", "upsample.wgsl", false)? })
     }
 
-    /// The G-buffer, the parameters and the half-size samples (blurred, where the plan blurs);
-    /// the full-size ones.
+    /// The G-buffer, the parameters and the chain's last half-size stage; its full-size copy.
     pub fn io(plan: &Plan) -> PassIo {
-        match plan.blur {
-            true => filter_io(plan, Stage::HalfBlurred, Stage::Blurred),
-            false => filter_io(plan, Stage::Half, Stage::Raw),
+        match (plan.accumulates(), plan.blur) {
+            (true, _) => filter_io(plan, Stage::HalfAccumulated, Stage::Accumulated),
+            (false, true) => filter_io(plan, Stage::HalfBlurred, Stage::Blurred),
+            (false, false) => filter_io(plan, Stage::Half, Stage::Raw),
         }
     }
 }

@@ -195,6 +195,12 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     let pair = r.history().get(SURFACE_HISTORY).unwrap();
     // After the frame, the read side is what it wrote; the write side what the frame before did.
     let (now, before) = (surface_normals(gpu, &pair.read().texture), surfaces(gpu, &pair.write().texture));
+    // The history lives where the samples are: at half size, its texel (x, y) holding the
+    // surface of the pixel (2x, 2y).
+    let size = pair.read().texture.size();
+    let (tw, th) = (size.width as usize, size.height as usize);
+    assert_eq!((tw, th), ((W as usize).div_ceil(2), (H as usize).div_ceil(2)), "a half-size history");
+    let pixel = |t: usize, last: u32| (2 * t).min(last as usize - 1) as f32 + 0.5;
     let view_to_world = moved.world_to_view().inverse();
     // The walls turned 35° in the view (the floor did not: the turn is about the vertical), so
     // they keep their history only if the normals are compared in one frame's view.
@@ -203,9 +209,9 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     let clip = |c: &OrbitCamera| c.view_to_clip(aspect) * c.world_to_view();
     let (to_world, to_before) = (clip(&moved).inverse(), clip(&camera));
     let (mut uncovered, mut kept, mut surface) = (0, 0, 0);
-    for y in 0..H as usize {
-        for x in 0..W as usize {
-            let (depth, frames, normal) = now[y * W as usize + x];
+    for y in 0..th {
+        for x in 0..tw {
+            let (depth, frames, normal) = now[y * tw + x];
             if depth <= 0.0 {
                 continue;
             }
@@ -213,21 +219,20 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
             let world_normal = view_to_world.transform_vector3(normal);
             assert!((world_normal.length() - 1.0).abs() < 1e-3, "({x}, {y}): {normal}");
             surface += 1;
-            let ndc =
-                Vec3::new((x as f32 + 0.5) / W as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / H as f32 * 2.0, depth);
+            let ndc = Vec3::new(pixel(x, W) / W as f32 * 2.0 - 1.0, 1.0 - pixel(y, H) / H as f32 * 2.0, depth);
             let world = to_world * ndc.extend(1.0);
             let then = to_before * (world.xyz() / world.w).extend(1.0);
             let (px, py) = (((then.x / then.w) * 0.5 + 0.5) * W as f32, (0.5 - 0.5 * then.y / then.w) * H as f32);
             let expected = then.z / then.w;
             // Another surface (or none) under every texel the reprojection may read: nothing of
             // the old view may be kept there.
-            let (bx, by) = ((px - 0.5).floor() as i64, (py - 0.5).floor() as i64);
+            let (bx, by) = (((px - 0.5) * 0.5).floor() as i64, ((py - 0.5) * 0.5).floor() as i64);
             let other = (0..4).all(|k| {
                 let (tx, ty) = (bx + (k & 1), by + (k >> 1));
-                if tx < 0 || ty < 0 || tx >= W as i64 || ty >= H as i64 {
+                if tx < 0 || ty < 0 || tx >= tw as i64 || ty >= th as i64 {
                     return true;
                 }
-                let (d, held) = before[ty as usize * W as usize + tx as usize];
+                let (d, held) = before[ty as usize * tw + tx as usize];
                 held == 0 || d <= 0.0 || ((d - expected) / expected).abs() > 0.05
             });
             if other {
@@ -344,9 +349,10 @@ fn pillar_scene() -> (Scene, Skybox, OrbitCamera) {
 fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = pillar_scene();
-    // Unblurred, and blurred at half size before the upsample, by the upsample pass (one frame)
-    // and by the temporal pass as it reads (the default: its first frame is the upsample alone):
-    // the upsampled output against its input.
+    // Unblurred, and blurred at half size before the upsample, one frame and the average of 16
+    // (which the temporal pass keeps at half size): the upsample pass's full-size copy (made for
+    // an HDR plan's readers; the composite upsamples with the same function as it reads)
+    // against its input.
     use ssdo::render::targets::Stage;
     for (mode, blur, frames) in [
         (Mode::Ssao, false, 1),
@@ -359,8 +365,12 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         let s = Settings { half_resolution: true, blur, ..settings(mode, frames) };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         shoot(gpu, &mut r, &camera);
-        assert_eq!(r.plan().has(Step::UPSAMPLE), frames == 1);
-        let from = if blur { Stage::HalfBlurred } else { Stage::Half };
+        assert!(r.plan().has(Step::UPSAMPLE));
+        let from = match (frames, blur) {
+            (1, true) => Stage::HalfBlurred,
+            (1, false) => Stage::Half,
+            _ => Stage::HalfAccumulated,
+        };
         let to = match (frames, blur) {
             (1, true) => Stage::Blurred,
             (1, false) => Stage::Raw,
