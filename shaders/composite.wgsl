@@ -64,26 +64,31 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         // own top-left corner.
         let size = frame.viewport.xy;
         let pixel = vec2<i32>(min(in.position.xy - frame.output_origin, size - 1.0));
-        var color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5) * frame.display_scale);
-        if load_depth(pixel) <= 0.0 {
+        let depth = load_depth(pixel);
+        let albedo = textureLoad(g_albedo, pixel, 0);
+        var color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5, depth, albedo) * frame.display_scale);
+        if depth <= 0.0 {
             // The sky, displayed as the G-buffer pass drew it.
-            color = textureLoad(g_albedo, pixel, 0).rgb;
+            color = albedo.rgb;
         }
         if !OUTPUT_SRGB {
             color = linear_to_srgb(color);
         }
         return vec4<f32>(color, 1.0);
     }
-    return vec4<f32>(radiance(vec2<i32>(in.position.xy), in.position.xy), 1.0);
-}
-
-// Pre-exposed radiance leaving `pixel` (centre `position`) towards the camera.
-fn radiance(pixel: vec2<i32>, position: vec2<f32>) -> vec3<f32> {
+    let pixel = vec2<i32>(in.position.xy);
     let depth = load_depth(pixel);
     if depth <= 0.0 {
-        return vec3<f32>(0.0);
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
-    var albedo = textureLoad(g_albedo, pixel, 0);
+    return vec4<f32>(radiance(pixel, in.position.xy, depth, textureLoad(g_albedo, pixel, 0)), 1.0);
+}
+
+// Pre-exposed radiance leaving `pixel` (centre `position`) towards the camera, from its depth
+// (> 0 where there is a surface) and its G-buffer albedo, which the caller has read: each is
+// read once a pixel (in a display plan the sky's pixels show that albedo as it is).
+fn radiance(pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: vec4<f32>) -> vec3<f32> {
+    var albedo = surface_albedo;
     if WHITE_ALBEDO {
         albedo = vec4<f32>(1.0, 1.0, 1.0, albedo.a);
     }
