@@ -137,9 +137,9 @@ pub struct Settings {
     pub sender_sky: SenderSky,
     /// Denoise the sampling output.
     pub blur: bool,
-    /// The sampling pass runs at half width and height, followed by a depth- and normal-aware
-    /// upsample (the default: the report measured the same error as full resolution at 0.7× the
-    /// frame, see docs/accuracy.md).
+    /// The sampling pass runs at half width and height, and so do the blur and the average over
+    /// frames; the composite upsamples by depth and normal as it reads (the default: the report
+    /// measured the same error as full resolution at 0.7× the frame, see docs/accuracy.md).
     pub half_resolution: bool,
     /// Frames the temporal pass averages at most with the camera still (1 to 64; 1 turns the
     /// pass and its history off). Each frame's samples follow the schedule, so N still frames

@@ -70,7 +70,7 @@ pub struct PlanOptions {
     pub indirect: bool,
     /// What lights the bounce's senders besides the point lights (`Settings::sender_sky`).
     pub sender_sky: SenderSky,
-    /// The sampling pass runs at half resolution, an upsample after it.
+    /// The sampling pass runs at half resolution, and the chain after it.
     pub half_resolution: bool,
     /// The sampling output is averaged over frames (`Settings::accumulates`): a temporal pass
     /// and its history.
