@@ -4,7 +4,8 @@
 //! independent sample sets); pixels a camera move uncovers keep nothing of the old view, and
 //! the walls a turn swings through the view keep theirs (normals compared in one view); a
 //! moving camera never leaves [0, 1] or produces a non-finite value; the history lives exactly as
-//! long as its plan, size and settings; and half-resolution sampling leaves no halo.
+//! long as its plan, size and settings; half-resolution sampling leaves no halo; and the
+//! composite upsamples the half-size average exactly as the upsample pass's copy does.
 
 use crate::common;
 
@@ -432,4 +433,42 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
             &halos[..halos.len().min(5)]
         );
     }
+}
+
+#[test]
+fn the_composite_upsamples_the_half_size_average_as_the_upsample_pass_does() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = pillar_scene();
+    // No ambient, no lights: the composite's SSAO radiance is Off's (albedo times the sky's
+    // irradiance) times the AO it upsampled from the half-size average itself. The upsample
+    // pass's full-size copy (what the report reads, and what the halo test above checks) must be
+    // that AO at every pixel, silhouettes included.
+    let hdr = |mode: Mode| {
+        let mut r = renderer(gpu, &scene, &sky, (W, H), settings(mode, 16));
+        shoot_converged(gpu, &mut r, &camera);
+        let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
+        (r, hdr)
+    };
+    let (_, off) = hdr(Mode::Off);
+    let (r, ssao) = hdr(Mode::Ssao);
+    assert!(r.plan().half_resolution && r.plan().accumulates() && r.plan().has(Step::UPSAMPLE));
+    let (power, strength) = (r.settings.ao_power, r.settings.ao_strength);
+    let copy = ao(gpu, &r);
+    let (mut checked, mut worst) = (0, 0.0f32);
+    for i in 0..copy.len() {
+        let lit = off[i][1];
+        if lit < 0.05 {
+            continue;
+        }
+        let want = 1.0 + strength * (copy[i].clamp(0.0, 1.0).powf(power) - 1.0);
+        worst = worst.max((ssao[i][1] / lit - want).abs());
+        checked += 1;
+    }
+    assert!(checked > W as usize * H as usize / 2, "{checked} lit pixels");
+    // Both go through half floats (the copy and the HDR target): 1/1024 relative each.
+    assert!(worst < 4e-3, "the composite's AO differs from the upsample pass's by up to {worst}");
+}
+
+fn shoot_converged(gpu: &Gpu, r: &mut Renderer, camera: &OrbitCamera) {
+    capture_converged(gpu, r, camera).unwrap();
 }
