@@ -154,9 +154,10 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
             let names: Vec<String> = renderer.allocations().into_iter().map(|(n, _)| n).collect();
             let histories: Vec<&String> = names.iter().filter(|n| n.starts_with("history_")).collect();
             assert_eq!(histories, if kept { vec!["history_occlusion", "history_surface"] } else { vec![] }, "{mode}");
-            // Two textures each: the average (8 or 2 bytes a pixel) and the surface (8 bytes).
-            let per_pixel = if mode == Mode::Ssao { 2 + 8 } else { 8 + 8 };
-            let want = if kept { 2 * per_pixel * 41 * 30 } else { 0 };
+            // Two textures each, at the half-size samples' size (21x15): the average (8 or 2
+            // bytes a texel) and the surface (8 bytes).
+            let per_texel = if mode == Mode::Ssao { 2 + 8 } else { 8 + 8 };
+            let want = if kept { 2 * per_texel * 21 * 15 } else { 0 };
             assert_eq!(renderer.history().bytes(), want, "{mode}, {accumulate} frames");
             renderer.resize(gpu, 40, 30).unwrap();
         }
