@@ -1,11 +1,12 @@
 // The temporal pass: this frame's (blurred) AO / DO averaged with what the last frames left for
 // the same surface. The scene and its lights are static, so where a surface was on screen a
 // frame ago follows from the camera alone: each pixel's world position through the previous
-// frame's world-to-clip transform. The four history texels around that point are each kept only
+// frame's world-to-clip transform. The 4x4 history texels around that point are each kept only
 // if they hold the same surface — their own position (from the depth they stored and the
 // previous camera) within a tenth of the sampling radius of this pixel's tangent plane, and
-// their normal within 25° of this one — and are weighted bilinearly. What no kept texel
-// covers (disoccluded, off screen, or the first frame after a reset) starts anew from this frame.
+// their normal within 25° of this one — and are weighted by Catmull-Rom's cubic. Where the kept
+// texels carry less than half the weight (disoccluded, off screen, or the first frame after a
+// reset) the pixel starts anew from this frame.
 //
 // Each pixel counts the frames it holds, n. It blends 1/n of this frame in, n rising by one a
 // frame: while the pixel stays put, up to `accumulate`, where it then holds the exact mean of
@@ -138,18 +139,26 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
         let frac = at - base;
         let texels = vec2<i32>(textureDimensions(history_surface));
         let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
+        // Catmull-Rom weights over the 4x4 texels around the point, from the taps that hold
+        // this surface (renormalised; below half the weight, the history is dropped): a history
+        // resampled every frame on a grid two pixels wide loses its detail under bilinear
+        // weights (turning 1° a frame, SSAO's AO near contacts came out 5-13% further from the
+        // truth). The frames held are the bilinear average of the 2x2 around the point.
+        let c0 = frac * (-0.5 + frac * (1.0 - 0.5 * frac));
+        let c1 = 1.0 + frac * frac * (-2.5 + 1.5 * frac);
+        let c2 = frac * (0.5 + frac * (2.0 - 1.5 * frac));
+        let c3 = frac * frac * (-0.5 + 0.5 * frac);
         var weight = 0.0;
-        for (var i = 0u; i < 4u; i += 1u) {
-            let corner = vec2<u32>(i & 1u, i >> 1u);
-            let tap = vec2<i32>(base) + vec2<i32>(corner);
+        var held_weight = 0.0;
+        for (var i = 0u; i < 16u; i += 1u) {
+            let corner = vec2<u32>(i & 3u, i >> 2u);
+            let tap = vec2<i32>(base) + vec2<i32>(corner) - 1;
             if any(tap < vec2<i32>(0)) || any(tap >= texels) {
                 continue;
             }
-            let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(1u));
-            let w = bilinear.x * bilinear.y;
             let s = textureLoad(history_surface, tap, 0);
             let frames = f32(s.y >> 24u);
-            if w <= 0.0 || frames <= 0.0 {
+            if frames <= 0.0 {
                 continue;
             }
             // The texel's own surface point, from its pixel and depth through the previous camera.
@@ -161,13 +170,19 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
             if !same || !finite4(value) {
                 continue;
             }
-            past += w * value;
-            held += w * frames;
-            weight += w;
+            let cx = select(select(c0.x, c1.x, corner.x == 1u), select(c2.x, c3.x, corner.x == 3u), corner.x >= 2u);
+            let cy = select(select(c0.y, c1.y, corner.y == 1u), select(c2.y, c3.y, corner.y == 3u), corner.y >= 2u);
+            past += (cx * cy) * value;
+            weight += cx * cy;
+            if all(corner >= vec2<u32>(1u)) && all(corner <= vec2<u32>(2u)) {
+                let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(2u));
+                held += bilinear.x * bilinear.y * frames;
+                held_weight += bilinear.x * bilinear.y;
+            }
         }
-        if weight > 1e-3 {
+        if weight > 0.5 && held_weight > 1e-3 {
             past /= weight;
-            held /= weight;
+            held /= held_weight;
         } else {
             held = 0.0;
         }
