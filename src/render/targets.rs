@@ -175,6 +175,19 @@ pub enum Stage {
 }
 
 impl Stage {
+    /// The last stage of a chain: the average over frames where it accumulates, else the
+    /// samples blurred where it blurs, else as they were taken; at half size (`half`) or full.
+    pub fn last(accumulated: bool, blurred: bool, half: bool) -> Stage {
+        match (accumulated, blurred, half) {
+            (true, _, true) => Stage::HalfAccumulated,
+            (true, _, false) => Stage::Accumulated,
+            (false, true, true) => Stage::HalfBlurred,
+            (false, true, false) => Stage::Blurred,
+            (false, false, true) => Stage::Half,
+            (false, false, false) => Stage::Raw,
+        }
+    }
+
     /// The stage's target for a mode that computes DO (`directional`) or AO alone.
     pub fn target(self, directional: bool) -> TargetId {
         let (ao, d) = match self {

@@ -38,7 +38,7 @@ pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
 use super::settings::SenderSky;
-use super::targets::{Place, TargetId, DO_FORMAT};
+use super::targets::{Place, Stage, TargetId, DO_FORMAT};
 
 /// What the scene brings that changes the plan.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -196,6 +196,12 @@ impl Plan {
     /// Whether the plan averages the sampling output over frames.
     pub fn accumulates(&self) -> bool {
         self.accumulates
+    }
+
+    /// The sampling chain's last stage at half size (`half`: where the samples are, in a
+    /// half-resolution plan) or at full size (the upsample's copy, or the samples themselves).
+    pub fn chain_end(&self, half: bool) -> Stage {
+        Stage::last(self.accumulates, self.blur, half)
     }
 
     /// The names of the steps, in order.

@@ -11,7 +11,7 @@ use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
-use crate::render::targets::{Stage, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
+use crate::render::targets::{ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
 use crate::render::variant::{Composite, Variant};
 use crate::Result;
 
@@ -69,14 +69,7 @@ impl CompositePass {
     /// cannot also be bound); HDR, or in a display plan the output.
     pub fn io(plan: &Plan) -> PassIo {
         let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter];
-        let stage = match (plan.half_resolution, plan.accumulates(), plan.blur) {
-            (true, true, _) => Stage::HalfAccumulated,
-            (true, false, true) => Stage::HalfBlurred,
-            (true, false, false) => Stage::Half,
-            (false, true, _) => Stage::Accumulated,
-            (false, false, true) => Stage::Blurred,
-            (false, false, false) => Stage::Raw,
-        };
+        let stage = plan.chain_end(plan.half_resolution);
         reads.push(Read::target_if(plan.decl.runs_sampling(), stage.target(plan.decl.directional_occlusion)));
         reads.push(Read::target_if(plan.display && plan.lighting_writes_direct(), HDR));
         PassIo { reads, attached: vec![], writes: vec![if plan.display { OUTPUT } else { HDR }] }

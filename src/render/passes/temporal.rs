@@ -71,17 +71,11 @@ impl TemporalPass {
     /// raw ones.
     fn io_reading(plan: &Plan, blurred: bool) -> PassIo {
         let d = plan.decl.directional_occlusion;
-        let filtered = match (plan.half_resolution, blurred) {
-            (true, true) => Stage::HalfBlurred,
-            (true, false) => Stage::Half,
-            (false, true) => Stage::Blurred,
-            (false, false) => Stage::Raw,
-        }
-        .target(d);
+        let filtered = Stage::last(false, blurred, plan.half_resolution).target(d);
         let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Filter]);
         let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
-        let average = if plan.half_resolution { Stage::HalfAccumulated } else { Stage::Accumulated };
-        PassIo { reads, attached: vec![], writes: vec![average.target(d), OCCLUSION_HISTORY, SURFACE_HISTORY] }
+        let average = Stage::last(true, blurred, plan.half_resolution).target(d);
+        PassIo { reads, attached: vec![], writes: vec![average, OCCLUSION_HISTORY, SURFACE_HISTORY] }
     }
 
     /// Its two histories, at the samples' size: the averaged sampling output (in its own

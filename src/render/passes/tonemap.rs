@@ -9,7 +9,7 @@ use crate::render::graph::Entry;
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
-use crate::render::targets::{Stage, ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
+use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
 use crate::Result;
 
 impl Step {
@@ -64,13 +64,7 @@ impl TonemapPass {
 /// What the debug views read of the sampling chain: its last stage at full size (after a
 /// half-size chain, the upsample pass's copy), AO alone or DO + AO, the other absent.
 fn occlusion_reads(plan: &Plan) -> [Read; 2] {
-    let stage = if plan.accumulates() {
-        Stage::Accumulated
-    } else if plan.blur {
-        Stage::Blurred
-    } else {
-        Stage::Raw
-    };
+    let stage = plan.chain_end(false);
     let (sampled, d) = (plan.decl.runs_sampling(), plan.decl.directional_occlusion);
     [Read::target_if(sampled && !d, stage.target(false)), Read::target_if(sampled && d, stage.target(true))]
 }

@@ -12,7 +12,6 @@ use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::Stage;
 use crate::Result;
 
 impl Step {
@@ -40,11 +39,7 @@ impl UpsamplePass {
 
     /// The G-buffer, the parameters and the chain's last half-size stage; its full-size copy.
     pub fn io(plan: &Plan) -> PassIo {
-        match (plan.accumulates(), plan.blur) {
-            (true, _) => filter_io(plan, Stage::HalfAccumulated, Stage::Accumulated),
-            (false, true) => filter_io(plan, Stage::HalfBlurred, Stage::Blurred),
-            (false, false) => filter_io(plan, Stage::Half, Stage::Raw),
-        }
+        filter_io(plan, plan.chain_end(true), plan.chain_end(false))
     }
 }
 
