@@ -5,6 +5,11 @@
 
 #include "common/uniforms.wgsl"
 
+// The number of lights where the pipeline was built for it (the loop has a known length, and the
+// compiler unrolls it); 0: the frame's count, read as the loop runs (src/render/modes/mod.rs,
+// `Plan::unrolled_lights`).
+override LIGHT_COUNT: u32 = 0u;
+
 struct PointLighting {
     diffuse: vec3<f32>,
     specular: vec3<f32>,
@@ -14,8 +19,12 @@ fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, 
     let to_eye = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
     let min_d2 = frame.min_light_distance2;
     let spec_norm = (shininess + 8.0) / (8.0 * PI);
+    var count = frame.light_count;
+    if LIGHT_COUNT > 0u {
+        count = LIGHT_COUNT;
+    }
     var out: PointLighting;
-    for (var i = 0u; i < frame.light_count; i += 1u) {
+    for (var i = 0u; i < count; i += 1u) {
         let light = lights[i];
         let to_light = light.view_position - p;
         let d2 = dot(to_light, to_light);

@@ -32,7 +32,7 @@ use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};
 use history::{History, StillView};
-pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step};
+pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, UNROLLED_LIGHTS};
 use passes::PassSet;
 pub use passes::StepIo;
 use resources::sampling::SamplingData;

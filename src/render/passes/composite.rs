@@ -27,6 +27,8 @@ pub const ENTRY: Entry =
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     light_loop: bool,
+    /// `Plan::unrolled_lights`.
+    light_count: u32,
     additive: bool,
     ao: bool,
     directional: bool,
@@ -41,6 +43,7 @@ impl Key {
     fn of(plan: &Plan, variant: Variant, white_albedo: bool) -> Self {
         Self {
             light_loop: plan.light_loop(),
+            light_count: plan.unrolled_lights(),
             additive: plan.lighting_writes_direct(),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
@@ -110,6 +113,7 @@ impl Pass for CompositePass {
                     depth: None,
                     constants: &[
                         ("LIGHT_LOOP", f(key.light_loop)),
+                        ("LIGHT_COUNT", f64::from(key.light_count)),
                         ("HAS_AO", f(key.ao)),
                         ("HAS_DO", f(key.directional)),
                         ("CLASSIC", f(key.classic)),

@@ -33,12 +33,14 @@ pub const ENTRY: Entry = Entry::new(
 struct Key {
     /// Point lights: their loop runs and their displayed light goes to HDR.
     lights: bool,
+    /// `Plan::unrolled_lights`.
+    light_count: u32,
     sender_sky: SenderSky,
 }
 
 impl Key {
     fn of(plan: &Plan) -> Self {
-        Self { lights: plan.lighting_writes_direct(), sender_sky: plan.sender_sky }
+        Self { lights: plan.lighting_writes_direct(), light_count: plan.unrolled_lights(), sender_sky: plan.sender_sky }
     }
 }
 
@@ -73,7 +75,11 @@ impl Pass for LightingPass {
             PipelineSpec {
                 entry: if key.lights { "fs_main" } else { "fs_bounce" },
                 targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
-                constants: vec![("LIGHTS", flag(key.lights)), ("SENDER_SKY", key.sender_sky.shader_code())],
+                constants: vec![
+                    ("LIGHTS", flag(key.lights)),
+                    ("LIGHT_COUNT", f64::from(key.light_count)),
+                    ("SENDER_SKY", key.sender_sky.shader_code()),
+                ],
             }
         });
     }

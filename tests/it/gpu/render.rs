@@ -7,7 +7,7 @@ use crate::common;
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot, H, W};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
-use ssdo::render::{Settings, Step};
+use ssdo::render::{Mode, Settings, Step, UNROLLED_LIGHTS};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
 
 fn no_ambient() -> Settings {
@@ -114,6 +114,55 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
     let cos = 0.3 / to_light.length();
     let want = 0.2 * 0.75 + 0.75 / std::f32::consts::PI * intensity * cos / to_light.length_squared();
     assert!((got - want).abs() < 0.03 * want, "HDR red {got} vs {want}");
+}
+
+#[test]
+fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
+    let Some(gpu) = gpu() else { return };
+    // Three coloured lights over a floor, then the same three with lights under it, which face
+    // the floor's back and add nothing: up to UNROLLED_LIGHTS the pipelines are built for the
+    // count, past it the loop reads the frame's. A loop built for a wrong count drops or repeats
+    // a light, and the floor differs.
+    let above = [
+        (Vec3::new(-1.0, 0.4, 0.0), Vec3::X),
+        (Vec3::new(0.8, 0.5, 0.6), Vec3::Y),
+        (Vec3::new(0.3, 0.6, -0.9), Vec3::Z),
+    ];
+    let lights = |under: usize| {
+        let lit = above.iter().map(|&(position, color)| PointLight { position, color, intensity: 0.5 });
+        let hidden = (0..under).map(|i| PointLight {
+            position: Vec3::new(i as f32 * 0.2 - 0.5, -0.5, 0.0),
+            color: Vec3::ONE,
+            intensity: 2.0,
+        });
+        lit.chain(hidden).collect::<Vec<_>>()
+    };
+    let camera = looking(Vec3::ZERO, 0.0, 89.9, 5.0);
+    let sky = Skybox::constant(Vec3::splat(0.1));
+    for mode in [Mode::Off, Mode::Ssdo] {
+        let mut images = Vec::new();
+        for (under, unrolled) in [(0, 3), (UNROLLED_LIGHTS - 3, UNROLLED_LIGHTS as u32), (UNROLLED_LIGHTS - 2, 0)] {
+            let mut scene = Scene::new(builtin::plane(2.0, builtin::WHITE).unwrap(), 0, 1);
+            scene.lights = lights(under);
+            let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { mode, ..no_ambient() });
+            assert_eq!(r.plan().unrolled_lights(), unrolled, "{mode:?} with {} lights", scene.lights.len());
+            shoot(gpu, &mut r, &camera);
+            // The HDR target holds radiance × the pre-exposure, which counts every light.
+            let unexpose = 1.0 / r.pre_exposure();
+            let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();
+            images.push(hdr.iter().map(|p| p.map(|c| c * unexpose)).collect::<Vec<_>>());
+        }
+        let reds = images[0].iter().filter(|p| p[0] > 2.0 * p[1] + 0.05).count();
+        assert!(reds > 100, "{mode:?}: the red light lights the floor ({reds} pixels)");
+        for (i, image) in images.iter().enumerate().skip(1) {
+            let worst = image
+                .iter()
+                .zip(&images[0])
+                .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs() / (b[c].abs() + 0.01)).fold(0.0, f32::max));
+            let worst = worst.fold(0.0, f32::max);
+            assert!(worst < 4e-3, "{mode:?}: image {i} differs from the three lights' by {worst}");
+        }
+    }
 }
 
 #[test]
