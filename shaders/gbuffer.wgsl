@@ -21,8 +21,8 @@ struct MaterialParams {
     albedo: vec3<f32>,
     // specular strength
     specular: f32,
-    // Blinn-Phong exponent
-    shininess: f32,
+    // Blinn-Phong exponent, as the G-buffer's bits 24-31 hold it (common/surface_pack.wgsl)
+    shininess_bits: u32,
     // multiplies the normal map's x and y
     normal_scale: f32,
     // coverage below this is a hole
@@ -156,6 +156,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     n *= camera_side(vertex_normal, in.view_position, plane, front);
     var out: GBufferOut;
     out.albedo = vec4<f32>(albedo, specular);
-    out.normal = pack_surface(n, material.shininess);
+    out.normal = pack_normal(n) | material.shininess_bits;
     return out;
 }

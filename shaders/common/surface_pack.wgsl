@@ -14,15 +14,16 @@ fn sign_not_zero(v: vec2<f32>) -> vec2<f32> {
     return select(vec2<f32>(-1.0), vec2<f32>(1.0), v >= vec2<f32>(0.0));
 }
 
-fn pack_surface(n: vec3<f32>, shininess: f32) -> u32 {
+// The normal's 24 bits; the shininess's 8 (bits 24-31) are a material's, packed once on the CPU
+// (`MaterialParams::shininess_bits`, src/render/targets.rs `shininess_bits`).
+fn pack_normal(n: vec3<f32>) -> u32 {
     let m = n / max(abs(n.x) + abs(n.y) + abs(n.z), 1e-30);
     var e = m.xy;
     if m.z < 0.0 {
         e = (1.0 - abs(m.yx)) * sign_not_zero(m.xy);
     }
     let q = vec2<u32>(round(clamp(e * 0.5 + 0.5, vec2<f32>(0.0), vec2<f32>(1.0)) * 4095.0));
-    let s = u32(round(clamp(log2(1.0 + max(shininess, 0.0)) * SHININESS_SCALE, 0.0, 255.0)));
-    return q.x | (q.y << 12u) | (s << 24u);
+    return q.x | (q.y << 12u);
 }
 
 fn unpack_normal(bits: u32) -> vec3<f32> {

@@ -15,12 +15,23 @@ const SHININESS_SCALE: f32 = 255.0 / 13.0;
 /// The G-buffer's packed surface: the unit normal in two 12-bit octahedral coordinates and the
 /// shininess in 8 log-encoded bits, exactly as `pack_surface` in `surface_pack.wgsl` writes it.
 pub fn pack_surface(n: glam::Vec3, shininess: f32) -> u32 {
+    pack_normal(n) | shininess_bits(shininess)
+}
+
+/// The packed surface's normal bits (0-23), as `pack_normal` in `surface_pack.wgsl` writes them.
+pub fn pack_normal(n: glam::Vec3) -> u32 {
     let sign = |v: f32| if v >= 0.0 { 1.0 } else { -1.0 };
     let m = n / (n.x.abs() + n.y.abs() + n.z.abs()).max(1e-30);
     let (x, y) = if m.z < 0.0 { ((1.0 - m.y.abs()) * sign(m.x), (1.0 - m.x.abs()) * sign(m.y)) } else { (m.x, m.y) };
     let q = |e: f32| ((e * 0.5 + 0.5).clamp(0.0, 1.0) * 4095.0).round() as u32;
+    q(x) | (q(y) << 12)
+}
+
+/// The packed surface's shininess bits (24-31): a material's, computed once for its draws (the
+/// G-buffer pass ORs them onto the normal's).
+pub fn shininess_bits(shininess: f32) -> u32 {
     let s = ((1.0 + shininess.max(0.0)).log2() * SHININESS_SCALE).clamp(0.0, 255.0).round() as u32;
-    q(x) | (q(y) << 12) | (s << 24)
+    s << 24
 }
 
 /// The normal and shininess of a packed surface (the inverse of [`pack_surface`]).

@@ -56,7 +56,8 @@ pub struct GpuLight {
 pub struct MaterialParams {
     pub albedo: [f32; 3],
     pub specular: f32,
-    pub shininess: f32,
+    /// The Blinn-Phong exponent as the G-buffer packs it (`targets::shininess_bits`).
+    pub shininess_bits: u32,
     /// Multiplies the normal map's x and y.
     pub normal_scale: f32,
     /// Coverage below this is a hole (cut-out materials).

@@ -22,7 +22,7 @@ use crate::render::graph::io::PassIo;
 use crate::render::graph::{Entry, Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::resources::scene::{upload_texture, Draw, SceneGpu};
-use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
+use crate::render::targets::{shininess_bits, ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
 use crate::render::uniforms::MaterialParams;
 use crate::scene::model::TextureImage;
 use crate::scene::{Model, Vertex};
@@ -245,7 +245,7 @@ impl GBufferPass {
                 let params = MaterialParams {
                     albedo: m.diffuse,
                     specular: m.specular.iter().sum::<f32>() / 3.0,
-                    shininess: m.shininess,
+                    shininess_bits: shininess_bits(m.shininess),
                     normal_scale: m.normal_map.as_ref().map_or(1.0, |n| n.scale),
                     alpha_cutoff: m.cutout.as_ref().map_or(0.0, |c| c.cutoff),
                     alpha_factor: m.cutout.as_ref().map_or(1.0, |c| c.factor),

@@ -117,7 +117,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
     same_layout!(
         &gbuffer,
         "MaterialParams",
-        MaterialParams { albedo, specular, shininess, normal_scale, alpha_cutoff, alpha_factor }
+        MaterialParams { albedo, specular, shininess_bits, normal_scale, alpha_cutoff, alpha_factor }
     );
     same_layout!(
         &parse("points.wgsl"),
