@@ -9,6 +9,9 @@
 // compiler unrolls it); 0: the frame's count, read as the loop runs (src/render/modes/mod.rs,
 // `Plan::unrolled_lights`).
 override LIGHT_COUNT: u32 = 0u;
+// The lights are read from the frame uniforms' copy (`frame.first_lights`: the scene has at most
+// UNIFORM_LIGHTS), not from the storage array (`Plan::uniform_lights`).
+override UNIFORM_LIGHT_READS: bool = false;
 
 struct PointLighting {
     diffuse: vec3<f32>,
@@ -25,7 +28,12 @@ fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, 
     }
     var out: PointLighting;
     for (var i = 0u; i < count; i += 1u) {
-        let light = lights[i];
+        var light: Light;
+        if UNIFORM_LIGHT_READS {
+            light = frame.first_lights[i];
+        } else {
+            light = lights[i];
+        }
         let to_light = light.view_position - p;
         let d2 = dot(to_light, to_light);
         let l = safe_normalize(to_light, n);

@@ -47,7 +47,15 @@ struct Frame {
     // This frame's view space to the previous frame's: a direction (a normal) as the previous
     // frame's view saw it.
     view_to_previous_view: mat4x4<f32>,
+    // The first UNIFORM_LIGHTS lights of `lights` again (the rest zero): a light loop over at most
+    // that many reads them here, in uniform memory. On lavapipe each pixel's read of the storage
+    // array is a load of its own: one light read there took the composite 12 ms of 25 at
+    // 800x600, eight lights 85 ms of 113 (docs/performance.md).
+    first_lights: array<Light, UNIFORM_LIGHTS>,
 }
+
+// The most lights the frame uniforms carry (`UNIFORM_LIGHTS` in src/render/uniforms.rs).
+const UNIFORM_LIGHTS: u32 = 256u;
 
 struct Light {
     world_position: vec3<f32>,

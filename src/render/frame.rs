@@ -2,7 +2,7 @@
 
 use glam::{Mat3, Vec3, Vec4Swizzles};
 
-use super::uniforms::{mat, FrameUniforms, GpuLight};
+use super::uniforms::{mat, FrameUniforms, GpuLight, UNIFORM_LIGHTS};
 use crate::scene::skybox::irradiance_quadratic;
 use crate::scene::{LightRig, OrbitCamera, PointLight};
 
@@ -163,6 +163,21 @@ impl FrameData {
         let this_camera = (world_to_clip, world_to_view);
         let (previous, previous_world_to_view) = self.previous_camera.replace(this_camera).unwrap_or(this_camera);
         self.camera_moved = previous != world_to_clip;
+        let gpu_lights: Vec<GpuLight> = lights
+            .iter()
+            .map(|l| GpuLight {
+                world_position: l.position.into(),
+                intensity: l.intensity,
+                view_position: (world_to_view * l.position.extend(1.0)).xyz().into(),
+                _pad0: 0.0,
+                color: l.color.into(),
+                cube_half_size: rig.cube_half_size,
+            })
+            .collect();
+        let mut first_lights = [GpuLight::default(); UNIFORM_LIGHTS];
+        for (slot, light) in first_lights.iter_mut().zip(&gpu_lights) {
+            *slot = *light;
+        }
         let uniforms = FrameUniforms {
             world_to_view: mat(world_to_view),
             view_to_clip: mat(view_to_clip),
@@ -190,6 +205,7 @@ impl FrameData {
             previous_world_to_clip: mat(previous),
             previous_clip_to_world: mat(previous.inverse()),
             view_to_previous_view: mat(previous_world_to_view * world_to_view.inverse()),
+            first_lights,
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.last = uniforms;
@@ -200,17 +216,6 @@ impl FrameData {
                 Self::light_buffer(device, &self.layout, &self.uniforms, self.light_capacity);
             self.cube_order = Self::order_buffer(device, self.light_capacity);
         }
-        let gpu_lights: Vec<GpuLight> = lights
-            .iter()
-            .map(|l| GpuLight {
-                world_position: l.position.into(),
-                intensity: l.intensity,
-                view_position: (world_to_view * l.position.extend(1.0)).xyz().into(),
-                _pad0: 0.0,
-                color: l.color.into(),
-                cube_half_size: rig.cube_half_size,
-            })
-            .collect();
         if !gpu_lights.is_empty() {
             queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&gpu_lights));
             let order = far_to_near(gpu_lights.iter().map(|l| Vec3::from(l.view_position)));

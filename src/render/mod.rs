@@ -32,7 +32,7 @@ use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};
 use history::{History, StillView};
-pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step, UNROLLED_LIGHTS};
+pub use modes::{Mode, Plan, PlanOptions, SceneFeatures, Step};
 use passes::PassSet;
 pub use passes::StepIo;
 use resources::sampling::SamplingData;
@@ -43,6 +43,7 @@ pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE};
 pub use targets::TargetId;
 use targets::Targets;
 use timer::GpuTimer;
+pub use uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
 pub struct Renderer {

@@ -13,7 +13,8 @@ pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const SHININESS_SCALE: f32 = 255.0 / 13.0;
 
 /// The G-buffer's packed surface: the unit normal in two 12-bit octahedral coordinates and the
-/// shininess in 8 log-encoded bits, exactly as `pack_surface` in `surface_pack.wgsl` writes it.
+/// shininess in 8 log-encoded bits, exactly as the G-buffer pass writes it (`pack_normal` in
+/// `surface_pack.wgsl`, ORed with the material's [`shininess_bits`]).
 pub fn pack_surface(n: glam::Vec3, shininess: f32) -> u32 {
     pack_normal(n) | shininess_bits(shininess)
 }

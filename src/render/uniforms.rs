@@ -9,7 +9,7 @@ use glam::Mat4;
 /// Per-frame data (bind group 0, binding 0). The meaning of each field is written once, beside
 /// the WGSL struct `Frame` in `shaders/common/uniforms.wgsl`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
     pub world_to_view: [[f32; 4]; 4],
     pub view_to_clip: [[f32; 4]; 4],
@@ -36,7 +36,23 @@ pub struct FrameUniforms {
     pub previous_world_to_clip: [[f32; 4]; 4],
     pub previous_clip_to_world: [[f32; 4]; 4],
     pub view_to_previous_view: [[f32; 4]; 4],
+    /// The first [`UNIFORM_LIGHTS`] lights (the rest zero), which the light loops read where the
+    /// scene has no more.
+    pub first_lights: [GpuLight; UNIFORM_LIGHTS],
 }
+
+/// The most point lights a light loop is built for (`Plan::unrolled_lights`): the default
+/// scene's eight. Such a loop has a known length, which the shader compiler unrolls: on lavapipe
+/// at 800x600 a loop over the frame's count cost the one-light composite 1.7 ms of 12
+/// (docs/performance.md).
+pub const UNROLLED_LIGHTS: usize = 8;
+
+/// The most point lights the frame uniforms carry (`FrameUniforms::first_lights`,
+/// `Plan::uniform_lights`; `UNIFORM_LIGHTS` in `uniforms.wgsl`): 12 KiB, within the 16 KiB a
+/// uniform binding may hold on every backend. Lights read from uniform memory instead of the
+/// storage array made the eight-light Off composite 3.8 times as fast on lavapipe
+/// (docs/performance.md); a scene with more lights reads the storage array.
+pub const UNIFORM_LIGHTS: usize = 256;
 
 /// One point light (bind group 0, binding 1, an array); `Light` in `uniforms.wgsl`.
 #[repr(C)]

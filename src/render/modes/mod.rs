@@ -39,11 +39,7 @@ pub use table::{Mode, ModeDecl, MODES};
 use super::history::HistorySpec;
 use super::settings::SenderSky;
 use super::targets::{Place, Stage, TargetId, DO_FORMAT};
-
-/// The most point lights a light loop is unrolled for (`Plan::unrolled_lights`): the default
-/// scene's eight. On lavapipe a loop over the frame's count cost the one-light composite 1.7 ms
-/// of 12 at 800x600, and the eight-light one 4.7 of 30.5 (docs/performance.md).
-pub const UNROLLED_LIGHTS: usize = 8;
+use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 
 /// What the scene brings that changes the plan.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -242,6 +238,12 @@ impl Plan {
             n @ 1..=UNROLLED_LIGHTS => n as u32,
             _ => 0,
         }
+    }
+
+    /// Whether the light loops read the frame uniforms' copy of the lights (the scene has at
+    /// most [`UNIFORM_LIGHTS`]) rather than the storage array.
+    pub fn uniform_lights(&self) -> bool {
+        self.features.lights <= UNIFORM_LIGHTS
     }
 }
 

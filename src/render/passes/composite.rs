@@ -29,6 +29,8 @@ struct Key {
     light_loop: bool,
     /// `Plan::unrolled_lights`.
     light_count: u32,
+    /// `Plan::uniform_lights`.
+    uniform_lights: bool,
     additive: bool,
     ao: bool,
     directional: bool,
@@ -44,6 +46,7 @@ impl Key {
         Self {
             light_loop: plan.light_loop(),
             light_count: plan.unrolled_lights(),
+            uniform_lights: plan.uniform_lights(),
             additive: plan.lighting_writes_direct(),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
@@ -114,6 +117,7 @@ impl Pass for CompositePass {
                     constants: &[
                         ("LIGHT_LOOP", f(key.light_loop)),
                         ("LIGHT_COUNT", f64::from(key.light_count)),
+                        ("UNIFORM_LIGHT_READS", f(key.uniform_lights)),
                         ("HAS_AO", f(key.ao)),
                         ("HAS_DO", f(key.directional)),
                         ("CLASSIC", f(key.classic)),

@@ -35,12 +35,19 @@ struct Key {
     lights: bool,
     /// `Plan::unrolled_lights`.
     light_count: u32,
+    /// `Plan::uniform_lights`.
+    uniform_lights: bool,
     sender_sky: SenderSky,
 }
 
 impl Key {
     fn of(plan: &Plan) -> Self {
-        Self { lights: plan.lighting_writes_direct(), light_count: plan.unrolled_lights(), sender_sky: plan.sender_sky }
+        Self {
+            lights: plan.lighting_writes_direct(),
+            light_count: plan.unrolled_lights(),
+            uniform_lights: plan.uniform_lights(),
+            sender_sky: plan.sender_sky,
+        }
     }
 }
 
@@ -78,6 +85,7 @@ impl Pass for LightingPass {
                 constants: vec![
                     ("LIGHTS", flag(key.lights)),
                     ("LIGHT_COUNT", f64::from(key.light_count)),
+                    ("UNIFORM_LIGHT_READS", flag(key.uniform_lights)),
                     ("SENDER_SKY", key.sender_sky.shader_code()),
                 ],
             }

@@ -107,6 +107,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             previous_world_to_clip,
             previous_clip_to_world,
             view_to_previous_view,
+            first_lights,
         }
     );
     same_layout!(

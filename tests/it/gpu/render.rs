@@ -7,7 +7,7 @@ use crate::common;
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot, H, W};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
-use ssdo::render::{Mode, Settings, Step, UNROLLED_LIGHTS};
+use ssdo::render::{Mode, Settings, Step, UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
 
 fn no_ambient() -> Settings {
@@ -121,8 +121,9 @@ fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
     let Some(gpu) = gpu() else { return };
     // Three coloured lights over a floor, then the same three with lights under it, which face
     // the floor's back and add nothing: up to UNROLLED_LIGHTS the pipelines are built for the
-    // count, past it the loop reads the frame's. A loop built for a wrong count drops or repeats
-    // a light, and the floor differs.
+    // count, past it the loop reads the frame's; up to UNIFORM_LIGHTS the lights are read from
+    // the frame uniforms' copy, past it from the storage array. A loop built for a wrong count
+    // drops or repeats a light, a copy out of step with the array lights the floor differently.
     let above = [
         (Vec3::new(-1.0, 0.4, 0.0), Vec3::X),
         (Vec3::new(0.8, 0.5, 0.6), Vec3::Y),
@@ -130,8 +131,9 @@ fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
     ];
     let lights = |under: usize| {
         let lit = above.iter().map(|&(position, color)| PointLight { position, color, intensity: 0.5 });
+        // On a grid under the floor's middle, so their cubes stay hidden too.
         let hidden = (0..under).map(|i| PointLight {
-            position: Vec3::new(i as f32 * 0.2 - 0.5, -0.5, 0.0),
+            position: Vec3::new((i % 16) as f32 / 16.0 - 0.5, -0.5, (i / 16) as f32 / 16.0 - 0.5),
             color: Vec3::ONE,
             intensity: 2.0,
         });
@@ -141,11 +143,19 @@ fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
     let sky = Skybox::constant(Vec3::splat(0.1));
     for mode in [Mode::Off, Mode::Ssdo] {
         let mut images = Vec::new();
-        for (under, unrolled) in [(0, 3), (UNROLLED_LIGHTS - 3, UNROLLED_LIGHTS as u32), (UNROLLED_LIGHTS - 2, 0)] {
+        let cases = [
+            (0, 3, true),
+            (UNROLLED_LIGHTS - 3, UNROLLED_LIGHTS as u32, true),
+            (UNROLLED_LIGHTS - 2, 0, true),
+            (UNIFORM_LIGHTS - 3, 0, true),
+            (UNIFORM_LIGHTS - 2, 0, false),
+        ];
+        for (under, unrolled, uniform) in cases {
             let mut scene = Scene::new(builtin::plane(2.0, builtin::WHITE).unwrap(), 0, 1);
             scene.lights = lights(under);
             let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { mode, ..no_ambient() });
             assert_eq!(r.plan().unrolled_lights(), unrolled, "{mode:?} with {} lights", scene.lights.len());
+            assert_eq!(r.plan().uniform_lights(), uniform, "{mode:?} with {} lights", scene.lights.len());
             shoot(gpu, &mut r, &camera);
             // The HDR target holds radiance × the pre-exposure, which counts every light.
             let unexpose = 1.0 / r.pre_exposure();
