@@ -66,10 +66,10 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
         let pixel = vec2<i32>(min(in.position.xy - frame.output_origin, size - 1.0));
         let depth = load_depth(pixel);
         let albedo = textureLoad(g_albedo, pixel, 0);
-        var color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5, depth, albedo) * frame.display_scale);
-        if depth <= 0.0 {
-            // The sky, displayed as the G-buffer pass drew it.
-            color = albedo.rgb;
+        // The sky, displayed as the G-buffer pass drew it.
+        var color = albedo.rgb;
+        if depth > 0.0 {
+            color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5, depth, albedo) * frame.display_scale);
         }
         if !OUTPUT_SRGB {
             color = linear_to_srgb(color);
