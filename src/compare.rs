@@ -49,8 +49,8 @@ pub fn draw_text(image: &mut RgbaImage, x: f32, y: f32, size: f32, color: [u8; 3
                 return;
             }
             let pixel = image.get_pixel_mut(px as u32, py as u32);
-            for c in 0..3 {
-                pixel.0[c] = (pixel.0[c] as f32 * (1.0 - coverage) + color[c] as f32 * coverage).round() as u8;
+            for (channel, &ink) in pixel.0.iter_mut().zip(&color) {
+                *channel = (*channel as f32 * (1.0 - coverage) + ink as f32 * coverage).round() as u8;
             }
         });
     }

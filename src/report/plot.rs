@@ -177,8 +177,11 @@ fn lines(rows: &[Row]) -> Vec<Line> {
     out
 }
 
+/// Points of the plot: (log time, log error).
+type Points = Vec<(f64, f64)>;
+
 /// The Pareto front's rows in time order, and the staircase through them.
-fn pareto_stairs(rows: &[Row]) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn pareto_stairs(rows: &[Row]) -> (Points, Points) {
     let front: Vec<(f64, f64)> =
         rows.iter().filter(|r| r.pareto).map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
     let mut stairs = Vec::new();

@@ -174,13 +174,7 @@ type Parsed = (Vec<tobj::Model>, std::result::Result<Vec<tobj::Material>, tobj::
 /// are avoided by `sanitize_obj`; the guard is the net under it).
 fn parse(text: &str, folder: &ModelFolder) -> std::result::Result<Parsed, String> {
     let warnings = RefCell::new(Vec::new());
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let material_loader = |mtl: &Path| match folder.read(&mtl.to_string_lossy(), MAX_MTL_BYTES) {
         Ok((mtl_path, bytes)) => {
             let (text, dropped) = sanitize_mtl(&decode_text(&bytes));

@@ -231,7 +231,8 @@ fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
 
 /// Group 1's bindings as `shader` declares them: (binding, kind); each shader parsed once.
 fn shader_group(shader: &'static str) -> Vec<(u32, Kind)> {
-    static PARSED: std::sync::Mutex<Vec<(&str, Vec<(u32, Kind)>)>> = std::sync::Mutex::new(Vec::new());
+    type Parsed = Vec<(&'static str, Vec<(u32, Kind)>)>;
+    static PARSED: std::sync::Mutex<Parsed> = std::sync::Mutex::new(Vec::new());
     let mut parsed = PARSED.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, group)) = parsed.iter().find(|(name, _)| *name == shader) {
         return group.clone();

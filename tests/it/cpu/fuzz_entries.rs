@@ -68,7 +68,10 @@ pub fn panorama(data: &[u8]) {
 }
 
 /// The fuzz targets by name, as `fuzz/Cargo.toml` names them.
-pub const TARGETS: [(&str, fn(&[u8])); 5] =
+/// A fuzz target: its name and its entry.
+pub type Target = (&'static str, fn(&[u8]));
+
+pub const TARGETS: [Target; 5] =
     [("obj", obj), ("skybox", skybox), ("gltf", gltf), ("glb", glb), ("panorama", panorama)];
 
 #[cfg(test)]
