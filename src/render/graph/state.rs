@@ -7,7 +7,7 @@
 use super::io::{Inputs, Kind, PassIo};
 use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::TargetId;
+use crate::render::targets::{TargetId, DEPTH_FORMAT};
 use crate::{shaders, Result};
 
 /// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
@@ -40,6 +40,8 @@ pub struct PassState<K> {
     /// The targets the pass writes in the plan it was last bound for, so a frame's `record`
     /// does not build its declaration again.
     writes: Vec<TargetId>,
+    /// Draws only where the G-buffer has a surface (`surfaces_only`).
+    surfaces_only: bool,
 }
 
 impl<K: PartialEq + Copy> PassState<K> {
@@ -55,7 +57,20 @@ impl<K: PartialEq + Copy> PassState<K> {
             pipeline: KeyedPipeline::new(),
             bind_group: None,
             writes: Vec::new(),
+            surfaces_only: false,
         })
+    }
+
+    /// The pass draws only where the G-buffer has a surface: its pipelines test the fragment
+    /// against the depth buffer (read-only), so the sky's pixels keep the cleared value without
+    /// running the shader. For a pass whose shader returns zero there anyway: a branch does not
+    /// spare a CPU rasteriser the work it skips (both sides run), the depth test does. Only where
+    /// the adapter lets a read-only depth attachment be read as a texture in the same pass (not
+    /// wgpu's GL backend); elsewhere the shader's own test stands.
+    pub fn surfaces_only(mut self, cx: &PassContext<'_>) -> Self {
+        let flags = cx.gpu.adapter.get_downlevel_capabilities().flags;
+        self.surfaces_only = flags.contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
+        self
     }
 
     /// Another state of the same shader and layouts, named `name`, with a pipeline of its own: a
@@ -72,6 +87,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             pipeline: KeyedPipeline::new(),
             bind_group: None,
             writes: Vec::new(),
+            surfaces_only: self.surfaces_only,
         }
     }
 
@@ -129,6 +145,15 @@ impl<K: PartialEq + Copy> PassState<K> {
     /// and groups, labelled after the pass, with what `spec` gives for the key.
     pub fn ensure_fullscreen(&mut self, device: &wgpu::Device, key: K, spec: impl FnOnce(K) -> PipelineSpec) {
         let label = format!("{}_pipeline", self.name);
+        // The full-screen triangle lies at depth 0, the reverse-Z far plane where nothing was
+        // drawn: it passes where the stored depth is greater, on a surface.
+        let depth = self.surfaces_only.then(|| wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        });
         self.ensure(key, |key, module, layouts| {
             let spec = spec(key);
             let desc = FullscreenDesc {
@@ -137,7 +162,7 @@ impl<K: PartialEq + Copy> PassState<K> {
                 entry: spec.entry,
                 bind_group_layouts: layouts,
                 targets: &spec.targets,
-                depth: None,
+                depth,
                 constants: &spec.constants,
             };
             fullscreen_pipeline(device, &desc)
@@ -201,7 +226,9 @@ impl<K: PartialEq + Copy> PassState<K> {
     pub fn record(&self, rec: Recording<'_>) {
         let attachments = rec.attachments(&self.writes, true);
         let sky = self.sky_layout.is_some().then_some(&rec.sky.bind_group);
-        self.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, sky), None);
+        let (_, _, own) = self.ready();
+        let depth = self.surfaces_only.then(|| &rec.targets.depth().view);
+        self.draw_inner((rec.encoder, rec.timestamps), &attachments, (rec.frame, own, sky), depth, None);
     }
 
     /// [`PassState::draw`] with group 1 given: a pass that keeps one group per history parity.
@@ -210,6 +237,18 @@ impl<K: PartialEq + Copy> PassState<K> {
         rec: (&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'a>>),
         attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
         groups: (&'a wgpu::BindGroup, &'a wgpu::BindGroup, Option<&'a wgpu::BindGroup>),
+        viewport: Option<[f32; 4]>,
+    ) {
+        debug_assert!(!self.surfaces_only, "the {} pass draws only on surfaces: record it with `record`", self.name);
+        self.draw_inner(rec, attachments, groups, None, viewport);
+    }
+
+    fn draw_inner<'a>(
+        &'a self,
+        rec: (&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'a>>),
+        attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
+        groups: (&'a wgpu::BindGroup, &'a wgpu::BindGroup, Option<&'a wgpu::BindGroup>),
+        depth: Option<&'a wgpu::TextureView>,
         viewport: Option<[f32; 4]>,
     ) {
         let (encoder, timestamps) = rec;
@@ -226,16 +265,8 @@ impl<K: PartialEq + Copy> PassState<K> {
             }
             None => &all,
         };
-        FullscreenPass {
-            label: &self.pass_label,
-            attachments,
-            depth: None,
-            timestamps,
-            pipeline,
-            bind_groups,
-            viewport,
-        }
-        .record(encoder);
+        FullscreenPass { label: &self.pass_label, attachments, depth, timestamps, pipeline, bind_groups, viewport }
+            .record(encoder);
     }
 
     /// The pipeline (with its key) and the bind group. A pass recorded before `prepare`, or in a

@@ -57,7 +57,8 @@ pub struct LightingPass {
 
 impl LightingPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false)? })
+        // The sky's pixels send nothing: the depth test leaves them cleared.
+        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false)?.surfaces_only(cx) })
     }
 
     /// The G-buffer and, after their march, the senders' sky; the point lights' displayed light
