@@ -245,6 +245,29 @@ impl Plan {
     pub fn uniform_lights(&self) -> bool {
         self.features.lights <= UNIFORM_LIGHTS
     }
+
+    /// How every pipeline with a light loop (the composite's, the lighting pass's) reads the
+    /// lights.
+    pub fn light_reads(&self) -> LightReads {
+        LightReads { count: self.unrolled_lights(), uniform: self.uniform_lights() }
+    }
+}
+
+/// How a pipeline's point-light loop (`common/point_lights.wgsl`) reads the lights: part of the
+/// key of each pass that runs one, and the override constants it is built with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightReads {
+    /// The count the loop is built for ([`Plan::unrolled_lights`]), or 0: the frame's count.
+    pub count: u32,
+    /// From the frame uniforms' copy ([`Plan::uniform_lights`]), not the storage array.
+    pub uniform: bool,
+}
+
+impl LightReads {
+    /// `LIGHT_COUNT` and `UNIFORM_LIGHT_READS`.
+    pub fn constants(self) -> [(&'static str, f64); 2] {
+        [("LIGHT_COUNT", f64::from(self.count)), ("UNIFORM_LIGHT_READS", f64::from(u8::from(self.uniform)))]
+    }
 }
 
 /// The temporal pass's history of the averaged AO or DO + AO (in the sampling output's

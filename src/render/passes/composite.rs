@@ -9,7 +9,7 @@ use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
-use crate::render::modes::{Plan, Step};
+use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::View;
 use crate::render::targets::{ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
 use crate::render::variant::{Composite, Variant};
@@ -27,10 +27,7 @@ pub const ENTRY: Entry =
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     light_loop: bool,
-    /// `Plan::unrolled_lights`.
-    light_count: u32,
-    /// `Plan::uniform_lights`.
-    uniform_lights: bool,
+    lights: LightReads,
     additive: bool,
     ao: bool,
     directional: bool,
@@ -45,8 +42,7 @@ impl Key {
     fn of(plan: &Plan, variant: Variant, white_albedo: bool) -> Self {
         Self {
             light_loop: plan.light_loop(),
-            light_count: plan.unrolled_lights(),
-            uniform_lights: plan.uniform_lights(),
+            lights: plan.light_reads(),
             additive: plan.lighting_writes_direct(),
             ao: plan.decl.ambient_occlusion,
             directional: plan.decl.directional_occlusion,
@@ -101,6 +97,20 @@ impl Pass for CompositePass {
                 },
                 alpha: wgpu::BlendComponent::REPLACE,
             });
+            let constants: Vec<_> = [
+                ("LIGHT_LOOP", f(key.light_loop)),
+                ("HAS_AO", f(key.ao)),
+                ("HAS_DO", f(key.directional)),
+                ("CLASSIC", f(key.classic)),
+                ("WHITE_ALBEDO", f(key.white_albedo)),
+                ("DISPLAY", f(key.display)),
+                ("OUTPUT_SRGB", f(output.is_srgb())),
+                ("DIRECT_INPUT", f(key.display && key.additive)),
+                ("HALF_INPUT", f(key.half_input)),
+            ]
+            .into_iter()
+            .chain(key.lights.constants())
+            .collect();
             fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
@@ -114,19 +124,7 @@ impl Pass for CompositePass {
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
                     depth: None,
-                    constants: &[
-                        ("LIGHT_LOOP", f(key.light_loop)),
-                        ("LIGHT_COUNT", f64::from(key.light_count)),
-                        ("UNIFORM_LIGHT_READS", f(key.uniform_lights)),
-                        ("HAS_AO", f(key.ao)),
-                        ("HAS_DO", f(key.directional)),
-                        ("CLASSIC", f(key.classic)),
-                        ("WHITE_ALBEDO", f(key.white_albedo)),
-                        ("DISPLAY", f(key.display)),
-                        ("OUTPUT_SRGB", f(output.is_srgb())),
-                        ("DIRECT_INPUT", f(key.display && key.additive)),
-                        ("HALF_INPUT", f(key.half_input)),
-                    ],
+                    constants: &constants,
                 },
             )
         });

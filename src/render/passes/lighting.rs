@@ -9,7 +9,7 @@ use super::sender_sky;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
-use crate::render::modes::{Plan, Step};
+use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_FORMAT, DEPTH, HDR, HDR_FORMAT, NORMAL};
 use crate::Result;
@@ -33,21 +33,13 @@ pub const ENTRY: Entry = Entry::new(
 struct Key {
     /// Point lights: their loop runs and their displayed light goes to HDR.
     lights: bool,
-    /// `Plan::unrolled_lights`.
-    light_count: u32,
-    /// `Plan::uniform_lights`.
-    uniform_lights: bool,
+    light_reads: LightReads,
     sender_sky: SenderSky,
 }
 
 impl Key {
     fn of(plan: &Plan) -> Self {
-        Self {
-            lights: plan.lighting_writes_direct(),
-            light_count: plan.unrolled_lights(),
-            uniform_lights: plan.uniform_lights(),
-            sender_sky: plan.sender_sky,
-        }
+        Self { lights: plan.lighting_writes_direct(), light_reads: plan.light_reads(), sender_sky: plan.sender_sky }
     }
 }
 
@@ -83,12 +75,10 @@ impl Pass for LightingPass {
             PipelineSpec {
                 entry: if key.lights { "fs_main" } else { "fs_bounce" },
                 targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
-                constants: vec![
-                    ("LIGHTS", flag(key.lights)),
-                    ("LIGHT_COUNT", f64::from(key.light_count)),
-                    ("UNIFORM_LIGHT_READS", flag(key.uniform_lights)),
-                    ("SENDER_SKY", key.sender_sky.shader_code()),
-                ],
+                constants: [("LIGHTS", flag(key.lights)), ("SENDER_SKY", key.sender_sky.shader_code())]
+                    .into_iter()
+                    .chain(key.light_reads.constants())
+                    .collect(),
             }
         });
     }
