@@ -223,6 +223,19 @@ pub struct FullscreenDesc<'a> {
     pub constants: &'a [(&'a str, f64)],
 }
 
+/// A read-only test of the full-screen triangle, which lies at depth 0 (the reverse-Z far plane),
+/// against the G-buffer's depth: `GreaterEqual` passes where nothing was drawn (the sky), `Less`
+/// where a surface was.
+pub fn fullscreen_depth_test(compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: crate::render::targets::DEPTH_FORMAT,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(compare),
+        stencil: wgpu::StencilState::default(),
+        bias: wgpu::DepthBiasState::default(),
+    }
+}
+
 /// A pipeline that draws the full-screen triangle of `common/fullscreen.wgsl`.
 pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

@@ -5,9 +5,12 @@
 //! pipeline, or clears both where the plan has no such step; `record` takes them ready.
 
 use super::io::{Inputs, Kind, PassIo};
-use super::{fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext, Preparation, Recording};
+use super::{
+    fullscreen_depth_test, fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext,
+    Preparation, Recording,
+};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::{TargetId, DEPTH_FORMAT};
+use crate::render::targets::TargetId;
 use crate::{shaders, Result};
 
 /// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
@@ -145,15 +148,7 @@ impl<K: PartialEq + Copy> PassState<K> {
     /// and groups, labelled after the pass, with what `spec` gives for the key.
     pub fn ensure_fullscreen(&mut self, device: &wgpu::Device, key: K, spec: impl FnOnce(K) -> PipelineSpec) {
         let label = format!("{}_pipeline", self.name);
-        // The full-screen triangle lies at depth 0, the reverse-Z far plane where nothing was
-        // drawn: it passes where the stored depth is greater, on a surface.
-        let depth = self.surfaces_only.then(|| wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: wgpu::StencilState::default(),
-            bias: wgpu::DepthBiasState::default(),
-        });
+        let depth = self.surfaces_only.then(|| fullscreen_depth_test(wgpu::CompareFunction::Less));
         self.ensure(key, |key, module, layouts| {
             let spec = spec(key);
             let desc = FullscreenDesc {

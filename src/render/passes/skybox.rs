@@ -2,10 +2,10 @@
 //! G-buffer pass draws the displayed sky behind the geometry and the composite shows it). The sky's GPU resources are `resources/sky.rs`.
 
 use crate::render::graph::io::PassIo;
-use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
+use crate::render::graph::{fullscreen_depth_test, fullscreen_pipeline, Entry, FullscreenDesc, FullscreenPass};
 use crate::render::graph::{Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::{DEPTH, DEPTH_FORMAT, HDR, HDR_FORMAT};
+use crate::render::targets::{DEPTH, HDR, HDR_FORMAT};
 use crate::{shaders, Result};
 
 impl Step {
@@ -48,13 +48,7 @@ pub fn behind_geometry(
         bind_group_layouts: &[Some(cx.frame_layout), None, Some(cx.sky_layout)],
         entry,
         targets,
-        depth: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
-            stencil: wgpu::StencilState::default(),
-            bias: wgpu::DepthBiasState::default(),
-        }),
+        depth: Some(fullscreen_depth_test(wgpu::CompareFunction::GreaterEqual)),
         constants: &[],
     };
     Ok(fullscreen_pipeline(cx.device, &desc))
