@@ -6,6 +6,8 @@
 //             2 (march):      the sky it sees through the open sectors of its own march and A
 //                             times their share (the sender-sky pass, half resolution);
 //             3 (march-quarter): the same from the sender-sky pass at quarter resolution;
+//             4 (last-frame): the same from the last frame's sampling pass (its march writes
+//                             the sky each pixel sees), where the surface was then;
 //   hdr:    (fs_main, with point lights) the point lights' light as displayed (diffuse +
 //           specular), which the composite adds to.
 
@@ -18,10 +20,17 @@
 // rgb: visible sky light (E/π, pre-exposed), a: open share, at half (SENDER_SKY 2) or quarter
 // (3) resolution.
 @group(1) @binding(3) var sender_sky: texture_2d<f32>;
+// The same as the last frame's sampling pass saw it (SENDER_SKY 4), at that pass's size.
+@group(1) @binding(4) var last_sky: texture_2d<f32>;
 
 // What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march, 3 march at
-// quarter resolution.
+// quarter resolution, 4 the last frame's march.
 override SENDER_SKY: u32 = 2u;
+// SENDER_SKY 4: the last frame's sampling pass ran at half width and height.
+override LAST_SKY_HALF: bool = true;
+// SENDER_SKY 4: the camera moved since the last frame, so a surface is looked for where the last
+// camera saw it. Without it each pixel reads its own texel.
+override REPROJECT: bool = false;
 // There are point lights to evaluate (fs_main); fs_bounce is the entry point without them.
 override LIGHTS: bool = true;
 
@@ -50,6 +59,9 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     let ambient = frame.pre_exposure * frame.ambient;
     if SENDER_SKY == 1u {
         bounce += albedo.rgb * (sky_irradiance(normal.xyz) + ambient);
+    } else if SENDER_SKY == 4u {
+        let seen = last_frame_sky(pixel, position, depth, normal.xyz);
+        bounce += albedo.rgb * (seen.rgb + ambient * seen.a);
     } else if SENDER_SKY >= 2u {
         let last = vec2<i32>(textureDimensions(sender_sky)) - vec2<i32>(1);
         let shift = vec2<u32>(select(1u, 2u, SENDER_SKY == 3u));
@@ -58,6 +70,28 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     }
     out.bounce = vec4<u32>(pack_sender(bounce, normal_bits), 0u, 0u);
     return out;
+}
+
+// The sky the surface at `pixel` saw in the last frame's march (rgb, with its open share in a):
+// the texel of the last frame's samples that held the pixel the surface was at, through the
+// last camera where this one moved. Where the last frame did not see it (off screen, or behind
+// the camera), its unoccluded irradiance, all open. (A surface the last frame saw behind
+// another takes that one's sky for a frame: the march's next frame has its own.)
+fn last_frame_sky(pixel: vec2<i32>, position: vec2<f32>, depth: f32, n: vec3<f32>) -> vec4<f32> {
+    var was = pixel;
+    if REPROJECT {
+        let world = frame.view_to_world * vec4<f32>(view_position(position, depth), 1.0);
+        let clip = frame.previous_world_to_clip * world;
+        let ndc = clip.xy / max(clip.w, 1e-30);
+        let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * frame.viewport.xy;
+        if clip.w <= 0.0 || any(at < vec2<f32>(0.0)) || any(at >= frame.viewport.xy) {
+            return vec4<f32>(sky_irradiance(n), 1.0);
+        }
+        was = vec2<i32>(at);
+    }
+    let last = vec2<i32>(textureDimensions(last_sky)) - vec2<i32>(1);
+    let texel = select(was, was >> vec2<u32>(1u), LAST_SKY_HALF);
+    return textureLoad(last_sky, min(texel, last), 0);
 }
 
 @fragment

@@ -373,10 +373,35 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
 
 // SSDO and SSAO+SSDO: DO in rgb; in a, AO (SSAO+SSDO) or, in SSDO, the open share: the constant
 // ambient is a uniform sky, and SSDO sees it through the same open sectors as the sky.
+fn do_value(o: Occlusion) -> vec4<f32> {
+    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, HAS_AO));
+}
+
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
+    return do_value(evaluate_pixel(in.position.xy));
+}
+
+// The sky a surface sends in the bounce, before its albedo: rgb the visible sky light (E/π,
+// pre-exposed, at the senders' sky strength, which the sky's unoccluded irradiance carries too),
+// a the open share (the constant ambient's visibility).
+fn sender_value(o: Occlusion) -> vec4<f32> {
+    return vec4<f32>(o.direct * occ.sender_sky_strength, o.open);
+}
+
+struct DoAndSky {
+    @location(0) occlusion: vec4<f32>,
+    // What `fs_sender` writes, for this pixel's surface: the next frame's lighting pass reads it
+    // as the sky this surface sends in the bounce (`--sender-sky last-frame`).
+    @location(1) sky: vec4<f32>,
+}
+
+// fs_do, and the sky this pixel sees for the next frame's senders: the same march's visible sky
+// and open share (all its slices, where the sender-sky pass marches one).
+@fragment
+fn fs_do_senders(in: FullscreenOut) -> DoAndSky {
     let o = evaluate_pixel(in.position.xy);
-    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(o.open, o.ao, HAS_AO));
+    return DoAndSky(do_value(o), sender_value(o));
 }
 
 // The sender-sky pass's resolution: half (1) or a quarter (2) of the screen's width and height.
@@ -391,7 +416,5 @@ override SENDER_SHIFT: u32 = 1u;
 fn fs_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
     let cell = vec2<i32>(in.position.xy);
     let scale = 1 << SENDER_SHIFT;
-    let o = evaluate(vec2<f32>(scale * cell + (scale / 2 - 1)) + 0.5, 1u, cell);
-    // The sky strength the senders' unoccluded irradiance carries too (in the frame's SH).
-    return vec4<f32>(o.direct * occ.sender_sky_strength, o.open);
+    return sender_value(evaluate(vec2<f32>(scale * cell + (scale / 2 - 1)) + 0.5, 1u, cell));
 }

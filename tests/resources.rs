@@ -143,7 +143,8 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
     common::shoot(gpu, &mut renderer, &b);
     assert_eq!(previous(&renderer), clip(&b), "after a reset the previous camera is the frame's own");
     // A plan that accumulates keeps the temporal pass's two pairs, counted among the
-    // allocations; one that does not (Off, or one frame) allocates none.
+    // allocations; one that does not (Off, or one frame) allocates none of them. A DO mode keeps
+    // the sky its march saw for the next frame's senders either way.
     for accumulate in [1, 16] {
         renderer.settings.accumulate = accumulate;
         for mode in Mode::ALL {
@@ -151,13 +152,18 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
             renderer.resize(gpu, 41, 30).unwrap();
             common::shoot(gpu, &mut renderer, &a);
             let kept = accumulate > 1 && mode != Mode::Off;
+            let senders = mode.declaration().directional_occlusion;
             let names: Vec<String> = renderer.allocations().into_iter().map(|(n, _)| n).collect();
-            let histories: Vec<&String> = names.iter().filter(|n| n.starts_with("history_")).collect();
-            assert_eq!(histories, if kept { vec!["history_occlusion", "history_surface"] } else { vec![] }, "{mode}");
+            let mut histories: Vec<&String> = names.iter().filter(|n| n.starts_with("history_")).collect();
+            histories.sort();
+            let mut want = if kept { vec!["history_occlusion", "history_surface"] } else { vec![] };
+            want.extend(senders.then_some("history_sender_sky"));
+            want.sort();
+            assert_eq!(histories, want, "{mode}");
             // Two textures each, at the half-size samples' size (21x15): the average (8 or 2
-            // bytes a texel) and the surface (8 bytes).
+            // bytes a texel) and the surface (8 bytes); the senders' sky (8 bytes).
             let per_texel = if mode == Mode::Ssao { 2 + 8 } else { 8 + 8 };
-            let want = if kept { 2 * per_texel * 21 * 15 } else { 0 };
+            let want = (if kept { per_texel } else { 0 } + if senders { 8 } else { 0 }) * 2 * 21 * 15;
             assert_eq!(renderer.history().bytes(), want, "{mode}, {accumulate} frames");
             renderer.resize(gpu, 40, 30).unwrap();
         }

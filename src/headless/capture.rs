@@ -69,7 +69,10 @@ pub fn capture_path(
     renderer.apply(gpu);
     renderer.reset_history();
     let frames = renderer.accumulation();
-    render_frames(gpu, renderer, (1..frames).rev().map(&camera_at))?;
+    // A frame that averages nothing may still read what the last frame left (the senders' sky
+    // from its march): it follows one, as every frame but the viewer's first does.
+    let primer = (frames == 1 && !renderer.plan().history.is_empty()).then(|| camera_at(1));
+    render_frames(gpu, renderer, primer.into_iter().chain((1..frames).rev().map(&camera_at)))?;
     capture(gpu, renderer, &camera_at(0))
 }
 

@@ -183,7 +183,11 @@ impl Renderer {
             pyramid,
             display,
             indirect: settings.indirect_strength > 0.0,
-            sender_sky: settings.sender_sky,
+            sender_sky: if settings.sampling.variant.decl().marched_lengths {
+                settings.sender_sky
+            } else {
+                settings.sender_sky.without_march()
+            },
             accumulate: settings.accumulates(),
             half_resolution: settings.half_resolution,
         };
@@ -291,6 +295,8 @@ impl Renderer {
         let features = self.features();
         Self::check_memory((width, height), &self.settings, features, self.keep_hdr, &[self.settings.mode])?;
         self.targets.size = (width, height);
+        // The plan of the settings as they are now (the variant decides what lights the senders).
+        self.plan = Self::plan_for(&self.settings, features, self.keep_hdr);
         self.rebuild_targets(gpu);
         Ok(())
     }

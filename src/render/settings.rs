@@ -72,13 +72,20 @@ pub enum SenderSky {
     /// The sky each sender sees, with its own visibility: a half-resolution march of one slice
     /// per pixel before the lighting pass (the sky from the open sectors, and the constant
     /// ambient by the open share), read by the lighting pass at each sender.
-    #[default]
     March,
     /// The same march at a quarter of the width and height: a sixteenth of the pixels, each
     /// standing for its 4x4 block. A sender's sky is smooth across a surface and the gather
     /// averages many senders, so it loses little (the report measures it) for a quarter of the
     /// cost.
     MarchQuarter,
+    /// The sky each sender saw in the last frame's march (the march variant): the sampling pass
+    /// writes every pixel's visible sky and open share beside DO, into a history the next
+    /// frame's lighting pass reads where that surface was (reprojected through the last
+    /// camera; where it was off screen, the unoccluded irradiance). No march of the senders'
+    /// own but on a frame with no last frame (the first after a reset), which runs `March`'s.
+    /// The default: the same error as `March` on every scene, without its pass.
+    #[default]
+    LastFrame,
     /// The sender's unoccluded sky irradiance for its normal (the spherical harmonics the
     /// composite already has) plus the constant ambient: no extra pass, but blind to what
     /// occludes the sender, so too bright wherever a sender stands on a floor or in a crevice.
@@ -89,11 +96,22 @@ pub enum SenderSky {
 }
 
 impl SenderSky {
-    pub const ALL: [SenderSky; 4] = [SenderSky::March, SenderSky::MarchQuarter, SenderSky::Irradiance, SenderSky::Off];
+    pub const ALL: [SenderSky; 5] =
+        [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance, SenderSky::Off];
 
-    /// Whether the senders' sky comes from a march of their own (the sender-sky pass).
+    /// Whether the plan has the senders' own march (the sender-sky pass): every frame, or (for
+    /// `LastFrame`) on a frame with no last frame to read.
     pub fn marches(self) -> bool {
-        matches!(self, SenderSky::March | SenderSky::MarchQuarter)
+        matches!(self, SenderSky::March | SenderSky::MarchQuarter | SenderSky::LastFrame)
+    }
+
+    /// What a sampling pass that does not march (the points and classic variants) takes
+    /// instead: it writes no sky for the next frame, so `LastFrame` becomes `March`.
+    pub fn without_march(self) -> Self {
+        match self {
+            SenderSky::LastFrame => SenderSky::March,
+            other => other,
+        }
     }
 
     /// The value of the lighting shader's `SENDER_SKY` constant.
@@ -103,6 +121,7 @@ impl SenderSky {
             SenderSky::Irradiance => 1.0,
             SenderSky::March => 2.0,
             SenderSky::MarchQuarter => 3.0,
+            SenderSky::LastFrame => 4.0,
         }
     }
 
@@ -110,6 +129,7 @@ impl SenderSky {
         match self {
             SenderSky::March => "march",
             SenderSky::MarchQuarter => "march-quarter",
+            SenderSky::LastFrame => "last-frame",
             SenderSky::Irradiance => "irradiance",
             SenderSky::Off => "off",
         }
@@ -164,7 +184,7 @@ impl Default for Settings {
             ao_power: 1.0,
             sky_strength: 1.0,
             indirect_strength: 1.0,
-            sender_sky: SenderSky::March,
+            sender_sky: SenderSky::LastFrame,
             blur: true,
             half_resolution: true,
             accumulate: ACCUMULATE.default,

@@ -211,11 +211,11 @@ mod tests {
     #[test]
     fn the_sweep_is_counted_as_it_is_listed() {
         // Per radius and count: 3 sampled modes × blur on/off, the two DO modes again with the
-        // pyramid (march only), and at the default march 4 other bounces in each DO mode.
+        // pyramid (march only), and at the default march 5 other bounces in each DO mode.
         for (samples, march, radii) in [(1, 1, 1), (5, 4, 1), (2, 3, 2)] {
             let o = options(samples, march, radii);
             // ...and the 3 sampled modes with blur on again at half resolution.
-            let per_radius = 2 * (9 * samples) + (9 + 2) * march + 2 * 4 * march;
+            let per_radius = 2 * (9 * samples) + (9 + 2) * march + 2 * 5 * march;
             assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
         }
         let mut o = options(1, 1, 1);

@@ -141,8 +141,9 @@ impl Candidate {
             None => 0,
             Some(SenderSky::Off) => 1,
             Some(SenderSky::Irradiance) => 2,
-            Some(SenderSky::MarchQuarter) => 3,
-            Some(SenderSky::March) => 4,
+            Some(SenderSky::LastFrame) => 3,
+            Some(SenderSky::MarchQuarter) => 4,
+            Some(SenderSky::March) => 5,
         };
         let order = [
             self.samples.cmp(&other.samples),
@@ -213,8 +214,8 @@ mod tests {
         };
         assert!(n.iter().all(|m| differs(&c, m) == 1), "{n:?}");
         // Slices 1 and 3, steps 12 and 24, 4 frames, blur, resolution, 2 radii, pyramid, and
-        // four other bounces.
-        assert_eq!(n.len(), 2 + 2 + 1 + 1 + 1 + 2 + 1 + 4);
+        // five other bounces.
+        assert_eq!(n.len(), 2 + 2 + 1 + 1 + 1 + 2 + 1 + 5);
         assert!(n.iter().any(|m| m.slices == 1) && n.iter().any(|m| m.steps == 24));
         // A count off the ladder steps onto it; the ends of a ladder have one neighbour there.
         let odd = Candidate { slices: 5, steps: 4, accumulate: 16, radius_step: 2, ..c };

@@ -219,9 +219,15 @@ impl<K: PartialEq + Copy> PassState<K> {
     /// A full-screen pass's whole `record`: drawn over all of the targets it writes (cleared),
     /// with the sky as group 2 where the pass was made with it.
     pub fn record(&self, rec: Recording<'_>) {
-        let attachments = rec.attachments(&self.writes, true);
-        let sky = self.sky_layout.is_some().then_some(&rec.sky.bind_group);
         let (_, _, own) = self.ready();
+        self.record_with(rec, &self.writes, own);
+    }
+
+    /// [`PassState::record`] into `writes` with group 1 given: a pass that keeps one group per
+    /// history parity, or a sibling drawing with its parent's targets and groups.
+    pub fn record_with(&self, rec: Recording<'_>, writes: &[TargetId], own: &wgpu::BindGroup) {
+        let attachments = rec.attachments(writes, true);
+        let sky = self.sky_layout.is_some().then_some(&rec.sky.bind_group);
         let depth = self.surfaces_only.then(|| &rec.targets.depth().view);
         self.draw_inner((rec.encoder, rec.timestamps), &attachments, (rec.frame, own, sky), depth, None);
     }

@@ -1,14 +1,19 @@
 //! Lighting pass (SSDO modes with light to bounce): each surface's direct light once per pixel.
 //! It writes the diffuse radiance SSDO bounces into `bounce` — the point lights and, unless the
 //! senders are lit by the point lights alone, the sky and the ambient they receive (from the
-//! sender-sky march, or the sky's unoccluded irradiance) — and, where there are point lights,
-//! their displayed light into HDR. The pipeline is specialised to the plan: without lights it
-//! has one target and runs no light loop.
+//! sender-sky march, the last frame's march, or the sky's unoccluded irradiance) — and, where
+//! there are point lights, their displayed light into HDR. The pipeline is specialised to the
+//! plan: without lights it has one target and runs no light loop.
+//!
+//! With the senders' sky from the last frame (`--sender-sky last-frame`) it reads one side of a
+//! history, so it keeps a bind group for each, and two more pipelines: for a frame whose camera
+//! moved (reprojecting) and for a still one. A frame with no last frame (the first after a
+//! reset) reads this frame's sender-sky march, as `--sender-sky march` does.
 
-use super::sender_sky;
+use super::sender_sky::{self, last_sky_held, LAST_SKY};
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
-use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording};
+use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_FORMAT, DEPTH, HDR, HDR_FORMAT, NORMAL};
@@ -35,32 +40,72 @@ struct Key {
     lights: bool,
     light_reads: LightReads,
     sender_sky: SenderSky,
+    /// The sampling pass (whose sky the last frame's senders read) runs at half size.
+    half: bool,
+    /// The camera moved since the last frame (only with the sky from the last frame).
+    reproject: bool,
 }
 
 impl Key {
+    /// The plan's key; with the sky from the last frame, a frame's that has none (reading this
+    /// frame's sender-sky march).
     fn of(plan: &Plan) -> Self {
-        Self { lights: plan.lighting_writes_direct(), light_reads: plan.light_reads(), sender_sky: plan.sender_sky }
+        Self {
+            lights: plan.lighting_writes_direct(),
+            light_reads: plan.light_reads(),
+            sender_sky: plan.sender_sky.without_march(),
+            half: plan.half_resolution,
+            reproject: false,
+        }
+    }
+
+    fn spec(self) -> PipelineSpec {
+        let hdr = self.lights.then(|| HDR_FORMAT.into());
+        let constants = [
+            ("LIGHTS", flag(self.lights)),
+            ("SENDER_SKY", self.sender_sky.shader_code()),
+            ("LAST_SKY_HALF", flag(self.half)),
+            ("REPROJECT", flag(self.reproject)),
+        ];
+        PipelineSpec {
+            entry: if self.lights { "fs_main" } else { "fs_bounce" },
+            targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
+            constants: constants.into_iter().chain(self.light_reads.constants()).collect(),
+        }
     }
 }
 
 pub struct LightingPass {
     state: PassState<Key>,
+    /// With the sky from the last frame: the pipelines reading it, for a still camera and for
+    /// a moving one, and group 1 for each side of its history.
+    still: PassState<Key>,
+    moved: PassState<Key>,
+    groups: Option<[wgpu::BindGroup; 2]>,
+    /// What this frame reads (set in `begin_frame`): the last frame's sky, and whether the
+    /// camera moved since.
+    last_sky: bool,
+    camera_moved: bool,
 }
 
 impl LightingPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         // The sky's pixels send nothing: the depth test leaves them cleared.
-        Ok(Self { state: PassState::new(cx, "lighting", "lighting.wgsl", false)?.surfaces_only(cx) })
+        let state = PassState::new(cx, "lighting", "lighting.wgsl", false)?.surfaces_only(cx);
+        let (still, moved) = (state.sibling("lighting_last_sky"), state.sibling("lighting_reprojected"));
+        Ok(Self { state, still, moved, groups: None, last_sky: false, camera_moved: false })
     }
 
-    /// The G-buffer and, after their march, the senders' sky; the point lights' displayed light
-    /// (with lights) and the bounce.
+    /// The G-buffer and, after their march, the senders' sky (this frame's, and with the sky
+    /// from the last frame, the last frame's); the point lights' displayed light (with lights)
+    /// and the bounce.
     pub fn io(plan: &Plan) -> PassIo {
         let reads = vec![
             Read::Target(ALBEDO),
             Read::Target(NORMAL),
             Read::Target(DEPTH),
             Read::target_if(plan.sender_march, sender_sky::target(plan)),
+            Read::target_if(plan.sender_sky == SenderSky::LastFrame, LAST_SKY),
         ];
         let direct = plan.lighting_writes_direct().then_some(HDR);
         PassIo { reads, attached: vec![], writes: direct.into_iter().chain([BOUNCE]).collect() }
@@ -69,21 +114,37 @@ impl LightingPass {
 
 impl Pass for LightingPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || Key::of(p.plan);
-        self.state.prepare_fullscreen(device, p, (Step::LIGHTING, Self::io), key, |key| {
-            let hdr = key.lights.then(|| HDR_FORMAT.into());
-            PipelineSpec {
-                entry: if key.lights { "fs_main" } else { "fs_bounce" },
-                targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
-                constants: [("LIGHTS", flag(key.lights)), ("SENDER_SKY", key.sender_sky.shader_code())]
-                    .into_iter()
-                    .chain(key.light_reads.constants())
-                    .collect(),
-            }
-        });
+        let plan = p.plan;
+        let key = Key::of(plan);
+        self.state.prepare_fullscreen(device, p, (Step::LIGHTING, Self::io), || key, Key::spec);
+        if !plan.has(Step::LIGHTING) || plan.sender_sky != SenderSky::LastFrame {
+            self.still.clear();
+            self.moved.clear();
+            self.groups = None;
+            return;
+        }
+        let io = Self::io(plan);
+        self.groups = Some([0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
+        for (state, reproject) in [(&mut self.still, false), (&mut self.moved, true)] {
+            state.layout_for(device, &io);
+            let key = Key { sender_sky: SenderSky::LastFrame, reproject, ..key };
+            state.ensure_fullscreen(device, key, Key::spec);
+        }
+    }
+
+    fn begin_frame(&mut self, frame: &FrameState<'_>) {
+        self.last_sky = last_sky_held(frame.plan, frame.history);
+        self.camera_moved = frame.camera_moved;
     }
 
     fn record(&self, rec: Recording<'_>) {
-        self.state.record(rec);
+        let last = rec.history.get(LAST_SKY).zip(self.groups.as_ref());
+        match last {
+            Some((history, groups)) if self.last_sky => {
+                let state = if self.camera_moved { &self.moved } else { &self.still };
+                state.record_with(rec, self.state.writes(), &groups[history.parity()]);
+            }
+            _ => self.state.record(rec),
+        }
     }
 }

@@ -2,14 +2,17 @@
 //! or the march's `shaders/march.wgsl`). One shader, two entry points (`fs_ao` writes AO; `fs_do`
 //! writes DO + AO); the variant (default or classic) and whether there is a bounce buffer are
 //! override constants. The pipeline is built for what the plan needs and rebuilt only when that
-//! changes.
+//! changes. With `--sender-sky last-frame` the march also writes the sky each pixel sees, for the
+//! next frame's senders (`sender_sky::LAST_SKY`).
 
 use super::depth_pyramid::PYRAMID;
+use super::sender_sky::{last_sky_history, LAST_SKY};
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, Role};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
+use crate::render::settings::SenderSky;
 use crate::render::targets::{Stage, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
 use crate::render::variant::{Estimator, Sampler};
 use crate::{shaders, Result};
@@ -22,6 +25,7 @@ impl Step {
 pub const ENTRY: Entry =
     Entry::new(Step::SAMPLING, |f| f.samples(), SamplingPass::io, |cx| Ok(Box::new(SamplingPass::new(cx)?)))
         .binding(&["points.wgsl", "march.wgsl"])
+        .keeping(last_sky_history)
         .role(Role::Sampling);
 
 /// What a plan's sampling (and blur) pass produces.
@@ -74,6 +78,8 @@ struct Key {
     half_resolution: bool,
     /// The G-buffer holds mapped normals: the geometry's come from the depth.
     normal_mapped: bool,
+    /// The march writes the sky each pixel sees for the next frame's senders.
+    last_sky: bool,
 }
 
 impl Key {
@@ -122,10 +128,11 @@ impl SamplingPass {
     }
 
     /// The sampling reads with the bounce where a lighting pass writes it; AO or DO + AO, at
-    /// half size when an upsample follows.
+    /// half size when an upsample follows, and the sky for the next frame's senders.
     pub fn io(plan: &Plan) -> PassIo {
         let stage = if plan.half_resolution { Stage::Half } else { Stage::Raw };
-        let writes = vec![stage.target(plan.decl.directional_occlusion)];
+        let last_sky = (plan.sender_sky == SenderSky::LastFrame).then_some(LAST_SKY);
+        let writes = [stage.target(plan.decl.directional_occlusion)].into_iter().chain(last_sky).collect();
         PassIo { reads: Self::reads(plan, plan.lighting), attached: vec![], writes }
     }
 }
@@ -145,10 +152,18 @@ impl Pass for SamplingPass {
             pyramid: plan.pyramid,
             half_resolution: plan.half_resolution,
             normal_mapped: plan.features.normal_mapped,
+            last_sky: plan.sender_sky == SenderSky::LastFrame,
         };
+
         let march_module = &self.march_module;
         self.state.ensure(key, |key, points_module, layouts| {
-            let entry = if key.outputs.directional { "fs_do" } else { "fs_ao" };
+            let entry = match (key.outputs.directional, key.last_sky) {
+                (false, _) => "fs_ao",
+                (true, false) => "fs_do",
+                (true, true) => "fs_do_senders",
+            };
+            let format = Some(key.outputs.format().into());
+            let sky = key.last_sky.then(|| Some(LAST_SKY.format.into()));
             fullscreen_pipeline(
                 device,
                 &FullscreenDesc {
@@ -156,7 +171,7 @@ impl Pass for SamplingPass {
                     module: if key.march { march_module } else { points_module },
                     entry,
                     bind_group_layouts: layouts,
-                    targets: &[Some(key.outputs.format().into())],
+                    targets: &[format].into_iter().chain(sky).collect::<Vec<_>>(),
                     depth: None,
                     constants: &key.constants(),
                 },

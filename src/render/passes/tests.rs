@@ -10,7 +10,7 @@ use crate::render::targets::{
     DO_BLURRED, DO_HALF, DO_HALF_ACCUMULATED, DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
 };
 use depth_pyramid::PYRAMID;
-use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
+use sender_sky::{LAST_SKY, SENDER_SKY, SENDER_SKY_QUARTER};
 
 /// The old set of flags, read from the plan's targets.
 struct Set {
@@ -98,7 +98,12 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(half_average, plan.half_resolution && plan.accumulates(), "{:?}", plan.steps);
         assert!(plan.history.iter().all(|h| h.half == plan.half_resolution), "{:?}", plan.steps);
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
-        assert_eq!(plan.history.len(), if plan.accumulates() { 2 } else { 0 }, "{:?}", plan.steps);
+        // The temporal pass's two; the senders' sky for the next frame where the plan keeps it.
+        let last_sky = plan.sender_sky == SenderSky::LastFrame;
+        let kept = 2 * usize::from(plan.accumulates()) + usize::from(last_sky);
+        assert_eq!(plan.history.len(), kept, "{:?}", plan.steps);
+        assert_eq!(Step::SAMPLING.io(&plan).writes.contains(&LAST_SKY), last_sky);
+        assert_eq!(Step::LIGHTING.io(&plan).reads.contains(&LAST_SKY), last_sky);
         assert_eq!((t.pyramid, t.sender_sky), (plan.has(Step::DEPTH_PYRAMID), plan.has(Step::SENDER_SKY)));
         let quarter = plan.sender_sky == SenderSky::MarchQuarter;
         assert!(!plan.allocates(SENDER_SKY) || !quarter, "{:?}", plan.steps);
@@ -208,6 +213,7 @@ fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
     let rows = [
         (Mode::Ssdo, 0, true, march, (true, true, false)),
         (Mode::Both, 0, true, irradiance, (true, true, false)),
+        (Mode::Ssdo, 0, true, SenderSky::LastFrame, (true, true, false)),
         (Mode::Ssdo, 0, true, off, (false, false, false)),
         (Mode::Ssdo, 8, true, off, (true, true, true)),
         (Mode::Ssdo, 8, false, march, (false, false, true)),
@@ -224,7 +230,7 @@ fn the_lighting_pass_runs_where_there_is_light_to_bounce_and_nowhere_else() {
         assert_eq!(plan.light_loop(), lights > 0 && !plan.has(Step::LIGHTING));
         assert_eq!(plan.lighting_writes_direct(), plan.has(Step::LIGHTING) && lights > 0);
         // The senders' own march runs exactly where a lighting pass reads it.
-        let marched = plan.has(Step::LIGHTING) && sender_sky == march;
+        let marched = plan.has(Step::LIGHTING) && sender_sky.marches();
         assert_eq!((plan.has(Step::SENDER_SKY), set(&plan).sender_sky), (marched, marched));
     }
 }
