@@ -5,12 +5,13 @@ use super::history::{History, StillView};
 use super::{modes, Renderer};
 use crate::scene::OrbitCamera;
 
-/// The frames of a still SSAO view whose samples are blurred before they are averaged. The blur
-/// makes a young average clean at once, and keeps a moving view's clean; a still view's later
-/// frames of AO go into the average raw, since by then the average over frames does the blur's
-/// work without its bias, and a settled frame costs no blur. Measured on the default scene
-/// (docs/performance.md): SSAO's error within R 0.0361 → 0.0324 at 16 frames. The DO modes blur
-/// every frame: their sky light and bounce came out 1-2% further from the truth without it.
+/// The frames of a still view whose samples are blurred before they are averaged. The blur makes
+/// a young average clean at once, and keeps a moving view's clean; a still view's later frames
+/// go into the average raw, since by then the average over frames does most of the blur's work,
+/// and a settled frame costs no blur. Measured on the default scene (docs/performance.md): SSAO's
+/// error within R 0.0361 → 0.0324 at 16 frames; SSDO's image 0.0195 → 0.0197 and DO 0.0303 →
+/// 0.0307 (+1%, within what the frame must hold; open +0.3%, stairs −0.2%) for a tenth of a DO
+/// frame's time.
 pub const BLURRED_FRAMES: u32 = 4;
 
 /// The average over frames: what the temporal pass keeps, and where a still view stands.
@@ -70,11 +71,11 @@ impl Renderer {
     }
 
     /// Whether the last frame recorded (inside `encode`: the frame being recorded) blurred its
-    /// samples: the plan blurs, and it computes DO, or does not average over frames, or the view
-    /// moves, or the frame is one of a still view's first [`BLURRED_FRAMES`].
+    /// samples: the plan blurs, and it does not average over frames, or the view moves, or the
+    /// frame is one of a still view's first [`BLURRED_FRAMES`].
     pub fn blurs(&self) -> bool {
         let settled = self.plan.accumulates() && self.still.frames > BLURRED_FRAMES;
-        self.plan.blur && (self.plan.decl.directional_occlusion || !settled)
+        self.plan.blur && !settled
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last

@@ -18,6 +18,10 @@
 //! composite upsamples the average as it reads it, so no full-screen pass lies between the
 //! samples and the composite.
 //!
+//! By default (`--sender-sky last-frame`) the march of the sampling pass writes the sky each
+//! pixel sees into a history the next frame's lighting pass reads, and the sender-sky step runs
+//! only on a frame with no last frame; `--sender-sky march` runs it every frame.
+//!
 //! Without lights there are no light cubes and the lighting pass writes the bounce alone (the
 //! senders' sky and ambient light; no HDR target in a display plan); `--sender-sky march-quarter`
 //! marches the senders' sky into `sender_sky_quarter` instead; with `--sender-sky off` and

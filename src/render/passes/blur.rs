@@ -2,7 +2,7 @@
 //! distance and normal agreement) in the default variant, the classic box blur otherwise. Where
 //! the samples were taken at half resolution it runs there, on a quarter of the pixels, before
 //! the upsample: its window is that of the rotation tile the samples were taken with.
-//! A still SSAO view's frames after its first few skip it (`BLURRED_FRAMES`): the temporal pass then
+//! A still view's frames after its first few skip it (`BLURRED_FRAMES`): the temporal pass then
 //! reads the raw samples.
 
 use super::sampling::{filter_io, Outputs};
