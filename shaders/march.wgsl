@@ -391,8 +391,8 @@ fn sender_value(o: Occlusion) -> vec4<f32> {
 
 struct DoAndSky {
     @location(0) occlusion: vec4<f32>,
-    // What `fs_sender` writes, for this pixel's surface: the next frame's lighting pass reads it
-    // as the sky this surface sends in the bounce (`--sender-sky last-frame`).
+    // `sender_value` of this pixel's surface, as `fs_sender` writes it: the next frame's lighting
+    // pass reads it as the sky this surface sends in the bounce (`--sender-sky last-frame`).
     @location(1) sky: vec4<f32>,
 }
 

@@ -47,13 +47,18 @@ fn traced_bounce(scene: &Scene, sky: &Skybox, point: Vec3, spp: u32) -> (Vec3, f
     (e.bounce, e.bounce_error)
 }
 
+/// The red wall's scene with no lights under a white sky, and the camera that sees the floor
+/// beside the wall (the floor point 0.15 from it is the one the tests read).
+fn red_wall_under_a_white_sky() -> (Scene, Skybox, OrbitCamera) {
+    let mut scene = red_wall_scene();
+    scene.lights.clear();
+    (scene, Skybox::constant(Vec3::ONE), looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5))
+}
+
 #[test]
 fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_only() {
     let Some(gpu) = gpu() else { return };
-    let mut scene = red_wall_scene();
-    scene.lights.clear();
-    let sky = Skybox::constant(Vec3::ONE);
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = red_wall_under_a_white_sky();
     let near_point = Vec3::new(0.15, 0.0, 0.0);
     let (near, far) = (project(&camera, near_point), project(&camera, Vec3::new(1.8, 0.0, 1.0)));
     let redness = |c: Vec3| c.x / c.y.max(1e-6);
@@ -186,10 +191,7 @@ fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
 #[test]
 fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
     let Some(gpu) = gpu() else { return };
-    let mut scene = red_wall_scene();
-    scene.lights.clear();
-    let sky = Skybox::constant(Vec3::ONE);
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = red_wall_under_a_white_sky();
     let near = project(&camera, Vec3::new(0.15, 0.0, 0.0));
     for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance] {
         let bounce = |sky_strength| {
@@ -204,10 +206,7 @@ fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
 #[test]
 fn the_senders_sky_from_the_last_frame_bounces_what_their_own_march_does_still_and_turning() {
     let Some(gpu) = gpu() else { return };
-    let mut scene = red_wall_scene();
-    scene.lights.clear();
-    let sky = Skybox::constant(Vec3::ONE);
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = red_wall_under_a_white_sky();
     let near_point = Vec3::new(0.15, 0.0, 0.0);
     // One frame each (no average), the bounce alone.
     let s = |sender_sky| Settings { sender_sky, accumulate: 1, view: View::DoIndirect, ..settings(Mode::Ssdo) };
