@@ -183,11 +183,7 @@ impl Renderer {
             pyramid,
             display,
             indirect: settings.indirect_strength > 0.0,
-            sender_sky: if settings.sampling.variant.decl().marched_lengths {
-                settings.sender_sky
-            } else {
-                settings.sender_sky.without_march()
-            },
+            sender_sky: settings.sender_sky.for_variant(settings.sampling.variant),
             accumulate: settings.accumulates(),
             half_resolution: settings.half_resolution,
         };

@@ -114,6 +114,16 @@ impl SenderSky {
         }
     }
 
+    /// What the senders take with `variant`'s sampling pass: this, or [`SenderSky::without_march`]
+    /// where it does not march.
+    pub fn for_variant(self, variant: crate::render::Variant) -> Self {
+        if variant.decl().marched_lengths {
+            self
+        } else {
+            self.without_march()
+        }
+    }
+
     /// The value of the lighting shader's `SENDER_SKY` constant.
     pub fn shader_code(self) -> f64 {
         match self {

@@ -169,7 +169,12 @@ impl Bench<'_> {
             steps,
             pyramid,
             blur,
-            bounce: if mode.declaration().directional_occlusion { bounce } else { None },
+            // What lit the senders (the variants that do not march take `march` for `last-frame`).
+            bounce: if mode.declaration().directional_occlusion {
+                bounce.map(|b| b.for_variant(variant))
+            } else {
+                None
+            },
             radius: if mode == Mode::Off { 0.0 } else { radius },
             accumulate,
             orbit,
