@@ -35,6 +35,10 @@
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
 @group(1) @binding(5) var direct_map: texture_2d<f32>;
+// GUIDE_INPUT: the surface each half-size sample holds, as the temporal pass wrote it this frame
+// (its surface history: x the depth as f32 bits, y the packed normal in bits 0-23; 0 where it
+// kept nothing).
+@group(1) @binding(6) var surface_guide: texture_2d<u32>;
 
 // Run the point-light loop here (there are lights and no lighting pass ran).
 override LIGHT_LOOP: bool = true;
@@ -54,6 +58,18 @@ override OUTPUT_SRGB: bool = true;
 override DIRECT_INPUT: bool = false;
 // `current` holds half-size samples: upsampled here as they are read.
 override HALF_INPUT: bool = false;
+// ... the temporal pass's average: the samples' surfaces are read from `surface_guide`, one load
+// a tap instead of the G-buffer's depth and normal.
+override GUIDE_INPUT: bool = false;
+
+// The surface of the sample at half-size `texel`, the full-resolution pixel `pixel`: its depth
+// (f32 bits) and packed normal.
+fn sample_surface(texel: vec2<i32>, pixel: vec2<i32>) -> vec2<u32> {
+    if GUIDE_INPUT {
+        return textureLoad(surface_guide, texel, 0).xy;
+    }
+    return vec2<u32>(bitcast<u32>(load_depth(pixel)), textureLoad(g_normal, pixel, 0).r);
+}
 
 #include "common/upsample.wgsl"
 

@@ -14,6 +14,12 @@
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;
 
+// The surface of the sample at half-size `texel`, the full-resolution pixel `pixel`: its depth
+// (f32 bits) and packed normal, from the G-buffer.
+fn sample_surface(texel: vec2<i32>, pixel: vec2<i32>) -> vec2<u32> {
+    return vec2<u32>(bitcast<u32>(load_depth(pixel)), textureLoad(g_normal, pixel, 0).r);
+}
+
 #include "common/upsample.wgsl"
 
 @fragment

@@ -11,7 +11,9 @@
 // the same surface (a feature thinner than two pixels), the one nearest its plane stands in.
 //
 // The including shader declares `current` (the half-size samples: AO in r, or DO + AO),
-// `params` (FilterParams) and the override HAS_DO, and includes gbuffer_read.wgsl first.
+// `params` (FilterParams), the override HAS_DO and `sample_surface` (a sample's depth and packed
+// normal: the G-buffer's at its pixel, or what the temporal pass stored for it), and includes
+// gbuffer_read.wgsl first.
 
 // What a pixel with no surface holds: no occlusion, no DO.
 fn unoccluded_value() -> vec4<f32> {
@@ -47,7 +49,8 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32) -> vec4<f32> {
         for (var x = 0; x <= 1; x += 1) {
             let h = clamp(base + vec2<i32>(x, y), vec2<i32>(0), half_last);
             let at = min(2 * h, full - 1);
-            let d = load_depth(at);
+            let surface = sample_surface(h, at);
+            let d = bitcast<f32>(surface.x);
             if d <= 0.0 {
                 continue;
             }
@@ -62,7 +65,7 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32) -> vec4<f32> {
             let gap = abs(vec2<f32>(at - pixel));
             let tent = max(1.0 - gap / 3.0, vec2<f32>(0.0));
             // 1 − 2.5δ² ≈ (cos θ − 0.8)·5 for normals θ apart: 1 when equal, 0 from about 37°.
-            let spread = octahedral_distance(code, octahedral_code(textureLoad(g_normal, at, 0).r));
+            let spread = octahedral_distance(code, octahedral_code(surface.y));
             let agree = max(1.0 - 2.5 * spread * spread, 0.0);
             let w = tent.x * tent.y * max(1.0 - plane / tolerance, 0.0) * agree;
             sum += w * value;

@@ -83,6 +83,11 @@ impl PingPong {
     pub fn read_side(&self, parity: usize) -> &Target {
         &self.targets[1 - parity]
     }
+
+    /// What a frame of `parity` writes.
+    pub fn write_side(&self, parity: usize) -> &Target {
+        &self.targets[parity]
+    }
 }
 
 /// Every history of the renderer.

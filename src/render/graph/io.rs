@@ -4,7 +4,7 @@
 //! bytes and `--print-plan` are derived from the same lists (`passes/mod.rs`), and a test holds
 //! each list against the bindings its WGSL declares (`tests/it/cpu/shaders.rs`).
 
-use crate::render::history::History;
+use crate::render::history::{History, PingPong};
 use crate::render::targets::{Place, TargetId, Targets};
 
 /// One binding of a pass's group 1.
@@ -14,6 +14,8 @@ pub enum Read {
     Target(TargetId),
     /// A target the plan lacks: the fallback of its kind is bound, and nothing is read.
     Absent(TargetId),
+    /// The side of a history this frame writes, read by a later pass of the same frame.
+    Written(TargetId),
     /// The sampling passes' parameters (`SamplingParams`, a uniform).
     Sampling,
     /// What the filters of the samples read (`FilterParams`, a uniform).
@@ -33,7 +35,7 @@ impl Read {
     /// The target read, if this reads one.
     pub fn target(self) -> Option<TargetId> {
         match self {
-            Read::Target(id) => Some(id),
+            Read::Target(id) | Read::Written(id) => Some(id),
             Read::Absent(_) | Read::Sampling | Read::Filter => None,
         }
     }
@@ -41,7 +43,7 @@ impl Read {
     /// How the shader sees this binding.
     pub fn kind(self) -> Kind {
         match self {
-            Read::Target(id) | Read::Absent(id) => Kind::of(id.format),
+            Read::Target(id) | Read::Absent(id) | Read::Written(id) => Kind::of(id.format),
             Read::Sampling | Read::Filter => Kind::Uniform,
         }
     }
@@ -115,7 +117,7 @@ impl PassIo {
     }
 
     /// Group 1's entries, each read bound to what `inputs` holds for it; a history's side is the
-    /// one a frame of `parity` reads.
+    /// one a frame of `parity` reads (or, [`Read::Written`], writes).
     pub fn entries<'a>(&self, inputs: &Inputs<'a>, parity: usize) -> Vec<wgpu::BindGroupEntry<'a>> {
         let view = |view| wgpu::BindingResource::TextureView(view);
         self.reads
@@ -127,10 +129,8 @@ impl PassIo {
                     Read::Sampling => inputs.sampling.as_entire_binding(),
                     Read::Filter => inputs.filter.as_entire_binding(),
                     Read::Absent(id) => view(inputs.fallbacks.of(Kind::of(id.format))),
-                    Read::Target(id) if id.place == Place::History => {
-                        let pair = inputs.history.get(id).unwrap_or_else(|| panic!("the plan has no {}", id.name));
-                        view(&pair.read_side(parity).view)
-                    }
+                    Read::Target(id) if id.place == Place::History => view(&inputs.pair(id).read_side(parity).view),
+                    Read::Written(id) => view(&inputs.pair(id).write_side(parity).view),
                     Read::Target(id) => view(&inputs.targets.expect(id).view),
                 },
             })
@@ -148,6 +148,13 @@ pub struct Inputs<'a> {
     /// `FilterParams`, for [`Read::Filter`].
     pub filter: &'a wgpu::Buffer,
     pub fallbacks: &'a Fallbacks,
+}
+
+impl<'a> Inputs<'a> {
+    /// The history `id`, which the plan keeps.
+    fn pair(&self, id: TargetId) -> &'a PingPong {
+        self.history.get(id).unwrap_or_else(|| panic!("the plan has no {}", id.name))
+    }
 }
 
 /// What is bound where a plan lacks an input: one texture of each kind, 1x1, never read (the

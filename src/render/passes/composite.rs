@@ -3,13 +3,16 @@
 //! tone-map pass; the sky's pixels as the G-buffer pass drew them for display). The pipeline is specialised to the plan (override constants):
 //! without lights there is no light loop in the shader, without AO no AO read, and so on. After a
 //! lighting pass it blends additively onto the direct light that pass wrote (HDR), or reads it
-//! (display). After a half-size sampling chain it upsamples the chain's last stage as it reads it.
+//! (display). After a half-size sampling chain it upsamples the chain's last stage as it reads it;
+//! after the temporal pass, with the surface each sample holds taken from the surface history
+//! that pass has just written (one load a tap instead of the G-buffer's depth and normal), so it
+//! keeps a bind group for each side of that history.
 
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
-use crate::render::modes::{LightReads, Plan, Step};
+use crate::render::modes::{LightReads, Plan, Step, SURFACE_HISTORY};
 use crate::render::settings::View;
 use crate::render::targets::{ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, OUTPUT};
 use crate::render::variant::{Composite, Variant};
@@ -36,6 +39,8 @@ struct Key {
     display: bool,
     /// The sampling chain's last stage is at half size.
     half_input: bool,
+    /// ... and is the temporal pass's average, whose surfaces its surface history holds.
+    guide: bool,
 }
 
 impl Key {
@@ -50,30 +55,42 @@ impl Key {
             white_albedo,
             display: plan.display,
             half_input: plan.half_resolution,
+            guide: guided(plan),
         }
     }
+}
+
+/// Whether the composite upsamples the temporal pass's half-size average, reading the surface
+/// of each sample from the surface history that pass wrote this frame.
+fn guided(plan: &Plan) -> bool {
+    plan.half_resolution && plan.accumulates()
 }
 
 pub struct CompositePass {
     state: PassState<Key>,
     /// The output's format (display plans draw into it).
     output: wgpu::TextureFormat,
+    /// Group 1 for each side of the surface history, where the plan reads it (`Key::guide`).
+    guided_groups: Option<[wgpu::BindGroup; 2]>,
 }
 
 impl CompositePass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "composite", "composite.wgsl", false)?, output: cx.output })
+        let state = PassState::new(cx, "composite", "composite.wgsl", false)?;
+        Ok(Self { state, output: cx.output, guided_groups: None })
     }
 
     /// The G-buffer, the filters' parameters (the upsample's), the sampling chain's last stage
     /// (AO alone or DO + AO, at half size where the samples are) and in a display plan the
     /// lighting pass's direct light (blended onto otherwise, where it is the attachment and
-    /// cannot also be bound); HDR, or in a display plan the output.
+    /// cannot also be bound), and after the temporal pass at half size the surface history it
+    /// wrote this frame; HDR, or in a display plan the output.
     pub fn io(plan: &Plan) -> PassIo {
         let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter];
         let stage = plan.chain_end(plan.half_resolution);
         reads.push(Read::target_if(plan.decl.runs_sampling(), stage.target(plan.decl.directional_occlusion)));
         reads.push(Read::target_if(plan.display && plan.lighting_writes_direct(), HDR));
+        reads.push(if guided(plan) { Read::Written(SURFACE_HISTORY) } else { Read::Absent(SURFACE_HISTORY) });
         PassIo { reads, attached: vec![], writes: vec![if plan.display { OUTPUT } else { HDR }] }
     }
 }
@@ -83,7 +100,10 @@ impl Pass for CompositePass {
     /// `white_albedo` is the "lighting only" view: every surface white.
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let Preparation { plan, variant, view, .. } = *p;
-        self.state.bind(device, &Self::io(plan), &p.inputs);
+        let io = Self::io(plan);
+        self.state.bind(device, &io, &p.inputs);
+        self.guided_groups =
+            guided(plan).then(|| [0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
         let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
         let output = self.output;
@@ -107,6 +127,7 @@ impl Pass for CompositePass {
                 ("OUTPUT_SRGB", f(output.is_srgb())),
                 ("DIRECT_INPUT", f(key.display && key.additive)),
                 ("HALF_INPUT", f(key.half_input)),
+                ("GUIDE_INPUT", f(key.guide)),
             ]
             .into_iter()
             .chain(key.lights.constants())
@@ -131,11 +152,14 @@ impl Pass for CompositePass {
     }
 
     fn record(&self, rec: Recording<'_>) {
-        let (key, _, _) = self.state.ready();
+        let (key, _, own) = self.state.ready();
         // Onto the lighting pass's direct light (kept), or cleared; a display plan at its origin.
         let keep = key.additive && !key.display;
         let attachments = rec.attachments(self.state.writes(), !keep);
         let viewport = key.display.then(|| rec.viewport());
-        self.state.draw((rec.encoder, rec.timestamps), &attachments, (rec.frame, None), viewport);
+        // The side of the surface history the temporal pass wrote this frame.
+        let written = rec.history.get(SURFACE_HISTORY).zip(self.guided_groups.as_ref());
+        let own = written.map_or(own, |(history, groups)| &groups[history.parity()]);
+        self.state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, own, None), viewport);
     }
 }

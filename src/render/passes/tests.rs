@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::render::graph::io::{Kind, Read};
-use crate::render::modes::MODES;
+use crate::render::modes::{MODES, SURFACE_HISTORY};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{
     AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_HALF_ACCUMULATED, AO_HALF_BLURRED, AO_RAW, BOUNCE, DO_ACCUMULATED,
@@ -98,6 +98,10 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(half_average, plan.half_resolution && plan.accumulates(), "{:?}", plan.steps);
         assert!(plan.history.iter().all(|h| h.half == plan.half_resolution), "{:?}", plan.steps);
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
+        // After the temporal pass at half size the composite reads the samples' surfaces from
+        // the surface history that pass has just written.
+        let guided = plan.half_resolution && plan.accumulates();
+        assert_eq!(Step::COMPOSITE.io(&plan).reads.contains(&SURFACE_HISTORY), guided, "{:?}", plan.steps);
         // The temporal pass's two; the senders' sky for the next frame where the plan keeps it.
         let last_sky = plan.sender_sky == SenderSky::LastFrame;
         let kept = 2 * usize::from(plan.accumulates()) + usize::from(last_sky);

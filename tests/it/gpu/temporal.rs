@@ -445,7 +445,9 @@ fn the_composite_upsamples_the_half_size_average_as_the_upsample_pass_does() {
     // No ambient, no lights: the composite's SSAO radiance is Off's (albedo times the sky's
     // irradiance) times the AO it upsampled from the half-size average itself. The upsample
     // pass's full-size copy (what the report reads, and what the halo test above checks) must be
-    // that AO at every pixel, silhouettes included.
+    // that AO at every pixel, silhouettes included. The composite takes the samples' surfaces
+    // from the surface history the temporal pass wrote this frame, the upsample pass from the
+    // G-buffer: the same depths and normals.
     let hdr = |mode: Mode| {
         let mut r = renderer(gpu, &scene, &sky, (W, H), settings(mode, 16));
         shoot_converged(gpu, &mut r, &camera);
