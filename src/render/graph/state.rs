@@ -9,6 +9,7 @@ use super::{
     fullscreen_depth_test, fullscreen_pipeline, FullscreenDesc, FullscreenPass, KeyedPipeline, PassContext,
     Preparation, Recording,
 };
+use crate::render::history::PingPong;
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::TargetId;
 use crate::{shaders, Result};
@@ -45,6 +46,16 @@ pub struct PassState<K> {
     writes: Vec<TargetId>,
     /// Draws only where the G-buffer has a surface (`surfaces_only`).
     surfaces_only: bool,
+}
+
+/// A pass's group 1 for a frame of either history parity ([`PassState::parity_groups`]).
+pub struct ParityGroups([wgpu::BindGroup; 2]);
+
+impl ParityGroups {
+    /// The group for the frame whose side of `history` stands as it does now.
+    pub fn of(&self, history: &PingPong) -> &wgpu::BindGroup {
+        &self.0[history.parity()]
+    }
 }
 
 impl<K: PartialEq + Copy> PassState<K> {
@@ -120,6 +131,12 @@ impl<K: PartialEq + Copy> PassState<K> {
             layout,
             entries: &io.entries(inputs, parity),
         })
+    }
+
+    /// Group 1 for each parity of the histories `io` binds: a pass that reads (or writes) a side
+    /// of a history makes both on a re-plan and draws each frame with the one its parity picks.
+    pub fn parity_groups(&mut self, device: &wgpu::Device, io: &PassIo, inputs: &Inputs<'_>) -> ParityGroups {
+        ParityGroups([0, 1].map(|parity| self.group(device, io, inputs, parity)))
     }
 
     /// Binds `io`'s reads as the pass's group 1.

@@ -9,7 +9,7 @@
 //! keeps a bind group for each side of that history.
 
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::state::PassState;
+use crate::render::graph::state::{ParityGroups, PassState};
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step, SURFACE_HISTORY};
@@ -71,7 +71,7 @@ pub struct CompositePass {
     /// The output's format (display plans draw into it).
     output: wgpu::TextureFormat,
     /// Group 1 for each side of the surface history, where the plan reads it (`Key::guide`).
-    guided_groups: Option<[wgpu::BindGroup; 2]>,
+    guided_groups: Option<ParityGroups>,
 }
 
 impl CompositePass {
@@ -102,8 +102,7 @@ impl Pass for CompositePass {
         let Preparation { plan, variant, view, .. } = *p;
         let io = Self::io(plan);
         self.state.bind(device, &io, &p.inputs);
-        self.guided_groups =
-            guided(plan).then(|| [0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
+        self.guided_groups = guided(plan).then(|| self.state.parity_groups(device, &io, &p.inputs));
         let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
         let output = self.output;
@@ -159,7 +158,7 @@ impl Pass for CompositePass {
         let viewport = key.display.then(|| rec.viewport());
         // The side of the surface history the temporal pass wrote this frame.
         let written = rec.history.get(SURFACE_HISTORY).zip(self.guided_groups.as_ref());
-        let own = written.map_or(own, |(history, groups)| &groups[history.parity()]);
+        let own = written.map_or(own, |(history, groups)| groups.of(history));
         self.state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, own, None), viewport);
     }
 }

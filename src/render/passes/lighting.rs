@@ -12,7 +12,7 @@
 
 use super::sender_sky::{self, last_sky_held, LAST_SKY};
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
@@ -81,7 +81,7 @@ pub struct LightingPass {
     /// a moving one, and group 1 for each side of its history.
     still: PassState<Key>,
     moved: PassState<Key>,
-    groups: Option<[wgpu::BindGroup; 2]>,
+    groups: Option<ParityGroups>,
     /// What this frame reads (set in `begin_frame`): the last frame's sky, and whether the
     /// camera moved since.
     last_sky: bool,
@@ -124,7 +124,7 @@ impl Pass for LightingPass {
             return;
         }
         let io = Self::io(plan);
-        self.groups = Some([0, 1].map(|parity| self.state.group(device, &io, &p.inputs, parity)));
+        self.groups = Some(self.state.parity_groups(device, &io, &p.inputs));
         for (state, reproject) in [(&mut self.still, false), (&mut self.moved, true)] {
             state.layout_for(device, &io);
             let key = Key { sender_sky: SenderSky::LastFrame, reproject, ..key };
@@ -142,7 +142,7 @@ impl Pass for LightingPass {
         match last {
             Some((history, groups)) if self.last_sky => {
                 let state = if self.camera_moved { &self.moved } else { &self.still };
-                state.record_with(rec, self.state.writes(), &groups[history.parity()]);
+                state.record_with(rec, self.state.writes(), groups.of(history));
             }
             _ => self.state.record(rec),
         }

@@ -12,7 +12,7 @@
 
 use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{Plan, PlanFacts, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
@@ -51,7 +51,7 @@ pub struct TemporalPass {
     blurred: bool,
     /// Group 1 for a frame that writes side 0 of the histories, and for one that writes side 1:
     /// reading the raw samples, then (where the plan blurs) the blurred ones.
-    groups: Vec<[wgpu::BindGroup; 2]>,
+    groups: Vec<ParityGroups>,
 }
 
 impl TemporalPass {
@@ -103,8 +103,7 @@ impl Pass for TemporalPass {
         }
         let io = Self::io(plan);
         let inputs = if plan.blur { vec![Self::io_reading(plan, false), io.clone()] } else { vec![io.clone()] };
-        self.groups =
-            inputs.iter().map(|io| [0, 1].map(|parity| self.state.group(device, io, &p.inputs, parity))).collect();
+        self.groups = inputs.iter().map(|io| self.state.parity_groups(device, io, &p.inputs)).collect();
         self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
             let key = Key { outputs: Outputs::of(plan), half: plan.half_resolution };
@@ -130,12 +129,11 @@ impl Pass for TemporalPass {
             (Some(o), Some(s)) => (o, s),
             _ => unreachable!("a plan that accumulates has its histories"),
         };
-        let parity = occlusion.parity();
-        debug_assert_eq!(parity, surface.parity(), "the two histories advance together");
+        debug_assert_eq!(occlusion.parity(), surface.parity(), "the two histories advance together");
         let set = if self.blurred { self.groups.last() } else { self.groups.first() };
         let groups = set.expect("the temporal pass recorded before `prepare`");
         let attachments = rec.attachments(self.state.writes(), true);
         let state = if self.camera_moved { &self.state } else { &self.still };
-        state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, &groups[parity], None), None);
+        state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, groups.of(occlusion), None), None);
     }
 }
