@@ -23,9 +23,8 @@
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
 #include "common/point_lights.wgsl"
-#include "common/fullscreen.wgsl"
+#include "common/frame_varyings.wgsl"
 #include "common/tone_curve.wgsl"
-#include "common/sky_irradiance.wgsl"
 #include "common/filter_params.wgsl"
 
 // The upsample's tolerances (HALF_INPUT).
@@ -74,18 +73,18 @@ fn sample_surface(texel: vec2<i32>, pixel: vec2<i32>) -> vec2<u32> {
 #include "common/upsample.wgsl"
 
 @fragment
-fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
+fn fs_main(in: FrameVaryings) -> @location(0) vec4<f32> {
     if DISPLAY {
         // The fragment's position is in the output; the targets are addressed from the image's
         // own top-left corner.
-        let size = frame.viewport.xy;
-        let pixel = vec2<i32>(min(in.position.xy - frame.output_origin, size - 1.0));
+        let size = in.viewport.xy;
+        let pixel = vec2<i32>(min(in.position.xy - in.output.xy, size - 1.0));
         let depth = load_depth(pixel);
         let albedo = textureLoad(g_albedo, pixel, 0);
         // The sky, displayed as the G-buffer pass drew it.
         var color = albedo.rgb;
         if depth > 0.0 {
-            color = tone_map(radiance(pixel, vec2<f32>(pixel) + 0.5, depth, albedo) * frame.display_scale);
+            color = tone_map(radiance(in, pixel, vec2<f32>(pixel) + 0.5, depth, albedo) * in.output.z);
         }
         if !OUTPUT_SRGB {
             color = linear_to_srgb(color);
@@ -97,13 +96,14 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4<f32> {
     if depth <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
-    return vec4<f32>(radiance(pixel, in.position.xy, depth, textureLoad(g_albedo, pixel, 0)), 1.0);
+    return vec4<f32>(radiance(in, pixel, in.position.xy, depth, textureLoad(g_albedo, pixel, 0)), 1.0);
 }
 
 // Pre-exposed radiance leaving `pixel` (centre `position`) towards the camera, from its depth
 // (> 0 where there is a surface) and its G-buffer albedo, which the caller has read: each is
-// read once a pixel (in a display plan the sky's pixels show that albedo as it is).
-fn radiance(pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: vec4<f32>) -> vec3<f32> {
+// read once a pixel (in a display plan the sky's pixels show that albedo as it is). `c`: the
+// frame's constants as the triangle handed them down.
+fn radiance(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: vec4<f32>) -> vec3<f32> {
     var albedo = surface_albedo;
     if WHITE_ALBEDO {
         albedo = vec4<f32>(1.0, 1.0, 1.0, albedo.a);
@@ -115,13 +115,13 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: v
     }
     var p = vec3<f32>(0.0);
     if LIGHT_LOOP || HALF_INPUT {
-        p = view_position(position, depth);
+        p = view_position_of(c, position, depth);
     }
     // The sampling chain's value here: AO in r, or DO + AO.
     var occlusion = unoccluded_value();
     if HAS_AO || HAS_DO {
         if HALF_INPUT {
-            occlusion = upsample_surface(pixel, p, bits);
+            occlusion = upsample_surface(pixel, p, bits, c.projection, c.viewport);
         } else {
             occlusion = textureLoad(current, pixel, 0);
         }
@@ -133,13 +133,13 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: v
     var ao = 1.0;
     if HAS_AO {
         let raw = clamp(select(occlusion.r, occlusion.a, HAS_DO), 0.0, 1.0);
-        ao = mix(1.0, pow(raw, frame.ao_power), frame.ao_strength);
+        ao = mix(1.0, pow(raw, c.ao.y), c.ao.x);
     } else if HAS_DO && !CLASSIC {
         // SSDO: the ambient's visibility, from the sampling pass (the march's open share; 1 for
         // the point estimator, which has none).
         ao = clamp(directional.a, 0.0, 1.0);
     }
-    let ambient = frame.pre_exposure * frame.ambient;
+    let ambient = c.ambient.rgb;
     var color: vec3<f32>;
     let normal = surface_of(bits);
     if CLASSIC {
@@ -150,10 +150,10 @@ fn radiance(pixel: vec2<i32>, position: vec2<f32>, depth: f32, surface_albedo: v
     } else if HAS_DO {
         color = albedo.rgb * (directional.rgb + ambient * ao);
     } else {
-        color = albedo.rgb * (sky_irradiance(normal.xyz) + ambient) * ao;
+        color = albedo.rgb * (sky_irradiance(c, normal.xyz) + ambient) * ao;
     }
     if LIGHT_LOOP {
-        let direct = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
+        let direct = point_lighting(c, p, normal.xyz, albedo.rgb, albedo.a, normal.w);
         color += direct.diffuse + direct.specular;
     }
     if DIRECT_INPUT {

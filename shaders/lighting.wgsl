@@ -14,8 +14,7 @@
 #include "common/uniforms.wgsl"
 #include "common/gbuffer_read.wgsl"
 #include "common/point_lights.wgsl"
-#include "common/sky_irradiance.wgsl"
-#include "common/fullscreen.wgsl"
+#include "common/frame_varyings.wgsl"
 
 // rgb: visible sky light (E/π, pre-exposed), a: open share, at half (SENDER_SKY 2) or quarter
 // (3) resolution.
@@ -40,7 +39,8 @@ struct LightingOut {
     @location(1) bounce: vec4<u32>,
 }
 
-fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
+// `c`: the frame's constants as the triangle handed them down.
+fn direct(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     var out: LightingOut;
     let depth = load_depth(pixel);
     if depth <= 0.0 {
@@ -51,16 +51,16 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
     let normal = surface_of(normal_bits);
     var bounce = vec3<f32>(0.0);
     if LIGHTS {
-        let p = view_position(position, depth);
-        let light = point_lighting(p, normal.xyz, albedo.rgb, albedo.a, normal.w);
+        let p = view_position_of(c, position, depth);
+        let light = point_lighting(c, p, normal.xyz, albedo.rgb, albedo.a, normal.w);
         out.hdr = vec4<f32>(light.diffuse + light.specular, 1.0);
         bounce = light.diffuse;
     }
-    let ambient = frame.pre_exposure * frame.ambient;
+    let ambient = c.ambient.rgb;
     if SENDER_SKY == 1u {
-        bounce += albedo.rgb * (sky_irradiance(normal.xyz) + ambient);
+        bounce += albedo.rgb * (sky_irradiance(c, normal.xyz) + ambient);
     } else if SENDER_SKY == 4u {
-        let seen = last_frame_sky(pixel, position, depth, normal.xyz);
+        let seen = last_frame_sky(c, pixel, position, depth, normal.xyz);
         bounce += albedo.rgb * (seen.rgb + ambient * seen.a);
     } else if SENDER_SKY >= 2u {
         let last = vec2<i32>(textureDimensions(sender_sky)) - vec2<i32>(1);
@@ -77,15 +77,15 @@ fn direct(pixel: vec2<i32>, position: vec2<f32>) -> LightingOut {
 // last camera where this one moved. Where the last frame did not see it (off screen, or behind
 // the camera), its unoccluded irradiance, all open. (A surface the last frame saw behind
 // another takes that one's sky for a frame: the march's next frame has its own.)
-fn last_frame_sky(pixel: vec2<i32>, position: vec2<f32>, depth: f32, n: vec3<f32>) -> vec4<f32> {
+fn last_frame_sky(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32, n: vec3<f32>) -> vec4<f32> {
     var was = pixel;
     if REPROJECT {
-        let world = frame.view_to_world * vec4<f32>(view_position(position, depth), 1.0);
+        let world = frame.view_to_world * vec4<f32>(view_position_of(c, position, depth), 1.0);
         let clip = frame.previous_world_to_clip * world;
         let ndc = clip.xy / max(clip.w, 1e-30);
-        let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * frame.viewport.xy;
-        if clip.w <= 0.0 || any(at < vec2<f32>(0.0)) || any(at >= frame.viewport.xy) {
-            return vec4<f32>(sky_irradiance(n), 1.0);
+        let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * c.viewport.xy;
+        if clip.w <= 0.0 || any(at < vec2<f32>(0.0)) || any(at >= c.viewport.xy) {
+            return vec4<f32>(sky_irradiance(c, n), 1.0);
         }
         was = vec2<i32>(at);
     }
@@ -95,12 +95,12 @@ fn last_frame_sky(pixel: vec2<i32>, position: vec2<f32>, depth: f32, n: vec3<f32
 }
 
 @fragment
-fn fs_main(in: FullscreenOut) -> LightingOut {
-    return direct(vec2<i32>(in.position.xy), in.position.xy);
+fn fs_main(in: FrameVaryings) -> LightingOut {
+    return direct(in, vec2<i32>(in.position.xy), in.position.xy);
 }
 
 // No point lights: the bounce alone (no HDR target is written).
 @fragment
-fn fs_bounce(in: FullscreenOut) -> @location(0) vec4<u32> {
-    return direct(vec2<i32>(in.position.xy), in.position.xy).bounce;
+fn fs_bounce(in: FrameVaryings) -> @location(0) vec4<u32> {
+    return direct(in, vec2<i32>(in.position.xy), in.position.xy).bounce;
 }

@@ -1,5 +1,7 @@
-// One triangle that covers the screen, at depth 0 (the reverse-Z far plane, where the skybox
-// lives). uv is (0,0) at the top-left of the target.
+// The full-screen triangle's vertex stage for the passes that need nothing but their pixel
+// (common/fullscreen_triangle.wgsl). uv is (0,0) at the top-left of the target.
+
+#include "common/fullscreen_triangle.wgsl"
 
 struct FullscreenOut {
     @builtin(position) position: vec4<f32>,
@@ -8,9 +10,8 @@ struct FullscreenOut {
 
 @vertex
 fn fullscreen_vs(@builtin(vertex_index) index: u32) -> FullscreenOut {
-    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
     var out: FullscreenOut;
-    out.position = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
-    out.uv = uv;
+    out.uv = fullscreen_uv(index);
+    out.position = fullscreen_clip(out.uv);
     return out;
 }

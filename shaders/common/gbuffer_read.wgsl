@@ -35,13 +35,24 @@ fn surface_of(bits: u32) -> vec4<f32> {
     return vec4<f32>(unpack_normal(bits), unpack_shininess(bits));
 }
 
-// View-space position of the surface at `pixel` with depth `depth` (> 0). With
-// z_clip = a·z + b and w = -z, depth = -a - b / z, so z = -b / (depth + a).
+// View-space position of the surface at `pixel` with depth `depth` (> 0).
 fn view_position(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    let a = frame.view_to_clip[2][2];
-    let b = frame.view_to_clip[3][2];
-    let z = -b / max(depth + a, 1e-30);
-    let uv = pixel * frame.viewport.zw;
+    return unproject(pixel, depth, projection_terms(), frame.viewport.zw);
+}
+
+// What `unproject` needs of view_to_clip: a = [2][2], b = [3][2], and the x and y scales [0][0],
+// [1][1].
+fn projection_terms() -> vec4<f32> {
+    let m = frame.view_to_clip;
+    return vec4<f32>(m[2][2], m[3][2], m[0][0], m[1][1]);
+}
+
+// The view-space position at `pixel` (in pixels; `inv_size` the image's 1/width, 1/height) with
+// depth `depth` > 0, from `projection_terms`. With z_clip = a·z + b and w = -z,
+// depth = -a - b / z, so z = -b / (depth + a).
+fn unproject(pixel: vec2<f32>, depth: f32, k: vec4<f32>, inv_size: vec2<f32>) -> vec3<f32> {
+    let z = -k.y / max(depth + k.x, 1e-30);
+    let uv = pixel * inv_size;
     let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
-    return vec3<f32>(ndc.x * -z / frame.view_to_clip[0][0], ndc.y * -z / frame.view_to_clip[1][1], z);
+    return vec3<f32>(ndc.x * -z / k.z, ndc.y * -z / k.w, z);
 }

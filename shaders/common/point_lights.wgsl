@@ -3,7 +3,7 @@
 // finite). Returns outgoing radiance towards the camera at view-space `p`, split into the
 // diffuse part (which SSDO bounces) and the specular part.
 
-#include "common/uniforms.wgsl"
+#include "common/frame_varyings.wgsl"
 
 // The number of lights where the pipeline was built for it (the loop has a known length, and the
 // compiler unrolls it); 0: the frame's count, read as the loop runs (src/render/modes/mod.rs,
@@ -18,9 +18,11 @@ struct PointLighting {
     specular: vec3<f32>,
 }
 
-fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, shininess: f32) -> PointLighting {
+// `c`: the frame's constants as the full-screen triangle handed them down.
+fn point_lighting(c: FrameVaryings, p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, shininess: f32) -> PointLighting {
     let to_eye = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
-    let min_d2 = frame.min_light_distance2;
+    let pre_exposure = c.lights.x;
+    let min_d2 = c.lights.y;
     let spec_norm = (shininess + 8.0) / (8.0 * PI);
     var count = frame.light_count;
     if LIGHT_COUNT > 0u {
@@ -38,7 +40,7 @@ fn point_lighting(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, specular: f32, 
         let d2 = dot(to_light, to_light);
         let l = safe_normalize(to_light, n);
         let n_dot_l = max(dot(n, l), 0.0);
-        let irradiance = light.color * (frame.pre_exposure * light.intensity / max(d2, min_d2)) * n_dot_l;
+        let irradiance = light.color * (pre_exposure * light.intensity / max(d2, min_d2)) * n_dot_l;
         let h = safe_normalize(l + to_eye, n);
         out.diffuse += irradiance * albedo / PI;
         out.specular += irradiance * (specular * spec_norm * pow(max(dot(n, h), 0.0), shininess));

@@ -27,17 +27,19 @@ fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
     if depth <= 0.0 {
         return unoccluded_value();
     }
-    return upsample_surface(pixel, view_position(position, depth), textureLoad(g_normal, pixel, 0).r);
+    let bits = textureLoad(g_normal, pixel, 0).r;
+    return upsample_surface(pixel, view_position(position, depth), bits, projection_terms(), frame.viewport);
 }
 
 // The same for a `pixel` that shows a surface, given its view-space position `p` and its packed
-// normal `bits` (for a caller that has read them already).
-fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32) -> vec4<f32> {
+// normal `bits` (for a caller that has read them already), and the frame's `projection_terms`
+// and viewport (for a caller that has them at hand: common/frame_varyings.wgsl).
+fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<f32>, viewport: vec4<f32>) -> vec4<f32> {
     let unoccluded = unoccluded_value();
     let n = unpack_normal(bits);
     let code = octahedral_code(bits);
     let tolerance = max(0.25 * params.radius, 1e-30);
-    let full = vec2<i32>(frame.viewport.xy);
+    let full = vec2<i32>(viewport.xy);
     let half_last = vec2<i32>(textureDimensions(current)) - 1;
     let base = pixel >> vec2<u32>(1u);
 
@@ -55,7 +57,7 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32) -> vec4<f32> {
                 continue;
             }
             let value = textureLoad(current, h, 0);
-            let q = view_position(vec2<f32>(at) + 0.5, d);
+            let q = unproject(vec2<f32>(at) + 0.5, d, projection, viewport.zw);
             let plane = abs(dot(n, q - p));
             if plane < nearest_plane {
                 nearest_plane = plane;

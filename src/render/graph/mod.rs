@@ -236,7 +236,8 @@ pub fn fullscreen_depth_test(compare: wgpu::CompareFunction) -> wgpu::DepthStenc
     }
 }
 
-/// A pipeline that draws the full-screen triangle of `common/fullscreen.wgsl`.
+/// A pipeline that draws the full-screen triangle of `common/fullscreen_triangle.wgsl` (the
+/// module's `fullscreen_vs`: `common/fullscreen.wgsl`'s or `common/frame_varyings.wgsl`'s).
 pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&format!("{}_layout", desc.label)),
@@ -269,7 +270,7 @@ pub fn fullscreen_pipeline(device: &wgpu::Device, desc: &FullscreenDesc<'_>) -> 
 
 /// Records one full-screen pass: `attachments` as colour targets, an optional read-only depth
 /// attachment (for the depth test of the skybox), the pipeline with its bind groups by index, and
-/// the triangle of `common/fullscreen.wgsl` drawn into `viewport` (the whole target when `None`).
+/// the triangle of `common/fullscreen_triangle.wgsl` drawn into `viewport` (the whole target when `None`).
 pub struct FullscreenPass<'a> {
     pub label: &'a str,
     pub attachments: &'a [Option<wgpu::RenderPassColorAttachment<'a>>],
