@@ -147,3 +147,79 @@ fn uniform_structs_match_wgsl_member_for_member() {
         FilterParams { radius, accumulate, motion_accumulate, history_frames }
     );
 }
+
+/// The members of the frame uniforms that `name`'s fragment stages read, directly or through
+/// the functions they call (the whole struct, where one loads it whole, as "*").
+fn frame_members_read_per_pixel(name: &str) -> std::collections::BTreeSet<String> {
+    use naga::{Expression, Statement};
+    let module = parse(name);
+    let (frame, _) = module.global_variables.iter().find(|(_, g)| g.name.as_deref() == Some("frame")).unwrap();
+    let members = match &module.types[module.global_variables[frame].ty].inner {
+        naga::TypeInner::Struct { members, .. } => members.clone(),
+        other => panic!("frame is a {other:?}"),
+    };
+    fn calls(block: &naga::Block, out: &mut Vec<naga::Handle<naga::Function>>) {
+        for statement in block.iter() {
+            match statement {
+                Statement::Call { function, .. } => out.push(*function),
+                Statement::Block(b) => calls(b, out),
+                Statement::If { accept, reject, .. } => {
+                    calls(accept, out);
+                    calls(reject, out);
+                }
+                Statement::Loop { body, continuing, .. } => {
+                    calls(body, out);
+                    calls(continuing, out);
+                }
+                Statement::Switch { cases, .. } => cases.iter().for_each(|c| calls(&c.body, out)),
+                _ => {}
+            }
+        }
+    }
+    let mut read = std::collections::BTreeSet::new();
+    let mut pending: Vec<&naga::Function> =
+        module.entry_points.iter().filter(|e| e.stage == naga::ShaderStage::Fragment).map(|e| &e.function).collect();
+    let mut seen = std::collections::HashSet::new();
+    while let Some(function) = pending.pop() {
+        for (_, expression) in function.expressions.iter() {
+            let is_frame = |h: naga::Handle<Expression>| matches!(function.expressions[h], Expression::GlobalVariable(g) if g == frame);
+            match *expression {
+                Expression::AccessIndex { base, index } if is_frame(base) => {
+                    read.insert(members[index as usize].name.clone().unwrap());
+                }
+                Expression::Load { pointer } if is_frame(pointer) => {
+                    read.insert("*".to_owned());
+                }
+                _ => {}
+            }
+        }
+        let mut called = Vec::new();
+        calls(&function.body, &mut called);
+        for handle in called {
+            if seen.insert(handle) {
+                pending.push(&module.functions[handle]);
+            }
+        }
+    }
+    read
+}
+
+/// The composite and the lighting pass take the frame's constants from their triangle as flat
+/// varyings (common/frame_varyings.wgsl): on a CPU rasteriser a uniform read costs a load for
+/// every eight pixels. Their pixels may read the lights (an array no varying could carry) and,
+/// in the lighting pass's reprojection of the last frame's sky, the two matrices it takes there.
+#[test]
+fn the_lit_passes_read_no_frame_constant_per_pixel() {
+    let lights = ["first_lights", "light_count"];
+    let composite = frame_members_read_per_pixel("composite.wgsl");
+    assert!(composite.iter().all(|m| lights.contains(&m.as_str())), "composite reads {composite:?}");
+    assert!(composite.contains("first_lights"), "the walk found no read at all: {composite:?}");
+    let lighting = frame_members_read_per_pixel("lighting.wgsl");
+    let reprojection = ["view_to_world", "previous_world_to_clip"];
+    assert!(
+        lighting.iter().all(|m| lights.contains(&m.as_str()) || reprojection.contains(&m.as_str())),
+        "lighting reads {lighting:?}"
+    );
+    // The walk itself: the march reads the frame's constants where it is.
+    assert!(frame_members_read_per_pixel("march.wgsl").contains("view_to_clip"));
+}
