@@ -5,7 +5,7 @@
 // Why: on a CPU rasteriser (lavapipe, llvmpipe) every read of a uniform is a bounds-checked load
 // of each scalar, repeated for every eight pixels; a flat varying is set up once for the
 // triangle. The 27 weights of the sky's irradiance alone were a quarter of the composite (3.5 of
-// 14 ms at 800x600); with these constants handed down the Off composite took 0.67 of its time
+// 14 ms at 800x600); with these constants handed down the Off composite takes 0.71 of its time
 // (docs/performance.md). A GPU reads either from a constant cache.
 
 #include "common/uniforms.wgsl"
