@@ -5,9 +5,13 @@
 //                                   (common/surface_pack.wgsl)
 //   depth (Depth32Float, reverse-Z): position is reconstructed from it, not stored.
 // Faces are two-sided: the normal that reaches the G-buffer is turned to the side of the surface
-// the camera sees, whatever the triangle's winding (see `camera_side`), so single-sided walls,
-// leaves seen from behind and meshes wound against their normals are lit from the visible side.
-// A normal-mapped surface turns its whole tangent frame with it.
+// the camera sees, so single-sided walls and leaves seen from behind are lit from the visible
+// side. Every model's triangles are wound to agree with their vertex normals (a mesh wound
+// against them is turned when it is built: `Model::from_groups`), so the rasteriser's facing says
+// which side that is: a back face's normal is flipped. A normal-mapped surface turns its whole
+// tangent frame with it. (Taking the side from the plane of the view-space position's derivatives
+// instead, which needs no rule on the winding, cost the pass about 5% on a CPU rasteriser, for
+// three more varyings and their derivatives: docs/performance.md.)
 // Cut-out materials discard the texels whose coverage is below their cutoff: this pass is the
 // only one that writes depth (the depth pyramid is built from its depth), so every screen-space
 // pass sees the holes.
@@ -59,9 +63,8 @@ struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) normal: vec3<f32>,
     @location(1) uv: vec2<f32>,
-    @location(2) view_position: vec3<f32>,
     // View-space tangent and bitangent sign (0 where there is none); vs_main leaves it 0.
-    @location(3) tangent: vec4<f32>,
+    @location(2) tangent: vec4<f32>,
 }
 
 fn transform(v: VertexIn) -> VertexOut {
@@ -70,7 +73,6 @@ fn transform(v: VertexIn) -> VertexOut {
     out.clip = frame.view_to_clip * view;
     out.normal = (frame.world_to_view * vec4<f32>(v.normal, 0.0)).xyz;
     out.uv = v.uv;
-    out.view_position = view.xyz;
     out.tangent = vec4<f32>(0.0);
     return out;
 }
@@ -87,22 +89,6 @@ fn vs_mapped(v: VertexIn, @location(3) tangent: vec4<f32>) -> VertexOut {
     var out = transform(v);
     out.tangent = vec4<f32>((frame.world_to_view * vec4<f32>(tangent.xyz, 0.0)).xyz, tangent.w);
     return out;
-}
-
-// +1 or -1: the sign that turns the normal `n` to the camera's side of the triangle at
-// view-space position `p`. The triangle's plane comes from the screen-space derivatives of `p`
-// (exact for a flat triangle, independent of its winding), oriented towards the camera; `n` is
-// flipped when it lies on the other side of that plane. At a silhouette a smooth normal may
-// point slightly away from the camera while still on the visible side: it is kept. Only a
-// degenerate plane (no derivatives) falls back to the rasteriser's facing.
-fn camera_side(n: vec3<f32>, p: vec3<f32>, plane: vec3<f32>, front: bool) -> f32 {
-    var facing = select(-1.0, 1.0, front);
-    let towards_camera = dot(plane, -p);
-    if towards_camera != 0.0 && dot(plane, plane) > 0.0 {
-        // Signs apart: their product could underflow on a tiny model.
-        facing = sign(dot(n, plane)) * sign(towards_camera);
-    }
-    return select(1.0, -1.0, facing < 0.0);
 }
 
 // The normal map's normal at `uv` in the frame of the unit vertex normal `n` and the
@@ -127,8 +113,7 @@ struct GBufferOut {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    // Derivatives and every implicit-derivative sample first, in uniform control flow.
-    let plane = cross(dpdx(in.view_position), dpdy(in.view_position));
+    // Every implicit-derivative sample first, in uniform control flow.
     var albedo = material.albedo;
     var specular = material.specular;
     if TEXTURED {
@@ -152,8 +137,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
             discard;
         }
     }
-    // The side is the vertex normal's: the mapped normal turns with its whole frame.
-    n *= camera_side(vertex_normal, in.view_position, plane, front);
+    // A back face shows the surface's other side: the normal, mapped or not, turns with it.
+    n *= select(-1.0, 1.0, front);
     var out: GBufferOut;
     out.albedo = vec4<f32>(albedo, specular);
     out.normal = pack_normal(n) | material.shininess_bits;

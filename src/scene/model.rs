@@ -8,6 +8,7 @@ use glam::Vec3;
 
 use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
+use super::triangle::wound_against;
 use crate::budget::{self, Share};
 use crate::{Error, Result};
 
@@ -126,14 +127,23 @@ pub struct Model {
 
 impl Model {
     /// Builds a model from triangles grouped by material (`groups[i]` are the triangles, as
-    /// vertex triples, of `materials[i]`). Fails when there is nothing to draw.
+    /// vertex triples, of `materials[i]`). Fails when there is nothing to draw. A triangle wound
+    /// against its vertex normals is turned to agree with them (the loaders have done so already,
+    /// and counted them): the G-buffer takes the side of a surface the camera sees from the
+    /// rasteriser's facing.
     pub fn from_groups(name: &str, materials: Vec<Material>, groups: Vec<Vec<Vertex>>) -> Result<Self> {
         let mut vertices = Vec::new();
         let mut indices = Vec::new();
         let mut parts = Vec::new();
-        for (material, triangles) in groups.into_iter().enumerate() {
+        for (material, mut triangles) in groups.into_iter().enumerate() {
             if triangles.is_empty() {
                 continue;
+            }
+            for t in triangles.chunks_exact_mut(3) {
+                let pos = [0, 1, 2].map(|k| Vec3::from(t[k].position));
+                if wound_against(pos, t.iter().map(|v| Vec3::from(v.normal)).sum()) {
+                    t.swap(1, 2);
+                }
             }
             let first_index = indices.len() as u32;
             for v in triangles {

@@ -13,10 +13,31 @@ pub(super) enum Triangle {
     Dropped,
 }
 
+/// The unit normal of the triangle at `pos` by its winding, and whether that winding can be
+/// trusted: a sliver (a sphere's pole) has none. In f64: the cross product of edges 1e-20 long
+/// underflows f32 (to a zero normal); a model that small is scaled up later, and keeps the
+/// normals computed here.
+fn face(pos: [Vec3; 3]) -> (Vec3, bool) {
+    let (e1, e2) = ((pos[1] - pos[0]).as_dvec3(), (pos[2] - pos[0]).as_dvec3());
+    let cross = e1.cross(e2);
+    let normal = cross.try_normalize().map_or(Vec3::Y, |n| n.as_vec3());
+    (normal, cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared()))
+}
+
+/// Whether the triangle at `pos` is wound against `normals` (their sum, the side they say is
+/// out): the rule every model's triangles are held to ([`super::Model::from_groups`]), which the
+/// G-buffer relies on to tell from the rasteriser's facing which side of a surface the camera
+/// sees. A sliver, or normals that say nothing, leave the winding as it is.
+pub(super) fn wound_against(pos: [Vec3; 3], normals: Vec3) -> bool {
+    let (normal, well_shaped) = face(pos);
+    well_shaped && normals.is_finite() && normal.dot(normals) < 0.0
+}
+
 /// Appends one triangle's three vertices to `out`, the same way for every file format. The
 /// supplied normals, where there are any, say which side is out; the winding is often an
-/// accident (left-handed exporters, mirrored objects), so where they disagree, the winding yields.
-/// A vertex without a usable normal takes the face's.
+/// accident (left-handed exporters, mirrored objects), so where they disagree, the winding yields
+/// ([`wound_against`], over the normals as the vertices keep them, so the model built from them
+/// finds nothing more to turn). A vertex without a usable normal takes the face's.
 pub(super) fn push_triangle(
     pos: [Vec3; 3],
     normals: Option<[Vec3; 3]>,
@@ -27,25 +48,17 @@ pub(super) fn push_triangle(
     if !pos.iter().all(|p| p.is_finite() && p.abs().max_element() <= 1e12) {
         return Triangle::Dropped;
     }
-    // In f64: the cross product of edges 1e-20 long underflows f32 (to a zero normal); a model
-    // that small is scaled up later, and keeps the normals computed here.
-    let (e1, e2) = ((pos[1] - pos[0]).as_dvec3(), (pos[2] - pos[0]).as_dvec3());
-    let cross = e1.cross(e2);
-    let mut face_normal = cross.try_normalize().map_or(Vec3::Y, |n| n.as_vec3());
-    // A sliver (a sphere's pole) has no trustworthy winding: it is left as it is.
-    let well_shaped = cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared());
+    let (mut face_normal, _) = face(pos);
+    let usable = normals.map(|n| n.map(Vec3::try_normalize)).unwrap_or([None; 3]);
     let mut order = [0, 1, 2];
     let mut outcome = Triangle::Kept;
-    if let Some(normals) = normals {
-        let supplied: Vec3 = normals.iter().sum();
-        if well_shaped && supplied.is_finite() && face_normal.dot(supplied) < 0.0 {
-            order = [0, 2, 1];
-            face_normal = -face_normal;
-            outcome = Triangle::Flipped;
-        }
+    if wound_against(pos, usable.iter().flatten().sum()) {
+        order = [0, 2, 1];
+        face_normal = -face_normal;
+        outcome = Triangle::Flipped;
     }
     for k in order {
-        let normal = normals.and_then(|n| n[k].try_normalize()).unwrap_or(face_normal);
+        let normal = usable[k].unwrap_or(face_normal);
         let uv = if uvs[k].iter().all(|x| x.is_finite()) { uvs[k] } else { [0.0, 0.0] };
         out.push(Vertex { position: pos[k].into(), normal: normal.into(), uv });
     }

@@ -321,3 +321,26 @@ fn a_sky_larger_than_the_budget_is_downscaled_as_it_loads() {
     assert!(sky.faces.iter().all(|f| f.len() == (sky.size * sky.size) as usize));
     assert!(sky.warnings.iter().any(|w| w.contains("downscaled")), "{:?}", sky.warnings);
 }
+
+#[test]
+fn a_model_built_in_code_is_wound_to_agree_with_its_normals() {
+    // The G-buffer takes the side of a surface the camera sees from the rasteriser's facing, so
+    // every model's triangles must be wound the way their normals say is out, whoever built it.
+    use ssdo::scene::model::Vertex;
+    use ssdo::scene::{Material, Model};
+    let v = |p: [f32; 3], normal: [f32; 3]| Vertex { position: p, normal, uv: [0.0; 2] };
+    let up = [0.0, 1.0, 0.0];
+    // Counter-clockwise seen from +Y (agreeing), clockwise (against), and a sliver against.
+    let agreeing = [v([0.0, 0.0, 0.0], up), v([0.0, 0.0, 1.0], up), v([1.0, 0.0, 0.0], up)];
+    let against = [agreeing[0], agreeing[2], agreeing[1]];
+    let sliver = [v([0.0, 0.0, 0.0], up), v([2.0, 0.0, 0.0], up), v([1.0, 0.0, 1e-7], up)];
+    let triangles = [agreeing, against, sliver].concat();
+    let model = Model::from_groups("quad", vec![Material::plain("m", [0.5; 3])], vec![triangles]).unwrap();
+    let face = |t: usize| {
+        let p = |k: usize| Vec3::from(model.vertices[model.indices[3 * t + k] as usize].position);
+        (p(1) - p(0)).cross(p(2) - p(0))
+    };
+    assert!(face(0).y > 0.0, "kept as it was: {}", face(0));
+    assert!(face(1).y > 0.0, "turned to agree with its normals: {}", face(1));
+    assert!(face(2).y < 0.0, "a sliver has no trustworthy winding and is left: {}", face(2));
+}
