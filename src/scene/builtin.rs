@@ -72,7 +72,9 @@ impl MeshBuilder {
     }
 
     pub fn build(self, name: &str) -> Result<Model> {
-        Model::from_groups(name, self.materials, self.groups)
+        let mut model = Model::from_groups(name, self.materials, self.groups)?;
+        model.weld();
+        Ok(model)
     }
 }
 

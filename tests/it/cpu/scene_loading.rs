@@ -344,3 +344,37 @@ fn a_model_built_in_code_is_wound_to_agree_with_its_normals() {
     assert!(face(1).y > 0.0, "turned to agree with its normals: {}", face(1));
     assert!(face(2).y < 0.0, "a sliver has no trustworthy winding and is left: {}", face(2));
 }
+
+#[test]
+fn welding_shares_equal_vertices_and_changes_no_corner() {
+    use ssdo::scene::model::Vertex;
+    use ssdo::scene::{Material, Model};
+    // A quad as two triangles and a third triangle on one of its edges: 9 corners, 5 distinct
+    // vertices, except that one corner of the third carries another tangent than its twin.
+    let v = |x: f32, z: f32| Vertex { position: [x, 0.0, z], normal: [0.0, 1.0, 0.0], uv: [x, z] };
+    let corners = vec![v(0.0, 0.0), v(0.0, 1.0), v(1.0, 1.0), v(0.0, 0.0), v(1.0, 1.0), v(1.0, 0.0)];
+    let edge = vec![v(1.0, 0.0), v(1.0, 1.0), v(2.0, 0.0)];
+    let materials = vec![Material::plain("a", [0.5; 3]), Material::plain("b", [0.5; 3])];
+    let mut model = Model::from_groups("welded", materials, vec![corners, edge]).unwrap();
+    let mut tangents = vec![[1.0, 0.0, 0.0, 1.0]; 9];
+    tangents[7] = [0.0, 0.0, 1.0, -1.0];
+    model.tangents = tangents;
+    let corner = |m: &Model, k: usize| {
+        let i = m.indices[k] as usize;
+        (m.vertices[i], m.tangents[i])
+    };
+    let before: Vec<_> = (0..9).map(|k| corner(&model, k)).collect();
+    let parts: Vec<_> = model.parts.iter().map(|p| (p.first_index, p.index_count, p.material)).collect();
+    model.weld();
+    let after: Vec<_> = (0..9).map(|k| corner(&model, k)).collect();
+    assert_eq!(after, before, "every corner keeps its vertex and tangent");
+    assert_eq!(model.vertices.len(), 6, "4 of the quad, the edge's twin with its own tangent and one new");
+    assert_eq!(model.tangents.len(), model.vertices.len());
+    assert_eq!(model.parts.iter().map(|p| (p.first_index, p.index_count, p.material)).collect::<Vec<_>>(), parts);
+    // In order of first use.
+    assert_eq!(model.indices[..6], [0, 1, 2, 0, 2, 3]);
+
+    // The loaders weld: the default scene's OBJ shares its corners.
+    let cornell = load_obj(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/models/cornell/cornell.obj"))).unwrap();
+    assert!(cornell.vertices.len() < cornell.indices.len() / 2, "{} vertices", cornell.vertices.len());
+}
