@@ -214,6 +214,7 @@ impl Model {
         }
         self.tangents = tangents;
     }
+
     /// Shares each vertex among the triangles that use it: every loader's triangle brings three
     /// vertices of its own (`triangle::push_triangle`), so without this the G-buffer's vertex
     /// stage ran three times a triangle (0.69 times on the nanosuit after it; the G-buffer pass
