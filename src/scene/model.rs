@@ -2,6 +2,7 @@
 //! loader shares ([`finish`]). The loaders are [`super::obj_model`] (Wavefront OBJ + MTL) and
 //! [`super::gltf_model`] (glTF 2.0); both build their triangles with `triangle::push_triangle`.
 
+use std::hash::{BuildHasher, RandomState};
 use std::path::Path;
 
 use glam::Vec3;
@@ -220,35 +221,29 @@ impl Model {
     /// stage ran three times a triangle (0.69 times on the nanosuit after it; the G-buffer pass
     /// 6% faster on lavapipe). Vertices merge where they are the same to the bit, tangent
     /// included, so nothing drawn changes. Run after the tangents are made: MikkTSpace writes one
-    /// per corner. In place, in the order of first use, through an open-addressed table of the
-    /// vertices kept so far (at most 20 bytes a vertex besides the model).
+    /// per corner. In place, in the order of first use; the table holds only the kept vertices'
+    /// indices (about 5 bytes a vertex besides the model).
     pub fn weld(&mut self) {
-        let count = self.vertices.len();
-        let slots = (2 * count).next_power_of_two().max(2);
-        let mut table = vec![u32::MAX; slots];
-        let mut renumbered = vec![0u32; count];
+        let state = RandomState::new();
+        let mut table = hashbrown::HashTable::<u32>::with_capacity(self.vertices.len());
+        let mut renumbered = vec![0u32; self.vertices.len()];
         let mut kept = 0usize;
         for (i, number) in renumbered.iter_mut().enumerate() {
             let key = self.weld_key(i);
-            let hash = key.iter().fold(0u64, |h, &w| (h.rotate_left(5) ^ w as u64).wrapping_mul(0x517c_c1b7_2722_0a95));
-            let mut slot = hash as usize & (slots - 1);
-            *number = loop {
-                match table[slot] {
-                    // New: moved down to the next place kept (never above `i`, and every place
-                    // below `i` already read).
-                    u32::MAX => {
-                        table[slot] = kept as u32;
-                        self.vertices[kept] = self.vertices[i];
-                        if !self.tangents.is_empty() {
-                            self.tangents[kept] = self.tangents[i];
-                        }
-                        kept += 1;
-                        break kept as u32 - 1;
-                    }
-                    earlier if self.weld_key(earlier as usize) == key => break earlier,
-                    _ => slot = (slot + 1) & (slots - 1),
-                }
-            };
+            let hash = state.hash_one(key);
+            if let Some(&earlier) = table.find(hash, |&k| self.weld_key(k as usize) == key) {
+                *number = earlier;
+                continue;
+            }
+            // New: moved down to the next place kept (never above `i`, and every place below `i`
+            // already read).
+            self.vertices[kept] = self.vertices[i];
+            if !self.tangents.is_empty() {
+                self.tangents[kept] = self.tangents[i];
+            }
+            table.insert_unique(hash, kept as u32, |&k| state.hash_one(self.weld_key(k as usize)));
+            *number = kept as u32;
+            kept += 1;
         }
         for index in &mut self.indices {
             *index = renumbered[*index as usize];
