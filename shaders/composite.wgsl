@@ -133,7 +133,7 @@ fn radiance(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32,
     var ao = 1.0;
     if HAS_AO {
         let raw = clamp(select(occlusion.r, occlusion.a, HAS_DO), 0.0, 1.0);
-        ao = mix(1.0, pow(raw, c.ao.y), c.ao.x);
+        ao = mix(1.0, pow(raw, c.shading.y), c.shading.x);
     } else if HAS_DO && !CLASSIC {
         // SSDO: the ambient's visibility, from the sampling pass (the march's open share; 1 for
         // the point estimator, which has none).

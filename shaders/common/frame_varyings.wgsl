@@ -6,7 +6,9 @@
 // of each scalar, repeated for every eight pixels; a flat varying is set up once for the
 // triangle. The 27 weights of the sky's irradiance alone were a quarter of the composite (3.5 of
 // 14 ms at 800x600); with these constants handed down the Off composite takes 0.71 of its time
-// (docs/performance.md). A GPU reads either from a constant cache.
+// (docs/performance.md). A GPU reads either from a constant cache. The first light comes down
+// too, for a loop built for one light (common/point_lights.wgsl): 14 of the 15 varyings
+// WebGPU's downlevel limits allow, the sky's weights packed four to a varying to make room.
 
 #include "common/uniforms.wgsl"
 #include "common/fullscreen_triangle.wgsl"
@@ -21,21 +23,23 @@ struct FrameVaryings {
     @location(2) @interpolate(flat) output: vec4<f32>,
     // The constant ambient, pre-exposed (rgb); 0
     @location(3) @interpolate(flat) ambient: vec4<f32>,
-    // frame.ao_strength, frame.ao_power
-    @location(4) @interpolate(flat) ao: vec2<f32>,
-    // What the point lights need besides their own entries: frame.pre_exposure,
-    // frame.min_light_distance2
-    @location(14) @interpolate(flat) lights: vec2<f32>,
-    // frame.sky_irradiance's nine rgb weights (see `sky_irradiance`).
-    @location(5) @interpolate(flat) sky0: vec3<f32>,
-    @location(6) @interpolate(flat) sky1: vec3<f32>,
-    @location(7) @interpolate(flat) sky2: vec3<f32>,
-    @location(8) @interpolate(flat) sky3: vec3<f32>,
-    @location(9) @interpolate(flat) sky4: vec3<f32>,
-    @location(10) @interpolate(flat) sky5: vec3<f32>,
-    @location(11) @interpolate(flat) sky6: vec3<f32>,
-    @location(12) @interpolate(flat) sky7: vec3<f32>,
-    @location(13) @interpolate(flat) sky8: vec3<f32>,
+    // frame.ao_strength, frame.ao_power; what the point lights need besides their own entries:
+    // frame.pre_exposure, frame.min_light_distance2
+    @location(4) @interpolate(flat) shading: vec4<f32>,
+    // frame.sky_irradiance's nine rgb weights (see `sky_irradiance`), a colour channel's first
+    // eight in two vectors (red: sky_r0, sky_r1), the constant term's three in sky_k.
+    @location(5) @interpolate(flat) sky_r0: vec4<f32>,
+    @location(6) @interpolate(flat) sky_r1: vec4<f32>,
+    @location(7) @interpolate(flat) sky_g0: vec4<f32>,
+    @location(8) @interpolate(flat) sky_g1: vec4<f32>,
+    @location(9) @interpolate(flat) sky_b0: vec4<f32>,
+    @location(10) @interpolate(flat) sky_b1: vec4<f32>,
+    @location(11) @interpolate(flat) sky_k: vec4<f32>,
+    // The first light (common/point_lights.wgsl reads it here where the pipeline is built for
+    // one light): its view-space position (xyz), and its colour times its intensity and the
+    // pre-exposure (rgb).
+    @location(12) @interpolate(flat) light_position: vec4<f32>,
+    @location(13) @interpolate(flat) light_power: vec4<f32>,
 }
 
 @vertex
@@ -46,18 +50,19 @@ fn fullscreen_vs(@builtin(vertex_index) index: u32) -> FrameVaryings {
     out.projection = projection_terms();
     out.output = vec4<f32>(frame.output_origin, frame.display_scale, 0.0);
     out.ambient = vec4<f32>(frame.pre_exposure * frame.ambient, 0.0);
-    out.ao = vec2<f32>(frame.ao_strength, frame.ao_power);
-    out.lights = vec2<f32>(frame.pre_exposure, frame.min_light_distance2);
+    out.shading = vec4<f32>(frame.ao_strength, frame.ao_power, frame.pre_exposure, frame.min_light_distance2);
     let q = frame.sky_irradiance;
-    out.sky0 = q[0].rgb;
-    out.sky1 = q[1].rgb;
-    out.sky2 = q[2].rgb;
-    out.sky3 = q[3].rgb;
-    out.sky4 = q[4].rgb;
-    out.sky5 = q[5].rgb;
-    out.sky6 = q[6].rgb;
-    out.sky7 = q[7].rgb;
-    out.sky8 = q[8].rgb;
+    out.sky_r0 = vec4<f32>(q[0].r, q[1].r, q[2].r, q[3].r);
+    out.sky_r1 = vec4<f32>(q[4].r, q[5].r, q[6].r, q[7].r);
+    out.sky_g0 = vec4<f32>(q[0].g, q[1].g, q[2].g, q[3].g);
+    out.sky_g1 = vec4<f32>(q[4].g, q[5].g, q[6].g, q[7].g);
+    out.sky_b0 = vec4<f32>(q[0].b, q[1].b, q[2].b, q[3].b);
+    out.sky_b1 = vec4<f32>(q[4].b, q[5].b, q[6].b, q[7].b);
+    out.sky_k = vec4<f32>(q[8].rgb, 0.0);
+    // (The uniforms' copy of the lights is zero past the scene's count.)
+    let light = frame.first_lights[0];
+    out.light_position = vec4<f32>(light.view_position, 0.0);
+    out.light_power = vec4<f32>(light.color * (frame.pre_exposure * light.intensity), 0.0);
     return out;
 }
 
@@ -74,7 +79,12 @@ fn view_position_of(c: FrameVaryings, pixel: vec2<f32>, depth: f32) -> vec3<f32>
 // multiply-adds and no transform of its normal. Three bands can ring below 0 opposite a bright
 // sun: clamped.
 fn sky_irradiance(c: FrameVaryings, n: vec3<f32>) -> vec3<f32> {
-    let e = c.sky0 * (n.x * n.x) + c.sky1 * (n.y * n.y) + c.sky2 * (n.x * n.y) + c.sky3 * (n.x * n.z)
-        + c.sky4 * (n.y * n.z) + c.sky5 * n.x + c.sky6 * n.y + c.sky7 * n.z + c.sky8;
+    let terms0 = vec4<f32>(n.x * n.x, n.y * n.y, n.x * n.y, n.x * n.z);
+    let terms1 = vec4<f32>(n.y * n.z, n.x, n.y, n.z);
+    let e = vec3<f32>(
+        dot(terms0, c.sky_r0) + dot(terms1, c.sky_r1),
+        dot(terms0, c.sky_g0) + dot(terms1, c.sky_g1),
+        dot(terms0, c.sky_b0) + dot(terms1, c.sky_b1),
+    ) + c.sky_k.rgb;
     return max(e, vec3<f32>(0.0));
 }

@@ -206,7 +206,8 @@ fn frame_members_read_per_pixel(name: &str) -> std::collections::BTreeSet<String
 
 /// The composite and the lighting pass take the frame's constants from their triangle as flat
 /// varyings (common/frame_varyings.wgsl): on a CPU rasteriser a uniform read costs a load for
-/// every eight pixels. Their pixels may read the lights (an array no varying could carry) and,
+/// every eight pixels. Their pixels may read the lights (an array no varying could carry, but for
+/// a loop built for one light, which takes it from the varyings: tests/it/gpu/render.rs) and,
 /// in the lighting pass's reprojection of the last frame's sky, the two matrices it takes there.
 #[test]
 fn the_lit_passes_read_no_frame_constant_per_pixel() {

@@ -6,6 +6,7 @@ use crate::common;
 
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot, H, W};
 use glam::{Vec3, Vec4Swizzles};
+use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
 use ssdo::render::{Mode, Settings, Step, UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
@@ -119,18 +120,36 @@ fn floor_under_a_red_light_is_redder_than_elsewhere() {
 #[test]
 fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
     let Some(gpu) = gpu() else { return };
-    // Three coloured lights over a floor, then the same three with lights under it, which face
-    // the floor's back and add nothing: up to UNROLLED_LIGHTS the pipelines are built for the
-    // count, past it the loop reads the frame's; up to UNIFORM_LIGHTS the lights are read from
-    // the frame uniforms' copy, past it from the storage array. A loop built for a wrong count
-    // drops or repeats a light, a copy out of step with the array lights the floor differently.
+    // Coloured lights over a floor, then the same with lights under it, which face the floor's
+    // back and add nothing: up to UNROLLED_LIGHTS the pipelines are built for the count, past it
+    // the loop reads the frame's; up to UNIFORM_LIGHTS the lights are read from the frame
+    // uniforms' copy, past it from the storage array; a loop built for one light takes it from
+    // the full-screen triangle's varyings. A loop built for a wrong count drops or repeats a
+    // light, a copy out of step with the array lights the floor differently.
     let above = [
         (Vec3::new(-1.0, 0.4, 0.0), Vec3::X),
         (Vec3::new(0.8, 0.5, 0.6), Vec3::Y),
         (Vec3::new(0.3, 0.6, -0.9), Vec3::Z),
     ];
+    let three = [
+        (0, 3, true),
+        (UNROLLED_LIGHTS - 3, UNROLLED_LIGHTS as u32, true),
+        (UNROLLED_LIGHTS - 2, 0, true),
+        (UNIFORM_LIGHTS - 3, 0, true),
+        (UNIFORM_LIGHTS - 2, 0, false),
+    ];
+    // (The first case of each list is the one the others are held to.)
+    let one = [(0, 1, true), (2, 3, true), (UNIFORM_LIGHTS - 1, 0, true), (UNIFORM_LIGHTS, 0, false)];
+    lit_alike_by_every_loop(gpu, &above, &three);
+    lit_alike_by_every_loop(gpu, &above[..1], &one);
+}
+
+/// Renders the floor under `lit` plus each case's count of lights under it (hidden), in Off and
+/// SSDO, checks the plan's light loop is the case's (unrolled count, uniform reads), and that
+/// every case's HDR image is the first's.
+fn lit_alike_by_every_loop(gpu: &Gpu, lit: &[(Vec3, Vec3)], cases: &[(usize, u32, bool)]) {
     let lights = |under: usize| {
-        let lit = above.iter().map(|&(position, color)| PointLight { position, color, intensity: 0.5 });
+        let lit = lit.iter().map(|&(position, color)| PointLight { position, color, intensity: 0.5 });
         // On a grid under the floor's middle, so their cubes stay hidden too.
         let hidden = (0..under).map(|i| PointLight {
             position: Vec3::new((i % 16) as f32 / 16.0 - 0.5, -0.5, (i / 16) as f32 / 16.0 - 0.5),
@@ -143,14 +162,7 @@ fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
     let sky = Skybox::constant(Vec3::splat(0.1));
     for mode in [Mode::Off, Mode::Ssdo] {
         let mut images = Vec::new();
-        let cases = [
-            (0, 3, true),
-            (UNROLLED_LIGHTS - 3, UNROLLED_LIGHTS as u32, true),
-            (UNROLLED_LIGHTS - 2, 0, true),
-            (UNIFORM_LIGHTS - 3, 0, true),
-            (UNIFORM_LIGHTS - 2, 0, false),
-        ];
-        for (under, unrolled, uniform) in cases {
+        for &(under, unrolled, uniform) in cases {
             let mut scene = Scene::new(builtin::plane(2.0, builtin::WHITE).unwrap(), 0, 1);
             scene.lights = lights(under);
             let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { mode, ..no_ambient() });
@@ -170,7 +182,7 @@ fn a_light_loop_built_for_its_count_lights_as_one_that_reads_the_count() {
                 .zip(&images[0])
                 .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs() / (b[c].abs() + 0.01)).fold(0.0, f32::max));
             let worst = worst.fold(0.0, f32::max);
-            assert!(worst < 4e-3, "{mode:?}: image {i} differs from the three lights' by {worst}");
+            assert!(worst < 4e-3, "{mode:?}, {} lit: image {i} differs from the first's by {worst}", lit.len());
         }
     }
 }
