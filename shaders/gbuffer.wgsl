@@ -9,7 +9,10 @@
 // side. Every model's triangles are wound to agree with their vertex normals (a mesh wound
 // against them is turned when it is built: `Model::from_groups`), so the rasteriser's facing says
 // which side that is: a back face's normal is flipped. A normal-mapped surface turns its whole
-// tangent frame with it. (Taking the side from the plane of the view-space position's derivatives
+// tangent frame with it. A material that reads maps draws the faces seen from the front first and
+// those seen from behind in a second round (`Sides` in src/render/passes/gbuffer.rs), so a closed
+// surface's far side is rejected by the depth test before it is shaded.
+// (Taking the side from the plane of the view-space position's derivatives
 // instead, which needs no rule on the winding, cost the pass about 5% on a CPU rasteriser, for
 // three more varyings and their derivatives: docs/performance.md.)
 // Cut-out materials discard the texels whose coverage is below their cutoff: this pass is the

@@ -1,6 +1,8 @@
-//! G-buffer pass: the deferred renderer's geometry pass. It rasterises the model once into
-//! albedo + specular strength, view-space normal + shininess, and reverse-Z depth (cleared to 0,
-//! compared with `Greater`). Every mode reads these; position is reconstructed from depth.
+//! G-buffer pass: the deferred renderer's geometry pass. It rasterises every face of the model
+//! once, two-sided, into albedo + specular strength, view-space normal + shininess, and reverse-Z
+//! depth (cleared to 0, compared with `Greater`). Every mode reads these; position is
+//! reconstructed from depth. A material that reads maps draws its faces seen from the front in a
+//! first round and those seen from behind in a second (`Sides`).
 //!
 //! Each material draws with the pipeline of what it reads ([`Features`]: colour maps, a normal
 //! map, a cutout), built when a model first needs it: untextured opaque materials use the plain
@@ -101,11 +103,40 @@ impl Features {
     }
 }
 
+/// How a material's faces are drawn; every face is drawn, two-sided, in one of two rounds. A
+/// material that reads maps draws the faces the camera sees from the side their normals point to
+/// in the first round (back faces culled) and the faces it sees from behind in the second (front
+/// faces culled): a closed surface's far side then fails the depth test before its fragments
+/// read the maps, where in the model's own order it was shaded and then covered about half the
+/// time. (Of two faces at one depth, the one facing the camera now wins.) A plain material draws
+/// all its faces in the first round: its fragments cost less than setting its triangles up twice
+/// (docs/performance.md).
+struct Sides {
+    first: wgpu::RenderPipeline,
+    second: Option<wgpu::RenderPipeline>,
+}
+
+impl Sides {
+    fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::PipelineLayout,
+        module: &wgpu::ShaderModule,
+        features: Features,
+    ) -> Self {
+        let pipeline = |culled| GBufferPass::pipeline(device, layout, module, features, culled);
+        if features == Features::default() {
+            Self { first: pipeline(None), second: None }
+        } else {
+            Self { first: pipeline(Some(wgpu::Face::Back)), second: Some(pipeline(Some(wgpu::Face::Front))) }
+        }
+    }
+}
+
 pub struct GBufferPass {
     pub material_layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
-    /// One pipeline per set of features a model has needed (the plain one from the start).
-    pipelines: std::collections::HashMap<Features, wgpu::RenderPipeline>,
+    /// The pipelines of each set of features a model has needed (the plain one from the start).
+    pipelines: std::collections::HashMap<Features, Sides>,
     pipeline_layout: wgpu::PipelineLayout,
     module: wgpu::ShaderModule,
     /// The displayed sky behind the geometry (display plans).
@@ -133,7 +164,7 @@ impl GBufferPass {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let plain = Self::pipeline(device, &pipeline_layout, &module, Features::default());
+        let plain = Sides::new(device, &pipeline_layout, &module, Features::default());
         let pipelines = [(Features::default(), plain)].into_iter().collect();
         // The albedo alone; the normal is left as cleared.
         let normal_kept =
@@ -148,11 +179,14 @@ impl GBufferPass {
         PassIo { reads: vec![], attached: vec![], writes: vec![ALBEDO, NORMAL, DEPTH] }
     }
 
+    /// The pipeline of a material with `features`, culling the faces whose `culled` side is
+    /// towards the camera.
     fn pipeline(
         device: &wgpu::Device,
         layout: &wgpu::PipelineLayout,
         module: &wgpu::ShaderModule,
         features: Features,
+        culled: Option<wgpu::Face>,
     ) -> wgpu::RenderPipeline {
         let flag = |on: bool| if on { 1.0 } else { 0.0 };
         let constants = [
@@ -174,7 +208,7 @@ impl GBufferPass {
         };
         let buffers = [Some(vertex), Some(tangent)];
         let buffers = if features.normal_mapped { &buffers[..] } else { &buffers[..1] };
-        let label = format!("gbuffer_pipeline_{features:?}");
+        let label = format!("gbuffer_pipeline_{features:?}_{culled:?}_culled");
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&label),
             layout: Some(layout),
@@ -184,7 +218,7 @@ impl GBufferPass {
                 compilation_options: options.clone(),
                 buffers,
             },
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            primitive: wgpu::PrimitiveState { cull_mode: culled, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(true),
@@ -308,8 +342,8 @@ impl GBufferPass {
             .collect::<Vec<_>>();
         for draw in &draws {
             if !self.pipelines.contains_key(&draw.features) {
-                let pipeline = Self::pipeline(device, &self.pipeline_layout, &self.module, draw.features);
-                self.pipelines.insert(draw.features, pipeline);
+                let sides = Sides::new(device, &self.pipeline_layout, &self.module, draw.features);
+                self.pipelines.insert(draw.features, sides);
             }
         }
         let textured = draws.iter().any(|d| d.features.textured);
@@ -346,11 +380,18 @@ impl Pass for GBufferPass {
             pass.set_vertex_buffer(1, tangents.slice(..));
         }
         pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for draw in &scene.draws {
-            let pipeline = &self.pipelines[&draw.features];
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(1, &draw.bind_group, &[]);
-            pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
+        // Two rounds (`Sides`): every material's faces seen from the front (a plain material's
+        // every face), then the faces of those that read maps seen from behind.
+        for second in [false, true] {
+            for draw in &scene.draws {
+                let sides = &self.pipelines[&draw.features];
+                let Some(pipeline) = (if second { sides.second.as_ref() } else { Some(&sides.first) }) else {
+                    continue;
+                };
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(1, &draw.bind_group, &[]);
+                pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
+            }
         }
         if plan.display {
             pass.set_pipeline(&self.sky);

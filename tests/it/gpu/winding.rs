@@ -10,7 +10,7 @@ use ssdo::gpu::Gpu;
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::render::{Mode, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
-use ssdo::scene::model::Vertex;
+use ssdo::scene::model::{TextureImage, Vertex};
 use ssdo::scene::obj_model::load_obj;
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 
@@ -141,7 +141,13 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
     let sky_radiance = Vec3::new(0.3, 0.6, 0.9);
     let sky = Skybox::constant(sky_radiance);
     let albedo = 0.5;
-    for reversed in [false, true] {
+    // A material that reads a map draws the faces seen from behind in a second round of the
+    // G-buffer pass; a plain one draws every face in the first: both are held to ρ·L here.
+    let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
+    let textured = Material { diffuse_map: Some(white), ..Material::plain("leaf", [albedo; 3]) };
+    for (reversed, material) in
+        [false, true].into_iter().flat_map(|r| [(r, Material::plain("leaf", [albedo; 3])), (r, textured.clone())])
+    {
         // A lone quad whose vertex normals say +Y, wound counter-clockwise seen from above
         // (agreeing) or clockwise (against them).
         let v = Vec3::new;
@@ -151,7 +157,8 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
         }
         let vertex = |p: Vec3| Vertex { position: p.into(), normal: [0.0, 1.0, 0.0], uv: [0.0, 0.0] };
         let group = [0, 1, 2, 0, 2, 3].map(|k| vertex(c[k])).to_vec();
-        let model = Model::from_groups("leaf", vec![Material::plain("leaf", [albedo; 3])], vec![group]).unwrap();
+        let maps = material.is_textured();
+        let model = Model::from_groups("leaf", vec![material], vec![group]).unwrap();
         let scene = Scene::new(model, 0, 1);
         // From above and from below: the open sky on the seen side lights it as ρ·L.
         for pitch in [40.0, -40.0] {
@@ -165,7 +172,7 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
             let want = albedo * sky_radiance;
             assert!(
                 (got - want).abs().max_element() < 0.02 * want.max_element(),
-                "reversed {reversed}, pitch {pitch}: {got} != ρ·L {want}"
+                "reversed {reversed}, maps {maps}, pitch {pitch}: {got} != ρ·L {want}"
             );
         }
     }
