@@ -130,6 +130,15 @@ impl Sides {
             Self { first: pipeline(Some(wgpu::Face::Back)), second: Some(pipeline(Some(wgpu::Face::Front))) }
         }
     }
+
+    /// The pipeline of the first round or of the second (none: the material has no second).
+    fn round(&self, second: bool) -> Option<&wgpu::RenderPipeline> {
+        if second {
+            self.second.as_ref()
+        } else {
+            Some(&self.first)
+        }
+    }
 }
 
 pub struct GBufferPass {
@@ -384,10 +393,7 @@ impl Pass for GBufferPass {
         // every face), then the faces of those that read maps seen from behind.
         for second in [false, true] {
             for draw in &scene.draws {
-                let sides = &self.pipelines[&draw.features];
-                let Some(pipeline) = (if second { sides.second.as_ref() } else { Some(&sides.first) }) else {
-                    continue;
-                };
+                let Some(pipeline) = self.pipelines[&draw.features].round(second) else { continue };
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(1, &draw.bind_group, &[]);
                 pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
