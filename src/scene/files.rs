@@ -6,32 +6,136 @@ use std::path::{Path, PathBuf};
 
 /// Checks that `path` is a regular file of at most `limit` bytes before anything opens it (a
 /// FIFO would block the open, `/dev/zero` would never end, a sparse file of gigabytes would fill
-/// memory), then reads at most that much. The error is the problem alone, for the caller to name
-/// the file.
+/// memory). The error is the problem alone, for the caller to name the file. What is then read
+/// is checked again once open ([`open_regular`]): this check only keeps a device from being
+/// opened at all.
 pub fn check_file(path: &Path, limit: u64) -> std::result::Result<(), String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
+    let meta = std::fs::metadata(path).map_err(|e| cannot_read(path, &e))?;
+    check_kind(&meta, limit)
+}
+
+/// What `meta` says against reading it as a file of at most `limit` bytes.
+fn check_kind(meta: &std::fs::Metadata, limit: u64) -> std::result::Result<(), String> {
     if meta.is_dir() {
         return Err("is a folder, not a file".into());
     }
     if !meta.is_file() {
-        return Err("is not a regular file (a device, a FIFO or a socket)".into());
+        return Err(format!("is {}, not a regular file", special_kind(meta)));
     }
     if meta.len() > limit {
-        return Err(format!("is {} MiB; files over {} MiB are refused", meta.len() >> 20, limit >> 20));
+        // In the limit's unit: a preset's is kibibytes, a model's mebibytes.
+        let size =
+            |b: u64| if limit >= 1 << 20 { format!("{} MiB", b >> 20) } else { format!("{} KiB", b.div_ceil(1024)) };
+        return Err(format!("is {}; files over {} are refused", size(meta.len()), size(limit)));
     }
     Ok(())
 }
 
-pub fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
+/// "a FIFO", "a device", "a socket": what a file that is neither a regular file nor a folder is.
+fn special_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let kind = meta.file_type();
+        if kind.is_fifo() {
+            return "a FIFO (a named pipe)";
+        }
+        if kind.is_char_device() || kind.is_block_device() {
+            return "a device";
+        }
+        if kind.is_socket() {
+            return "a socket";
+        }
+    }
+    let _ = meta;
+    "a special file (a device, a FIFO or a socket)"
+}
+
+/// "cannot read: ..." for an error opening or reading `path`, saying in words what the system's
+/// errors say in numbers where a person would not guess it (a loop of links).
+fn cannot_read(path: &Path, e: &std::io::Error) -> String {
+    #[cfg(unix)]
+    if e.raw_os_error() == Some(libc::ELOOP) {
+        return "is a link that leads back to itself (a loop of links)".into();
+    }
+    #[cfg(unix)]
+    if e.raw_os_error() == Some(libc::ENXIO) {
+        return "is a socket or a device with nothing behind it, not a regular file".into();
+    }
+    if e.kind() == std::io::ErrorKind::NotFound {
+        if let Ok(target) = std::fs::read_link(path) {
+            return format!("is a link to {}, which does not exist", target.display());
+        }
+    }
+    format!("cannot read: {e}")
+}
+
+/// Opens `path` for reading and checks what was opened, not what the name led to a moment
+/// before: a regular file of at most `limit` bytes. The open never waits (a FIFO swapped in
+/// after a check is refused, not waited on), and the checks read the open file itself.
+pub fn open_regular(path: &Path, limit: u64) -> std::result::Result<std::fs::File, String> {
+    let file = open_nonblocking(path)?;
+    let meta = file.metadata().map_err(|e| cannot_read(path, &e))?;
+    check_kind(&meta, limit)?;
+    Ok(file)
+}
+
+/// Opens `path` for reading without waiting for a writer (a FIFO opens at once).
+fn open_nonblocking(path: &Path) -> std::result::Result<std::fs::File, String> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    options.open(path).map_err(|e| cannot_read(path, &e))
+}
+
+/// Reads at most `limit` bytes of `file`; more is an error (the file grew while it was read).
+fn read_at_most(file: std::fs::File, limit: u64) -> std::result::Result<Vec<u8>, String> {
     use std::io::Read;
-    check_file(path, limit)?;
     let mut bytes = Vec::new();
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
-    file.take(limit + 1).read_to_end(&mut bytes).map_err(|e| format!("cannot read: {e}"))?;
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| format!("cannot read: {e}"))?;
     if bytes.len() as u64 > limit {
-        return Err(format!("grew past {} MiB while being read", limit >> 20));
+        return Err(format!("grew past {} KiB while being read", limit.div_ceil(1024)));
     }
     Ok(bytes)
+}
+
+/// The bytes of the regular file `path`, at most `limit` of them.
+pub fn read_bounded(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
+    check_file(path, limit)?;
+    read_at_most(open_regular(path, limit)?, limit)
+}
+
+/// Where the open file `file` (opened as `path`) really is, as the system names it now: on
+/// Linux what `/proc/self/fd` says of the open file itself, so that no swap of a folder for a
+/// link between a check and the open can make the file read another than the file checked.
+/// Elsewhere the path with its links resolved, taken only if it is the same file as the one
+/// open (device and inode).
+fn opened_path(file: &std::fs::File, path: &Path) -> std::result::Result<PathBuf, String> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::io::AsRawFd;
+        if let Ok(real) = std::fs::read_link(format!("/proc/self/fd/{}", file.as_raw_fd())) {
+            if real.is_absolute() && !real.to_string_lossy().ends_with(" (deleted)") {
+                return Ok(real);
+            }
+            return Err(format!("{}: was removed or replaced while it was opened", path.display()));
+        }
+    }
+    let real = std::fs::canonicalize(path).map_err(|e| format!("{}: {}", path.display(), cannot_read(path, &e)))?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let (open, named) = (file.metadata(), std::fs::metadata(&real));
+        let same = matches!((open, named), (Ok(a), Ok(b)) if a.dev() == b.dev() && a.ino() == b.ino());
+        if !same {
+            return Err(format!("{}: was replaced while it was opened", path.display()));
+        }
+    }
+    Ok(real)
 }
 
 /// The folder of a model file, from which alone the files it names (an OBJ's MTL and maps, a
@@ -92,9 +196,17 @@ impl ModelFolder {
     }
 
     /// `path` (which exists) with its links resolved, if that lies inside the folder and is no
-    /// special file.
+    /// special file: checked before anything is opened, so a device or a file outside the
+    /// folder is never opened at all as things stand.
     fn admit(&self, path: &Path) -> std::result::Result<PathBuf, String> {
-        let real = std::fs::canonicalize(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let real = std::fs::canonicalize(path).map_err(|e| format!("{}: {}", path.display(), cannot_read(path, &e)))?;
+        self.holds(path, &real)?;
+        Ok(real)
+    }
+
+    /// Whether `real`, where `path` leads, lies inside the folder (and not in `/proc`, `/sys` or
+    /// `/dev` unless the folder does).
+    fn holds(&self, path: &Path, real: &Path) -> std::result::Result<(), String> {
         let root = self.real.as_ref().ok_or_else(|| format!("{}: the folder cannot be read", self.shown.display()))?;
         let special = ["/proc", "/sys", "/dev"].iter().any(|p| real.starts_with(p) && !root.starts_with(p));
         if special || !real.starts_with(root) {
@@ -105,7 +217,21 @@ impl ModelFolder {
                 self.rule()
             ));
         }
-        Ok(real)
+        Ok(())
+    }
+
+    /// Opens `path`, a file this folder found, and checks the file that was opened: where it
+    /// really is (inside the folder) and what it is (a regular file of at most `limit` bytes).
+    /// The check and the read are one act: a folder swapped for a link to another between the
+    /// first look and the open changes what is opened, and the check of the open file refuses it.
+    fn open(&self, path: &Path, limit: u64) -> std::result::Result<std::fs::File, String> {
+        self.admit(path)?;
+        let named = |problem: String| format!("{}: {problem}", path.display());
+        let file = open_nonblocking(path).map_err(named)?;
+        self.holds(path, &opened_path(&file, path)?)?;
+        let meta = file.metadata().map_err(|e| named(cannot_read(path, &e)))?;
+        check_kind(&meta, limit).map_err(named)?;
+        Ok(file)
     }
 
     /// The bytes of the file `name` names in the folder, at most `limit` of them.
@@ -116,17 +242,15 @@ impl ModelFolder {
 
     /// The bytes of `path`, a file this folder found (see [`ModelFolder::find`]), at most `limit`.
     pub fn read_found(&self, path: &Path, limit: u64) -> std::result::Result<Vec<u8>, String> {
-        let real = self.admit(path)?;
-        read_bounded(&real, limit).map_err(|problem| format!("{}: {problem}", path.display()))
+        let file = self.open(path, limit)?;
+        read_at_most(file, limit).map_err(|problem| format!("{}: {problem}", path.display()))
     }
 
     /// The first `length` bytes of `path`, a file this folder found; fewer is an error.
     pub fn read_prefix(&self, path: &Path, length: u64) -> std::result::Result<Vec<u8>, String> {
         use std::io::Read;
-        let real = self.admit(path)?;
-        check_file(&real, u64::MAX).map_err(|problem| format!("{}: {problem}", path.display()))?;
+        let file = self.open(path, u64::MAX)?;
         let mut bytes = Vec::new();
-        let file = std::fs::File::open(&real).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
         file.take(length).read_to_end(&mut bytes).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
         if (bytes.len() as u64) < length {
             return Err(format!("{}: holds {} bytes where {length} are needed", path.display(), bytes.len()));
@@ -136,12 +260,8 @@ impl ModelFolder {
 
     /// The size in bytes of `path`, a file this folder found, if it may be read.
     pub fn size_of(&self, path: &Path) -> std::result::Result<u64, String> {
-        let real = self.admit(path)?;
-        let meta = std::fs::metadata(&real).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        if !meta.is_file() {
-            return Err(format!("{}: is not a regular file (a folder, a device, a FIFO or a socket)", path.display()));
-        }
-        Ok(meta.len())
+        let file = self.open(path, u64::MAX)?;
+        file.metadata().map(|m| m.len()).map_err(|e| format!("{}: cannot read: {e}", path.display()))
     }
 
     /// Finds a map as exporters write its name: as written, then by its file name alone in the
@@ -170,6 +290,12 @@ impl ModelFolder {
             }
         }
         match written {
+            // Something is there, but not a file to read: say what (a folder, a FIFO, a loop of
+            // links, a link out of the folder), not "not found".
+            Ok(path) if std::fs::symlink_metadata(&path).is_ok() => Err(self
+                .size_of(&path)
+                .err()
+                .unwrap_or_else(|| format!("{}: is not a file that can be read", path.display()))),
             Ok(path) => Err(format!("{}: not found", path.display())),
             Err(why) => Err(why),
         }

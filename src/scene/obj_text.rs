@@ -115,7 +115,7 @@ pub fn count_obj(path: &std::path::Path) -> std::io::Result<ObjCounts> {
         Face { in_token: bool },
         Skip,
     }
-    let mut file = std::fs::File::open(path)?;
+    let mut file = super::files::open_regular(path, u64::MAX).map_err(std::io::Error::other)?;
     let mut buffer = vec![0u8; 1 << 16];
     let (mut counts, mut state, mut corners) = (ObjCounts::default(), State::LineStart, 0u64);
     let end_line = |counts: &mut ObjCounts, state: State, corners: &mut u64| {

@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use super::files::{check_file, ModelFolder};
+use super::files::{check_file, open_regular, ModelFolder};
 use crate::{Error, Result};
 
 /// An 8-bit RGBA texture in sRGB encoding, as decoded from a file. The pixels are shared: every
@@ -216,7 +216,7 @@ pub fn read_image_checked(
     // Decoded from the file as it is read (a 16384x8192 HDR panorama can be 512 MiB on disk),
     // once it is known to be a regular file of a bounded size.
     check_file(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
-    let file = std::fs::File::open(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+    let file = open_regular(path, 1 << 30).map_err(|problem| Error::input(path, problem))?;
     let mut reader = image::ImageReader::new(std::io::BufReader::new(file))
         .with_guessed_format()
         .map_err(|e| Error::input(path, format!("cannot read: {e}")))?;

@@ -23,6 +23,7 @@ mod cpu {
     mod presets;
     mod scene_loading;
     mod shaders;
+    mod special_files;
     mod surface_maps_loading;
 }
 
