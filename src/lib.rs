@@ -20,6 +20,7 @@ pub mod reproduce;
 pub mod scene;
 pub mod shaders;
 pub mod spec;
+pub mod text;
 pub mod tune;
 
 pub use error::{Error, Result};

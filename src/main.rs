@@ -230,12 +230,6 @@ fn quiet_mesa_device_select() {
     }
 }
 
-/// `text` with control characters (a newline in a file name, say) written as escapes, so an error
-/// stays one line.
-fn one_line(text: &str) -> String {
-    text.chars().flat_map(|c| if c.is_control() { c.escape_default().collect::<Vec<_>>() } else { vec![c] }).collect()
-}
-
 fn main() -> ExitCode {
     quiet_mesa_device_select();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,ssdo=info"))
@@ -260,7 +254,7 @@ fn main() -> ExitCode {
                 .collect();
             let first = if paragraph.is_empty() { "bad command line".to_string() } else { paragraph.join(" ") };
             let first = first.trim_start_matches("error:").trim();
-            error_line(&format!("{} (see ssdo --help)", one_line(first)));
+            error_line(&format!("{} (see ssdo --help)", ssdo::text::one_line(first)));
             return ExitCode::from(2);
         }
     };
@@ -278,7 +272,7 @@ fn main() -> ExitCode {
         // The reader of standard output went away (`| head`): nothing to say, as a Unix tool.
         Err(Error::StdoutClosed) => ExitCode::from(Error::StdoutClosed.exit_code() as u8),
         Err(e) => {
-            error_line(&one_line(&e.to_string()));
+            error_line(&ssdo::text::one_line(&e.to_string()));
             ExitCode::from(e.exit_code() as u8)
         }
     }

@@ -13,10 +13,14 @@ use std::path::Path;
 use serde_json::{json, Map, Value};
 
 use crate::render::{Mode, SenderSky, Settings, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::text::num;
 use crate::{Error, Result};
 
 /// The version of the file format this build writes and reads.
 pub const FORMAT: u64 = 1;
+
+/// The largest preset file read: one that tune writes is under a kilobyte.
+pub const MAX_PRESET_BYTES: u64 = 64 << 10;
 
 /// The radius scales a preset may hold: the default radius of the scene it is used on, times this.
 pub const RADIUS_SCALE: (f32, f32) = (0.125, 8.0);
@@ -133,22 +137,36 @@ impl Knobs {
         s
     }
 
-    /// Every value within its range, or the error naming it.
-    pub fn check(&self) -> Result<()> {
-        SAMPLES.check(self.samples)?;
-        SLICES.check(self.slices)?;
-        STEPS.check(self.steps)?;
-        ACCUMULATE.check(self.accumulate)?;
-        // The flags' ranges, as `spec::in_range` states them (spec reads presets, so not through it).
-        let within = |name: &str, v: f32, (lo, hi): (f32, f32)| {
+    /// Every value within its range, or the problem naming its key in the file and what is
+    /// accepted.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        for (key, n, count) in [
+            ("samples", self.samples, SAMPLES),
+            ("slices", self.slices, SLICES),
+            ("steps", self.steps, STEPS),
+            ("accumulate", self.accumulate, ACCUMULATE),
+        ] {
+            if !count.range().contains(&n) {
+                return Err(format!(
+                    "settings.{key}: {n} is out of range; expected a whole number from {} to {}",
+                    count.min, count.max
+                ));
+            }
+        }
+        let within = |key: &str, v: f32, (lo, hi): (f32, f32)| {
             if v.is_finite() && (lo..=hi).contains(&v) {
                 Ok(())
             } else {
-                Err(Error::Setting(format!("--{name} {v}: must be a finite number from {lo} to {hi}")))
+                Err(format!(
+                    "settings.{key}: {} is out of range; expected a finite number from {} to {}",
+                    num(v),
+                    num(lo),
+                    num(hi)
+                ))
             }
         };
-        within("radius-scale", self.radius_scale, RADIUS_SCALE)?;
-        within("indirect-strength", self.indirect_strength, (0.0, crate::render::settings::MAX_GAIN))
+        within("radius_scale", self.radius_scale, RADIUS_SCALE)?;
+        within("indirect_strength", self.indirect_strength, (0.0, crate::render::settings::MAX_GAIN))
     }
 
     /// The flags that give these knobs on the command line (those at their defaults left out).
@@ -283,7 +301,7 @@ impl Knobs {
         if let Some(v) = object.get("sender_sky") {
             k.sender_sky = at.parse::<SenderSky>(v, "settings.sender_sky")?;
         }
-        k.check().map_err(|e| at.error(&format!("settings: {e}")))?;
+        k.check().map_err(|problem| at.error(&problem))?;
         Ok(k)
     }
 }
@@ -326,9 +344,7 @@ impl Measured {
         ];
         at.only(o, "measured", &keys)?;
         let get = |key: &str| o.get(key).ok_or_else(|| at.error(&format!("measured.{key} is missing")));
-        let text = |key: &str| -> Result<String> {
-            get(key)?.as_str().map(str::to_owned).ok_or_else(|| at.bad(&format!("measured.{key}"), "a string"))
-        };
+        let text = |key: &str| at.text(get(key)?, &format!("measured.{key}"));
         let number = |key: &str| at.number(get(key)?, &format!("measured.{key}"));
         let optional = |key: &str| match o.get(key) {
             None | Some(Value::Null) => Ok(None),
@@ -400,17 +416,24 @@ impl Preset {
     /// Reads a preset from `text`; `path` names it in errors.
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
         let at = Reader { path };
+        // A byte-order mark, which some editors write at the start of UTF-8, is not JSON's.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let value: Value = serde_json::from_str(text).map_err(|e| at.error(&format!("not a preset (JSON: {e})")))?;
         let o = at.object(&value, "the file")?;
-        match o.get("ssdo_preset").and_then(Value::as_u64) {
-            Some(FORMAT) => {}
-            Some(n) => return Err(at.error(&format!("preset format {n}; this build reads format {FORMAT}"))),
+        // The format's number, as a whole number however it is written (1, 1.0, 1e0).
+        match o.get("ssdo_preset").map(|v| (v, v.as_f64())) {
+            Some((_, Some(n))) if n == FORMAT as f64 => {}
+            Some((_, Some(n))) => {
+                return Err(at
+                    .error(&format!("ssdo_preset: preset format {}; this build reads format {FORMAT}", num(n as f32))))
+            }
+            Some((v, None)) => return Err(at.bad("ssdo_preset", &format!("the format number {FORMAT}, not {v}"))),
             None => return Err(at.error("not a preset (no \"ssdo_preset\": 1)")),
         }
         at.only(o, "the file", &["ssdo_preset", "name", "mode", "settings", "measured"])?;
         let name = match o.get("name") {
-            Some(v) => v.as_str().ok_or_else(|| at.bad("name", "a string"))?.to_owned(),
-            None => path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
+            Some(v) => at.text(v, "name")?,
+            None => path.file_stem().map_or_else(String::new, |s| crate::text::bounded_name(&s.to_string_lossy())),
         };
         let mode = match o.get("mode") {
             Some(v) => at.parse::<Mode>(v, "mode")?,
@@ -424,9 +447,13 @@ impl Preset {
         Ok(Self { name, mode, knobs, measured })
     }
 
-    /// Reads the preset file at `path`.
+    /// Reads the preset file at `path`: a regular file of at most [`MAX_PRESET_BYTES`] in
+    /// UTF-8 (a FIFO, a device or a huge file is refused before it is read).
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::input(path, format!("cannot read: {e}")))?;
+        let bytes = crate::scene::files::read_bounded(path, MAX_PRESET_BYTES).map_err(|p| Error::input(path, p))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            Error::input(path, format!("not a preset (not UTF-8 text: byte {} is not)", e.utf8_error().valid_up_to()))
+        })?;
         Self::parse(path, &text)
     }
 
@@ -494,6 +521,15 @@ impl Reader<'_> {
     fn parse<T: std::str::FromStr<Err = Error>>(&self, v: &Value, key: &str) -> Result<T> {
         let text = v.as_str().ok_or_else(|| self.bad(key, "a name"))?;
         text.parse().map_err(|e: Error| self.error(&format!("{key}: {e}")))
+    }
+
+    /// A string of one line and at most [`crate::text::MAX_NAME_CHARS`] characters.
+    fn text(&self, v: &Value, key: &str) -> Result<String> {
+        let text = v.as_str().ok_or_else(|| self.bad(key, "a string"))?;
+        match crate::text::name_problem(text) {
+            Some(problem) => Err(self.error(&format!("{key}: {problem}"))),
+            None => Ok(text.to_owned()),
+        }
     }
 
     fn count(&self, v: &Value, key: &str) -> Result<usize> {

@@ -213,14 +213,7 @@ pub fn point(p: glam::Vec3) -> String {
     format!("{},{},{}", p.x, p.y, p.z)
 }
 
-/// A number as people write it: 0.25, 1e6, 3.0e-5 (not 30 digits of a huge or tiny float).
-pub fn num(v: f32) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
-}
+pub use crate::text::num;
 
 impl SceneArgs {
     /// The model: the file (or the default scene) scaled and placed by the layout, or the room's

@@ -91,11 +91,28 @@ fn a_bad_preset_is_one_error_naming_the_file_and_what_is_wrong() {
         (r#"{"ssdo_preset": 7}"#, "preset format 7"),
         (r#"{"ssdo_preset": 1, "setings": {}}"#, "unknown key 'setings'"),
         (r#"{"ssdo_preset": 1, "settings": {"slice": 2}}"#, "settings: unknown key 'slice'"),
-        (r#"{"ssdo_preset": 1, "settings": {"slices": 0}}"#, "--slices 0"),
+        (
+            r#"{"ssdo_preset": 1, "settings": {"slices": 0}}"#,
+            "settings.slices: 0 is out of range; expected a whole number from 1 to 32",
+        ),
         (r#"{"ssdo_preset": 1, "settings": {"steps": -3}}"#, "settings.steps: expected a whole number"),
         (r#"{"ssdo_preset": 1, "settings": {"blur": "yes"}}"#, "settings.blur: expected true or false"),
         (r#"{"ssdo_preset": 1, "settings": {"variant": "fast"}}"#, "unknown variant 'fast'"),
-        (r#"{"ssdo_preset": 1, "settings": {"radius_scale": 100}}"#, "--radius-scale 100"),
+        (r#"{"ssdo_preset": 1, "settings": {"radius_scale": 100}}"#, "settings.radius_scale: 100 is out of range"),
+        // A number is written as people write it, not as 45 digits.
+        (
+            r#"{"ssdo_preset": 1, "settings": {"radius_scale": 1e-45}}"#,
+            "settings.radius_scale: 1e-45 is out of range; expected a finite number from 0.125 to 8",
+        ),
+        (r#"{"ssdo_preset": 2.5}"#, "ssdo_preset: preset format 2.5; this build reads format 1"),
+        (r#"{"ssdo_preset": "1"}"#, "ssdo_preset: expected the format number 1, not \"1\""),
+        // Strings are one line of a bounded length: a name that would split a CSV row or a
+        // table, or that is megabytes long, is refused by its key.
+        (r#"{"ssdo_preset": 1, "name": "a\n=cmd|x"}"#, "name: holds the control character \\n"),
+        (
+            r#"{"ssdo_preset": 1, "measured": {"device": "x\ty", "size": [1, 1]}}"#,
+            "measured.device: holds the control character",
+        ),
         (r#"{"ssdo_preset": 1, "mode": "sideways"}"#, "unknown mode 'sideways'"),
         (r#"{"ssdo_preset": 1, "measured": {"device": "x"}}"#, "is missing"),
     ];
@@ -105,6 +122,13 @@ fn a_bad_preset_is_one_error_naming_the_file_and_what_is_wrong() {
         assert_eq!(e.exit_code(), 3, "{text}: {line}");
         assert!(line.starts_with("dir/p.json: ") && line.contains(needle), "{text}: {line}");
         assert!(!line.contains('\n'), "one line: {line}");
+    }
+    let long = format!(r#"{{"ssdo_preset": 1, "name": "{}"}}"#, "n".repeat(100_000));
+    let line = Preset::parse(Path::new("dir/p.json"), &long).unwrap_err().to_string();
+    assert!(line.contains("name: 100000 characters; at most 256 are accepted") && line.len() < 200, "{line}");
+    // What editors and exporters write that is still a preset: a byte-order mark, 1.0 for 1.
+    for text in ["\u{feff}{\"ssdo_preset\": 1}", r#"{"ssdo_preset": 1.0, "name": "ultra, 8 ms"}"#] {
+        assert!(Preset::parse(Path::new("dir/p.json"), text).is_ok(), "{text}");
     }
     let e = Preset::load(Path::new("no/such/preset.json")).unwrap_err();
     assert!(e.to_string().starts_with("no/such/preset.json: cannot read"), "{e}");
