@@ -156,6 +156,7 @@ pub fn check_folder(dir: &Path) -> Result<()> {
         create_temporary(&dir.join("probe")).map_err(|e| Error::output(dir, format!("cannot write: {e}")))?;
     drop(file);
     let _ = std::fs::remove_file(probe);
+    remove_stale_temporaries(dir);
     Ok(())
 }
 
@@ -187,28 +188,139 @@ impl Batch {
     /// Renames every staged file into place, holding each folder's lock so that a concurrent run
     /// into the same folder lands its set before or after this one, never mixed with it. What
     /// would make a rename fail once written beside its target (a folder of that name) is checked
-    /// for every file before the first rename.
+    /// for every file before the first rename. Each folder's renames are written to its journal
+    /// first ([`Journal`]): a run killed between two renames leaves a journal that the next run
+    /// into the folder completes before it starts, so the folder holds one run's set.
     pub fn commit(mut self) -> Result<Vec<PathBuf>> {
         let mut folders: Vec<PathBuf> =
             self.staged.iter().map(|(tmp, _)| tmp.parent().unwrap_or(Path::new(".")).to_path_buf()).collect();
         folders.sort();
         folders.dedup();
         let _locks = folders.iter().map(|dir| FolderLock::acquire(dir)).collect::<Result<Vec<_>>>()?;
+        for dir in &folders {
+            Journal::complete(dir);
+        }
         if let Some((_, path)) = self.staged.iter().find(|(_, path)| path.is_dir()) {
             return Err(Error::output(path, "cannot write: a folder has this name"));
         }
         let staged = std::mem::take(&mut self.staged);
         let mut done = Vec::new();
-        for (i, (tmp, path)) in staged.iter().enumerate() {
-            if let Err(e) = std::fs::rename(tmp, path) {
-                for (t, _) in &staged[i..] {
+        for dir in &folders {
+            let here: Vec<&(PathBuf, PathBuf)> =
+                staged.iter().filter(|(tmp, _)| tmp.parent().unwrap_or(Path::new(".")) == dir).collect();
+            let journal = Journal::write(dir, &here);
+            if let Err(e) = journal {
+                for (t, _) in &staged {
                     let _ = std::fs::remove_file(t);
                 }
-                return Err(Error::output(path, format!("cannot write: {e}")));
+                return Err(e);
             }
-            done.push(path.clone());
+            for (i, (tmp, path)) in here.iter().enumerate() {
+                if let Err(e) = std::fs::rename(tmp, path) {
+                    // Nothing to complete: what was not renamed is removed, the journal with it.
+                    for (t, _) in &here[i..] {
+                        let _ = std::fs::remove_file(t);
+                    }
+                    let _ = std::fs::remove_file(Journal::path(dir));
+                    return Err(Error::output(path, format!("cannot write: {e}")));
+                }
+                done.push(path.clone());
+            }
+            let _ = std::fs::remove_file(Journal::path(dir));
         }
         Ok(done)
+    }
+}
+
+/// A folder's journal of renames (`.ssdo-tmp.journal`): the staged files of one batch and the
+/// names they take, written whole (under a temporary name, then renamed) before the first rename
+/// and removed after the last. Only a run killed between its renames leaves one; the next run
+/// into the folder renames the rest of that set into place ([`Journal::complete`]), so what the
+/// folder holds is that run's whole set, and then its own.
+struct Journal;
+
+impl Journal {
+    fn path(dir: &Path) -> PathBuf {
+        dir.join(format!("{TEMPORARY_PREFIX}journal"))
+    }
+
+    /// One line a file: the staged name and the target's, each a file name in `dir`, in hex
+    /// (a name may hold any byte but `/`).
+    fn write(dir: &Path, renames: &[&(PathBuf, PathBuf)]) -> Result<()> {
+        let hex = |p: &Path| {
+            p.file_name().map(name_bytes).unwrap_or_default().iter().map(|b| format!("{b:02x}")).collect::<String>()
+        };
+        let text: String = renames.iter().map(|(tmp, target)| format!("{} {}\n", hex(tmp), hex(target))).collect();
+        let journal = Self::path(dir);
+        use std::io::Write;
+        let (tmp, mut file) =
+            create_temporary(&journal).map_err(|e| Error::output(&journal, format!("cannot write: {e}")))?;
+        let written = file.write_all(text.as_bytes()).and_then(|()| file.sync_all());
+        drop(file);
+        if let Err(e) = written.and_then(|()| std::fs::rename(&tmp, &journal)) {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(Error::output(&journal, format!("cannot write: {e}")));
+        }
+        Ok(())
+    }
+
+    /// Completes the set a killed run's journal in `dir` names: every staged file still there is
+    /// renamed into place, then the journal is removed. The caller holds the folder's lock, so
+    /// no live run is between its renames here.
+    fn complete(dir: &Path) {
+        let journal = Self::path(dir);
+        let Ok(text) = std::fs::read_to_string(&journal) else { return };
+        let unhex = |word: &str| -> Option<Vec<u8>> {
+            (word.len() % 2 == 0)
+                .then(|| (0..word.len()).step_by(2).map(|i| u8::from_str_radix(word.get(i..i + 2)?, 16).ok()).collect())
+                .flatten()
+        };
+        let mut completed = Vec::new();
+        for line in text.lines() {
+            let Some((tmp, target)) = line.split_once(' ').and_then(|(a, b)| Some((unhex(a)?, unhex(b)?))) else {
+                continue;
+            };
+            let (tmp, target) = (dir.join(name_from_bytes(tmp)), dir.join(name_from_bytes(target)));
+            // Only this program's temporaries, and only names inside the folder.
+            let ours = tmp.file_name().and_then(|n| n.to_str()).and_then(temporary_owner).is_some();
+            let plain = target.file_name().is_some() && target.parent() == Some(dir);
+            if ours && plain && tmp.is_file() && std::fs::rename(&tmp, &target).is_ok() {
+                completed.push(target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+            }
+        }
+        let _ = std::fs::remove_file(&journal);
+        if !completed.is_empty() {
+            log::warn!(
+                "{}: a run killed while writing its files left them half renamed; completed its set ({})",
+                dir.display(),
+                completed.join(", ")
+            );
+        }
+    }
+}
+
+/// A file name's bytes (on Unix any byte but `/`; elsewhere its UTF-8).
+fn name_bytes(name: &std::ffi::OsStr) -> Vec<u8> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        name.as_bytes().to_vec()
+    }
+    #[cfg(not(unix))]
+    {
+        name.to_string_lossy().as_bytes().to_vec()
+    }
+}
+
+fn name_from_bytes(bytes: Vec<u8>) -> std::ffi::OsString {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStringExt;
+        std::ffi::OsString::from_vec(bytes)
+    }
+    #[cfg(not(unix))]
+    {
+        String::from_utf8_lossy(&bytes).into_owned().into()
     }
 }
 
@@ -220,10 +332,17 @@ impl Drop for Batch {
     }
 }
 
-/// Removes the temporary files a killed run of this program left in `dir`: only names of this
-/// program's form (`.ssdo-tmp.<pid>.<random>.<name>`) whose process is gone. Only where a process
-/// can be looked up (Linux's /proc); elsewhere nothing is removed.
+/// Tidies what a killed run of this program left in `dir`: first the set it was renaming into
+/// place when it was killed is completed (its journal, under the folder's lock), then the
+/// temporary files of runs that are gone are removed: only names of this program's form
+/// (`.ssdo-tmp.<pid>.<random>.<name>`) whose process is gone, and only where a process can be
+/// looked up (Linux's /proc); elsewhere nothing is removed.
 pub fn remove_stale_temporaries(dir: &Path) {
+    if Journal::path(dir).exists() {
+        if let Ok(_lock) = FolderLock::acquire(dir) {
+            Journal::complete(dir);
+        }
+    }
     if !Path::new("/proc/self").exists() {
         return;
     }
@@ -235,6 +354,27 @@ pub fn remove_stale_temporaries(dir: &Path) {
             let _ = std::fs::remove_file(entry.path());
         }
     }
+}
+
+/// A CSV document: the header, then one record a row, each field quoted where it needs to be (a
+/// comma, a quote or a line break in a name stays inside its field).
+pub fn csv_text<R: IntoIterator<Item = String>>(header: &[&str], rows: impl IntoIterator<Item = R>) -> String {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let written = writer.write_record(header).and_then(|()| {
+        rows.into_iter().try_for_each(|row| {
+            writer.write_record(row.into_iter().map(|field| {
+                // A field a spreadsheet would run as a formula starts with a quote mark instead.
+                if field.starts_with(['=', '+', '@']) || (field.starts_with('-') && field.parse::<f64>().is_err()) {
+                    format!("'{field}")
+                } else {
+                    field
+                }
+            }))
+        })
+    });
+    written.expect("CSV into memory");
+    let bytes = writer.into_inner().expect("CSV into memory");
+    String::from_utf8(bytes).expect("CSV of UTF-8 fields")
 }
 
 /// PNG bytes of an RGBA8 image.
@@ -293,5 +433,61 @@ mod tests {
             assert_eq!(temporary_owner(user), None, "{user}");
         }
         assert_eq!(temporary_owner(".ssdo-tmp.4000000.0123456789abcdef.off.png"), Some(4_000_000));
+    }
+
+    /// A pid no process has: a child that has ended.
+    fn dead_pid() -> u32 {
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let pid = child.id();
+        child.wait().unwrap();
+        pid
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_set_killed_between_its_renames_is_completed_before_the_next_run_starts() {
+        let dir = tempfile::tempdir().unwrap();
+        let names = ["off.png", "ssao.png", "ssdo.png", "both.png", "compare.png"];
+        for name in names {
+            std::fs::write(dir.path().join(name), "old").unwrap();
+        }
+        // What a run killed after its second rename leaves: the journal, two files renamed,
+        // three staged under a dead process's temporary names.
+        let pid = dead_pid();
+        let staged: Vec<(PathBuf, PathBuf)> = names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| {
+                let tmp = dir.path().join(format!("{TEMPORARY_PREFIX}{pid}.{i:016x}.{name}"));
+                std::fs::write(&tmp, "new").unwrap();
+                (tmp, dir.path().join(name))
+            })
+            .collect();
+        Journal::write(dir.path(), &staged.iter().collect::<Vec<_>>()).unwrap();
+        for (tmp, target) in &staged[..2] {
+            std::fs::rename(tmp, target).unwrap();
+        }
+        // The next run checks its folder before any work: the killed run's set is whole.
+        check_folder(dir.path()).unwrap();
+        for name in names {
+            assert_eq!(std::fs::read_to_string(dir.path().join(name)).unwrap(), "new", "{name}");
+        }
+        let left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(TEMPORARY_PREFIX))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+        // A batch commits its own set whole over it, and leaves no journal.
+        let mut batch = Batch::default();
+        for name in names {
+            batch.stage(&dir.path().join(name), b"newer").unwrap();
+        }
+        batch.commit().unwrap();
+        assert!(!Journal::path(dir.path()).exists());
+        for name in names {
+            assert_eq!(std::fs::read_to_string(dir.path().join(name)).unwrap(), "newer", "{name}");
+        }
     }
 }

@@ -4,19 +4,22 @@ use std::path::Path;
 
 use crate::{output, reference, Result};
 
-/// Error maps of the default Both configuration: AO error, the two displayed images, FLIP.
-pub(super) fn write(
+/// Error maps of the default Both configuration: AO error, the two displayed images, FLIP, as
+/// PNG files by name (written with the tables, in one set).
+pub(super) fn encode(
     out: &Path,
     reference: &reference::Reference,
     ao: &Option<Vec<f32>>,
     ref_image: &image::RgbImage,
     gpu_image: &image::RgbImage,
     flip_map: &image::RgbImage,
-) -> Result<()> {
+) -> Result<Vec<(String, Vec<u8>)>> {
     let (w, h) = (reference.width, reference.height);
-    let save = |name: &str, img: &image::RgbImage| {
+    let mut files = Vec::new();
+    let mut save = |name: &str, img: &image::RgbImage| -> Result<()> {
         let rgba = image::DynamicImage::ImageRgb8(img.clone()).to_rgba8();
-        output::save_png(&out.join(name), &rgba)
+        files.push((name.to_string(), output::png_bytes(&out.join(name), &rgba)?));
+        Ok(())
     };
     if let Some(ao) = ao {
         // Signed AO error: red where the GPU is darker than the truth, blue where lighter.
@@ -47,5 +50,6 @@ pub(super) fn write(
     }
     save("reference_both_default.png", ref_image)?;
     save("gpu_both_default.png", gpu_image)?;
-    save("error_flip_both_default.png", flip_map)
+    save("error_flip_both_default.png", flip_map)?;
+    Ok(files)
 }

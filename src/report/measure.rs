@@ -131,15 +131,15 @@ pub(crate) struct Bench<'a> {
 }
 
 impl Bench<'_> {
-    /// Times `config` at `radius`, renders it, and measures it against `truth`. `maps`: write
-    /// the error maps of this configuration.
+    /// Times `config` at `radius`, renders it, and measures it against `truth`. `maps`: where
+    /// to keep this configuration's error maps (PNG files by name), if they are wanted.
     pub fn measure(
         &self,
         renderer: &mut Renderer,
         config: Config,
         radius: f32,
         truth: &Truth,
-        maps: bool,
+        maps: Option<&mut Vec<(String, Vec<u8>)>>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
         let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half_resolution } =
@@ -160,7 +160,7 @@ impl Bench<'_> {
         } else {
             None
         };
-        let flip = self.flip(image, truth, renderer.settings.exposure, maps.then_some(&frame.ao))?;
+        let flip = self.flip(image, truth, renderer.settings.exposure, maps.map(|m| (m, &frame.ao)))?;
         let Errors { hdr_rmse, hdr_rmse_near, hdr_peak, ao_rmse, do_rmse, do_rmse_near } = errors;
         Ok(Row {
             mode,
@@ -216,14 +216,14 @@ impl Bench<'_> {
         Ok((want > 0.0).then(|| got / want))
     }
 
-    /// FLIP between the displayed GPU image and the truth displayed alike; with `maps` (the AO
-    /// read back), the error maps are written too.
+    /// FLIP between the displayed GPU image and the truth displayed alike; with `maps` (where
+    /// to keep them, and the AO read back), the error maps are made too.
     fn flip(
         &self,
         image: image::RgbaImage,
         truth: &Truth,
         exposure: f32,
-        maps: Option<&Option<Vec<f32>>>,
+        maps: Option<(&mut Vec<(String, Vec<u8>)>, &Option<Vec<f32>>)>,
     ) -> Result<f64> {
         let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
         let mut ref_image = gpu_image.clone();
@@ -237,8 +237,8 @@ impl Bench<'_> {
             );
         }
         let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.reference.valid);
-        if let Some(ao) = maps {
-            maps::write(&self.options.out, &truth.reference, ao, &ref_image, &gpu_image, &flip_map)?;
+        if let Some((kept, ao)) = maps {
+            kept.extend(maps::encode(&self.options.out, &truth.reference, ao, &ref_image, &gpu_image, &flip_map)?);
         }
         Ok(flip)
     }

@@ -69,6 +69,8 @@ pub struct Report {
     /// The constant ambient radiance every configuration and the truth share.
     pub ambient: f32,
     pub default_radius: f32,
+    /// The default Both configuration's error maps (PNG files by name), written with the tables.
+    pub maps: Vec<(String, Vec<u8>)>,
 }
 
 /// The report's scene (its model, or `--model`), its lights, its sky (the scene's, or
@@ -131,20 +133,21 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     let mut rows = Vec::new();
     let mut reference_seconds = 0.0;
     let mut kept = None;
+    let mut map_files = Vec::new();
     for (r_index, choice) in options.radii.iter().enumerate() {
         let radius = choice.resolve(default_radius);
         let started = Instant::now();
         let truth = source.trace(&camera, &depth, radius, &|| progress("reference row"))?;
         reference_seconds += started.elapsed().as_secs_f64();
         for config in sweep::configurations(options, r_index == 0) {
-            let maps = r_index == 0 && config.is_the_default_both();
+            let maps = (r_index == 0 && config.is_the_default_both()).then_some(&mut map_files);
             let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
             progress(&row.progress_line(config));
             rows.push(row);
         }
         if let (0, Some(preset)) = (r_index, &options.preset) {
             let (config, scale) = Config::of_knobs(preset.mode, &preset.knobs);
-            let mut row = bench.measure(&mut renderer, config, scale * default_radius, &truth, false)?;
+            let mut row = bench.measure(&mut renderer, config, scale * default_radius, &truth, None)?;
             row.preset = Some(preset.name.clone());
             progress(&row.progress_line(config));
             rows.push(row);
@@ -167,5 +170,6 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         noise,
         ambient,
         default_radius,
+        maps: map_files,
     })
 }

@@ -13,7 +13,8 @@ impl Report {
     /// resolution, blur on, the first radius); for the default variant, dashed lines with hollow
     /// markers through its most accumulated still rows (at full and at half resolution); every
     /// other row as a faint point, and the Pareto front as a dashed black line.
-    pub fn plot(&self, path: &Path) -> Result<()> {
+    /// The plot as PNG bytes (`path` names it in errors).
+    pub fn plot(&self, path: &Path) -> Result<Vec<u8>> {
         use plotters::prelude::*;
         let (w, h) = (1024u32, 680u32);
         let mut buffer = vec![0u8; (w * h * 3) as usize];
@@ -78,7 +79,7 @@ impl Report {
             root.present().map_err(|e| fail(&e))?;
         }
         let image = image::RgbImage::from_raw(w, h, buffer).expect("plot buffer has its size");
-        output::save_png(path, &image::DynamicImage::ImageRgb8(image).to_rgba8())
+        output::png_bytes(path, &image::DynamicImage::ImageRgb8(image).to_rgba8())
     }
 }
 

@@ -57,38 +57,57 @@ impl Row {
 
 impl Report {
     pub fn csv(&self) -> String {
-        let mut out = String::from(
-            "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse,hdr_rmse_within_r,hdr_psnr,flip,pareto,preset\n",
-        );
-        for r in &self.rows {
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{},{},{},{:.5},{},{},{},{:.4},{},{},{},{},{:.6},{:.6},{:.3},{:.5},{},{}",
-                r.mode.name(),
-                r.variant,
-                r.samples,
-                r.steps,
-                r.pyramid,
-                r.blur,
-                Row::bounce_label(r.mode, r.bounce),
-                r.radius,
-                r.accumulate,
-                r.orbit,
-                r.half_resolution,
-                r.ms,
+        const HEADER: [&str; 22] = [
+            "mode",
+            "variant",
+            "samples",
+            "steps",
+            "pyramid",
+            "blur",
+            "bounce",
+            "radius",
+            "accumulate",
+            "orbit",
+            "half",
+            "ms",
+            "ao_rmse_within_r",
+            "do_rmse",
+            "do_rmse_within_r",
+            "bounce_ratio",
+            "hdr_rmse",
+            "hdr_rmse_within_r",
+            "hdr_psnr",
+            "flip",
+            "pareto",
+            "preset",
+        ];
+        let rows = self.rows.iter().map(|r| -> [String; 22] {
+            [
+                r.mode.name().to_string(),
+                r.variant.to_string(),
+                r.samples.to_string(),
+                r.steps.to_string(),
+                r.pyramid.to_string(),
+                r.blur.to_string(),
+                Row::bounce_label(r.mode, r.bounce).to_string(),
+                format!("{:.5}", r.radius),
+                r.accumulate.to_string(),
+                r.orbit.to_string(),
+                r.half_resolution.to_string(),
+                format!("{:.4}", r.ms),
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),
                 cell(r.do_rmse_near, 6),
                 cell(r.bounce_ratio, 3),
-                r.hdr_rmse,
-                r.hdr_rmse_near,
-                r.hdr_psnr,
-                r.flip,
-                r.pareto,
-                r.preset.as_deref().map_or_else(String::new, |n| n.replace(',', " "))
-            );
-        }
-        out
+                format!("{:.6}", r.hdr_rmse),
+                format!("{:.6}", r.hdr_rmse_near),
+                format!("{:.3}", r.hdr_psnr),
+                format!("{:.5}", r.flip),
+                r.pareto.to_string(),
+                r.preset.clone().unwrap_or_default(),
+            ]
+        });
+        output::csv_text(&HEADER, rows)
     }
 
     pub fn markdown(&self, options: &ReportOptions) -> String {
@@ -130,7 +149,7 @@ impl Report {
             background,
             r.mismatched,
             r.covered,
-            options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", p.name)),
+            options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", crate::text::markdown_cell(&p.name))),
         );
         out.push_str(
             "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | frames (orbit) | ms a frame | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
@@ -174,10 +193,17 @@ impl Report {
         out
     }
 
-    /// Writes report.csv, report.md and report.png into `out`.
+    /// Writes report.csv, report.md, report.png and the error maps into `out`, together (a run
+    /// killed on the way leaves the last run's set or this run's, never a mix).
     pub fn write(&self, options: &ReportOptions) -> Result<()> {
-        output::write_atomic(&options.out.join("report.csv"), self.csv().as_bytes())?;
-        output::write_atomic(&options.out.join("report.md"), self.markdown(options).as_bytes())?;
-        self.plot(&options.out.join("report.png"))
+        let mut batch = output::Batch::default();
+        for (name, bytes) in &self.maps {
+            batch.stage(&options.out.join(name), bytes)?;
+        }
+        batch.stage(&options.out.join("report.csv"), self.csv().as_bytes())?;
+        batch.stage(&options.out.join("report.md"), self.markdown(options).as_bytes())?;
+        let plot = options.out.join("report.png");
+        batch.stage(&plot, &self.plot(&plot)?)?;
+        batch.commit().map(|_| ())
     }
 }

@@ -400,7 +400,7 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
         };
         let share = 1.0 / benches.len() as f64;
         for (bench, truth) in benches.iter().zip(&truths) {
-            let row = bench.measure(&mut renderer, config, scale * default_radius, truth, false)?;
+            let row = bench.measure(&mut renderer, config, scale * default_radius, truth, None)?;
             if bench.timed {
                 let mut ms = row.ms;
                 for _ in 1..repeats {

@@ -117,7 +117,7 @@ impl Tune {
                 p.hdr_rmse,
                 cell(p.do_rmse),
                 p.flip,
-                p.label()
+                crate::text::markdown_cell(&p.label())
             );
         }
         out
@@ -125,41 +125,59 @@ impl Tune {
 
     /// Every measured setting, one row each, the front marked.
     pub fn csv(&self, options: &TuneOptions) -> String {
-        let mut out = String::from(
-            "front,pick,ms,off_multiple,frames_timed,hdr_rmse,do_rmse,flip,hdr_rmse_per_view,mode,variant,samples,\
-             slices,steps,depth_pyramid,radius_scale,blur,half_resolution,accumulate,sender_sky,indirect_strength,preset\n",
-        );
-        for (i, p) in self.points.iter().enumerate() {
-            let Some(k) = p.knobs else { continue };
+        const HEADER: [&str; 22] = [
+            "front",
+            "pick",
+            "ms",
+            "off_multiple",
+            "frames_timed",
+            "hdr_rmse",
+            "do_rmse",
+            "flip",
+            "hdr_rmse_per_view",
+            "mode",
+            "variant",
+            "samples",
+            "slices",
+            "steps",
+            "depth_pyramid",
+            "radius_scale",
+            "blur",
+            "half_resolution",
+            "accumulate",
+            "sender_sky",
+            "indirect_strength",
+            "preset",
+        ];
+        let rows = self.points.iter().enumerate().filter_map(|(i, p)| {
+            let k = p.knobs?;
             let per_view: Vec<String> = p.hdr_per_view.iter().map(|e| format!("{e:.6}")).collect();
-            let _ = writeln!(
-                out,
-                "{},{},{:.4},{:.3},{},{:.6},{},{:.6},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                p.front,
-                Some(i) == self.pick,
-                p.ms,
-                p.ms / self.off.ms,
-                p.frames_timed,
-                p.hdr_rmse,
+            Some([
+                p.front.to_string(),
+                (Some(i) == self.pick).to_string(),
+                format!("{:.4}", p.ms),
+                format!("{:.3}", p.ms / self.off.ms),
+                p.frames_timed.to_string(),
+                format!("{:.6}", p.hdr_rmse),
                 p.do_rmse.map_or_else(String::new, |d| format!("{d:.6}")),
-                p.flip,
+                format!("{:.6}", p.flip),
                 per_view.join(" "),
-                options.mode,
-                k.variant,
-                k.samples,
-                k.slices,
-                k.steps,
-                k.depth_pyramid,
-                k.radius_scale,
-                k.blur,
-                k.half_resolution,
-                k.accumulate,
-                k.sender_sky,
-                k.indirect_strength,
-                p.name.as_deref().map_or_else(String::new, |n| n.replace(',', " "))
-            );
-        }
-        out
+                options.mode.to_string(),
+                k.variant.to_string(),
+                k.samples.to_string(),
+                k.slices.to_string(),
+                k.steps.to_string(),
+                k.depth_pyramid.to_string(),
+                k.radius_scale.to_string(),
+                k.blur.to_string(),
+                k.half_resolution.to_string(),
+                k.accumulate.to_string(),
+                k.sender_sky.to_string(),
+                k.indirect_strength.to_string(),
+                p.name.clone().unwrap_or_default(),
+            ])
+        });
+        output::csv_text(&HEADER, rows)
     }
 
     /// The pick as a preset, with what was measured of it.
@@ -327,5 +345,29 @@ mod tests {
         let command = t.capture_command(&o).unwrap();
         assert!(command.starts_with("ssdo capture --mode ssdo --size 320x240 --slices 1"), "{command}");
         assert!(command.contains("scene 'open' is built into report and tune only"), "{command}");
+    }
+
+    #[test]
+    fn a_name_with_commas_quotes_or_a_formula_stays_in_its_own_csv_field() {
+        let o = options();
+        let mut t = tune(Some(0), Verdict::Best, 15.0);
+        let names = ["ultra, 8 ms", "a \"quoted\" name", "=cmd|' /C calc'!A0", "plain"];
+        t.points = names.iter().map(|n| Point { name: Some(n.to_string()), ..point(10.0, 0.05, 1) }).collect();
+        let text = t.csv(&o);
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let width = reader.headers().unwrap().len();
+        let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), names.len(), "{text}");
+        for (row, name) in rows.iter().zip(names) {
+            assert_eq!(row.len(), width, "{text}");
+            let kept = &row[width - 1];
+            // A formula is kept as text: a quote mark before it, the name otherwise whole.
+            assert_eq!(kept.trim_start_matches('\''), name, "{text}");
+            assert!(!kept.starts_with('='), "{text}");
+        }
+        // The table's rows keep their eight unescaped pipes.
+        let table = t.markdown(&o);
+        let pipes = |l: &str| l.matches('|').count() - l.matches("\\|").count();
+        assert!(table.lines().filter(|l| l.starts_with('|')).all(|l| pipes(l) == 8), "{table}");
     }
 }
