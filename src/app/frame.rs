@@ -178,6 +178,9 @@ impl Viewer {
                     (self.scale, self.triangles, self.no_surface_maps) = (1.0, None, false);
                     self.panel
                         .say(format!("model {} loaded ({warnings} warnings, see the log)", path.display()), false);
+                    if let Some(note) = self.scene.model.cut_away() {
+                        self.panel.say(format!("{}: {note}", path.display()), true);
+                    }
                 }
                 Loaded::Sky(_, Err(e)) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
                 Loaded::Model(_, Err(e)) => {

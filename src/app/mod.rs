@@ -246,6 +246,9 @@ impl Viewer {
             egui_winit::State::new(egui_ctx, egui::ViewportId::ROOT, &window, Some(scale), None, Some(max_texture));
         let egui_renderer = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
         let mut panel = PanelState::new((&options.scene, &options.settings), &gpu, (&scene, &sky), timing);
+        if let Some(note) = scene.model.cut_away() {
+            panel.say(format!("model {}: {note}", scene.model.name), true);
+        }
         if let Some(preset) = &options.preset {
             if let Some(warning) = preset.elsewhere(&panel.adapter, view) {
                 panel.say(warning, true);

@@ -151,7 +151,8 @@ fn convert_material(
     cache: &mut TextureCache,
     warnings: &mut Vec<String>,
 ) -> Material {
-    let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_string);
+    // A name is shown in messages and the panel: one line of bounded length.
+    let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), crate::text::bounded_name);
     let pbr = m.pbr_metallic_roughness();
     let finite = |x: f32, default: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { default };
     let [r, g, b, alpha] = pbr.base_color_factor().map(|c| finite(c, 1.0));
@@ -173,7 +174,11 @@ fn convert_material(
     });
     let normal_map = m.normal_texture().and_then(|info| {
         let image = picture(info.texture().source().index(), "normal texture", "the surface keeps its vertex normals")?;
-        Some(NormalMap { image, scale: Some(info.scale()).filter(|s| s.is_finite()).unwrap_or(1.0) })
+        Some((image, info.scale()))
+    });
+    let normal_map = normal_map.map(|(image, scale)| {
+        let what = format!("material '{name}': normalTexture.scale {}", crate::text::num(scale));
+        NormalMap { image, scale: NormalMap::checked_scale(scale, &what, warnings) }
     });
     let cutoff = m.alpha_cutoff().filter(|c| c.is_finite()).unwrap_or(0.5);
     let cutout = match m.alpha_mode() {

@@ -48,6 +48,32 @@ pub struct NormalMap {
     pub scale: f32,
 }
 
+impl NormalMap {
+    /// The largest scale kept: past it the map's normals already lie in the surface to four
+    /// digits, and a larger one overflows f32 in the shader (a scale of 1e20 squared), where the
+    /// surface would fall back to its vertex normals without a word.
+    pub const MAX_SCALE: f32 = 1e3;
+
+    /// The scale a file gives (`what` names it in the warning: "material 'a': -bm 1e20"): a
+    /// finite number within ±[`NormalMap::MAX_SCALE`]; past it, that bound, and not a finite
+    /// number, 1; either with a warning.
+    pub fn checked_scale(scale: f32, what: &str, warnings: &mut Vec<String>) -> f32 {
+        if !scale.is_finite() {
+            warnings.push(format!("{what} is not a finite number; the normal map is read at scale 1"));
+            return 1.0;
+        }
+        if scale.abs() > Self::MAX_SCALE {
+            let kept = Self::MAX_SCALE.copysign(scale);
+            warnings.push(format!(
+                "{what} is beyond ±{}; the normal map is read at scale {kept} (its normals lie in the surface)",
+                Self::MAX_SCALE
+            ));
+            return kept;
+        }
+        scale
+    }
+}
+
 /// An alpha cutout: a texel whose coverage is below `cutoff` is a hole in every pass that
 /// writes depth, and in the truth.
 #[derive(Clone, Debug)]
@@ -66,6 +92,18 @@ impl Cutout {
         match &self.mask {
             Some(mask) => self.factor * mask.texel(uv)[3] as f32 / 255.0,
             None => self.factor,
+        }
+    }
+}
+
+impl Cutout {
+    /// Whether the cut-out leaves nothing of its surface: every texel's coverage (or the factor
+    /// alone, without a mask) is below the cutoff, as [`Cutout::coverage_at`] reads it.
+    pub fn removes_all(&self) -> bool {
+        let hole = |coverage: f32| !(coverage >= self.cutoff);
+        match &self.mask {
+            None => hole(self.factor),
+            Some(mask) => mask.rgba.chunks_exact(4).all(|t| hole(self.factor * t[3] as f32 / 255.0)),
         }
     }
 }
@@ -169,6 +207,41 @@ impl Model {
 
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
+    }
+
+    /// What the alpha cut-outs remove entirely, in a line: the materials whose every texel is a
+    /// hole, the share of the triangles they hold, and whether anything is left to draw. `None`
+    /// when no material is cut away whole (leaves and grilles keep some of their texels).
+    pub fn cut_away(&self) -> Option<String> {
+        let whole: Vec<usize> = (0..self.materials.len())
+            .filter(|&i| self.materials[i].cutout.as_ref().is_some_and(Cutout::removes_all))
+            .collect();
+        let triangles: usize =
+            self.parts.iter().filter(|p| whole.contains(&p.material)).map(|p| p.index_count as usize / 3).sum();
+        if triangles == 0 {
+            return None;
+        }
+        let mut names: Vec<String> = whole
+            .iter()
+            .filter(|&&i| self.parts.iter().any(|p| p.material == i))
+            .take(4)
+            .map(|&i| format!("'{}'", crate::text::bounded_name(&self.materials[i].name)))
+            .collect();
+        let drawn = whole.iter().filter(|&&i| self.parts.iter().any(|p| p.material == i)).count();
+        if drawn > names.len() {
+            names.push(format!("and {} more", drawn - names.len()));
+        }
+        let total = self.triangle_count().max(1);
+        let share = 100.0 * triangles as f64 / total as f64;
+        let verdict = if triangles >= total {
+            "nothing of the model is left to draw".to_string()
+        } else {
+            format!("{triangles} of its {total} triangles ({share:.1}%) are not drawn")
+        };
+        Some(format!(
+            "{verdict}: the alpha cut-out of material {} removes every texel (coverage below the cutoff everywhere)",
+            names.join(", ")
+        ))
     }
 
     pub fn is_textured(&self) -> bool {
@@ -423,6 +496,7 @@ pub(super) fn finish(
     }
     model.generate_tangents(given_tangents);
     model.weld();
+    warnings.extend(model.cut_away());
     for w in &warnings {
         log::warn!("{}: {w}", path.display());
     }

@@ -83,7 +83,19 @@ fn normal_map(
             ));
             continue;
         }
-        let scale = texture_option(argument, "-bm").unwrap_or(1.0);
+        let scale = match texture_option(argument, "-bm") {
+            None => 1.0,
+            Some(word) => {
+                let what = format!("material '{}': -bm {word}", m.name);
+                match word.parse::<f32>() {
+                    Ok(scale) => NormalMap::checked_scale(scale, &what, warnings),
+                    Err(_) => {
+                        warnings.push(format!("{what} is not a number; the normal map is read at scale 1"));
+                        1.0
+                    }
+                }
+            }
+        };
         log::info!("material '{}': normal map from {key} {argument} (scale {scale})", m.name);
         taken = Some((key, argument, NormalMap { image, scale }));
     }
@@ -130,12 +142,16 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
             "dropped {bad_faces} face(s) with a vertex reference of 0, out of range, or in mixed formats"
         ));
     }
-    let tobj_materials = tobj_materials.unwrap_or_else(|e| {
+    let mut tobj_materials = tobj_materials.unwrap_or_else(|e| {
         if e != tobj::LoadError::OpenFileFailed {
             warnings.push(format!("{}: material file is malformed ({e}); using a default material", path.display()));
         }
         Vec::new()
     });
+    // A name is shown in messages and the panel: one line of bounded length.
+    for m in &mut tobj_materials {
+        m.name = crate::text::bounded_name(&m.name);
+    }
     let maps = tobj_materials.iter().flat_map(|m| {
         let colour = [m.diffuse_texture.as_deref(), m.specular_texture.as_deref(), m.dissolve_texture.as_deref()];
         colour.into_iter().flatten().chain(normal_statements(m).into_iter().map(|(_, argument)| argument))

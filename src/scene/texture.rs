@@ -290,12 +290,12 @@ pub(super) fn try_load_texture(
     Some(texture)
 }
 
-/// The number after option `name` in a texture statement (`-bm 0.5 bricks.png`), if it is
-/// there and finite.
-pub fn texture_option(argument: &str, name: &str) -> Option<f32> {
-    let words: Vec<&str> = argument.split_whitespace().collect();
-    let at = words.iter().position(|w| *w == name)?;
-    words.get(at + 1)?.parse::<f32>().ok().filter(|x| x.is_finite())
+/// The word after option `name` in a texture statement (`-bm 0.5 bricks.png`: "0.5"), if the
+/// option is there; the caller reads the number and says what is wrong with it.
+pub fn texture_option<'a>(argument: &'a str, name: &str) -> Option<&'a str> {
+    let mut words = argument.split_whitespace();
+    words.by_ref().find(|w| *w == name)?;
+    words.next()
 }
 
 /// Decodes a picture at its own size, then resizes it to `planned` (filtered) and turns it into

@@ -158,3 +158,66 @@ fn gltf_blend_is_a_mask_with_one_warning_and_opaque_materials_cut_nothing() {
     assert!(opaque.materials[0].cutout.is_none() && opaque.materials[0].normal_map.is_none());
     assert!(opaque.tangents.is_empty());
 }
+
+#[test]
+fn a_normal_scale_that_is_no_number_or_overflows_is_said_and_kept_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    rgba(dir.path(), "n.png", 4, 4, |x, _| [128 + 20 * x as u8, 128, 250, 255]);
+    for (i, (bm, scale, needle)) in [
+        ("NaN", 1.0, "-bm NaN is not a finite number; the normal map is read at scale 1"),
+        ("inf", 1.0, "-bm inf is not a finite number"),
+        ("abc", 1.0, "-bm abc is not a number; the normal map is read at scale 1"),
+        ("1e18", 1e3, "-bm 1e18 is beyond ±1000; the normal map is read at scale 1000"),
+        ("-1e38", -1e3, "is read at scale -1000"),
+        ("0.5", 0.5, ""),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let model = quad(dir.path(), &format!("q{i}"), &format!("map_Bump -bm {bm} n.png\n"));
+        let map = model.materials[0].normal_map.as_ref().expect("the map is read");
+        assert_eq!(map.scale, scale, "-bm {bm}");
+        let said = model.warnings.iter().filter(|w| w.contains("-bm")).count();
+        assert_eq!(said, usize::from(!needle.is_empty()), "-bm {bm}: {:?}", model.warnings);
+        assert!(needle.is_empty() || warned(&model, needle), "-bm {bm}: {:?}", model.warnings);
+    }
+}
+
+#[test]
+fn a_model_its_cut_outs_remove_entirely_says_so_and_which_material() {
+    let dir = tempfile::tempdir().unwrap();
+    rgba(dir.path(), "clear.png", 4, 4, |_, _| [200, 200, 200, 0]);
+    rgba(dir.path(), "leaf.png", 4, 4, |x, _| [40, 160, 40, if x < 2 { 0 } else { 255 }]);
+    let gone = quad(dir.path(), "gone", "map_Kd clear.png\nmap_d clear.png\n");
+    let note = gone.cut_away().expect("a model cut away whole says so");
+    assert!(note.contains("nothing of the model is left to draw") && note.contains("material 'm'"), "{note}");
+    assert!(warned(&gone, "nothing of the model is left to draw"), "{:?}", gone.warnings);
+    // A leaf keeps half its texels: nothing to say.
+    let leaf = quad(dir.path(), "leaf", "map_Kd leaf.png\nmap_d leaf.png\n");
+    assert_eq!(leaf.cut_away(), None);
+    // glTF: a cutoff above every texel, or a base colour alpha of 0.
+    let bin = dir.path().join("quad.bin");
+    std::fs::write(&bin, crate::common::quad_buffer()).unwrap();
+    for (name, material) in [
+        ("cutoff", serde_json::json!({ "name": "fence", "alphaMode": "MASK", "alphaCutoff": 2.0 })),
+        ("huge", serde_json::json!({ "name": "fence", "alphaMode": "MASK", "alphaCutoff": 1e38 })),
+        (
+            "alpha",
+            serde_json::json!({
+                "name": "fence", "alphaMode": "MASK",
+                "pbrMetallicRoughness": { "baseColorFactor": [1.0, 1.0, 1.0, 0.0] }
+            }),
+        ),
+    ] {
+        let document = crate::common::quad_gltf(
+            serde_json::json!({ "uri": "quad.bin", "byteLength": 144 }),
+            crate::common::one_node(),
+            material,
+        );
+        let path = dir.path().join(format!("{name}.gltf"));
+        std::fs::write(&path, serde_json::to_vec(&document).unwrap()).unwrap();
+        let model = ssdo::scene::load_model_file(&path).unwrap();
+        let note = model.cut_away().unwrap_or_else(|| panic!("{name}: nothing said"));
+        assert!(note.contains("nothing of the model is left") && note.contains("'fence'"), "{name}: {note}");
+    }
+}
