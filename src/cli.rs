@@ -23,15 +23,25 @@ pub(crate) struct Cli {
 #[derive(Subcommand)]
 pub(crate) enum Command {
     /// Open the interactive viewer (the default).
+    // A negative number is a value, for the flag's range check to refuse by name.
+    #[command(allow_negative_numbers = true)]
     View(ViewArgs),
     /// Render the scene offscreen and write PNGs: <out>/<mode>.png (and compare.png for all).
+    // A negative number is a value, for the flag's range check to refuse by name.
+    #[command(allow_negative_numbers = true)]
     Capture(CaptureArgs),
     /// Render each mode repeatedly and print per-pass GPU times.
+    // A negative number is a value, for the flag's range check to refuse by name.
+    #[command(allow_negative_numbers = true)]
     Bench(BenchArgs),
     /// Error of every mode and setting against a CPU ray-traced reference, against GPU time.
+    // A negative number is a value, for the flag's range check to refuse by name.
+    #[command(allow_negative_numbers = true)]
     Report(ReportArgs),
     /// The best setting a frame budget buys on this scene and device, measured against the
     /// report's truth: the front, the pick as a preset file and as a capture command.
+    // A negative number is a value, for the flag's range check to refuse by name.
+    #[command(allow_negative_numbers = true)]
     Tune(TuneArgs),
 }
 
@@ -53,13 +63,13 @@ pub(crate) struct TruthScene {
     #[arg(long)]
     pub(crate) skybox: Option<PathBuf>,
     /// Image size, WIDTHxHEIGHT
-    #[arg(long, default_value = "320x240", value_parser = parse_size)]
+    #[arg(long, default_value = "320x240", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) size: Size,
     /// Number of random point lights, 0-4096
     #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = ssdo::spec::parse_lights)]
     pub(crate) lights: usize,
     /// Seed of the lights and of the reference's rays
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = ssdo::spec::parse_seed)]
     pub(crate) seed: u64,
 }
 
@@ -81,7 +91,7 @@ pub(crate) struct TuneArgs {
     pub(crate) on: TruthScene,
     /// Views measured: the report's, and the others turned about the model up to --spread
     /// degrees either side, 1-8
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = |s: &str| ssdo::spec::whole_number(s, (1, ssdo::tune::MAX_VIEWS)))]
     pub(crate) views: usize,
     /// Degrees the farthest views turn from the report's, 0-90
     #[arg(long, default_value_t = 20.0)]
@@ -93,7 +103,7 @@ pub(crate) struct TuneArgs {
     #[arg(long, default_value_t = 128, value_parser = parse_spp)]
     pub(crate) spp: u32,
     /// The most settings the search measures, 0-400 (0: measure the --also presets only)
-    #[arg(long, default_value_t = 60)]
+    #[arg(long, default_value_t = 60, value_parser = |s: &str| ssdo::spec::whole_number(s, (0, ssdo::tune::MAX_SETTINGS)))]
     pub(crate) max_settings: usize,
     /// Also measure this preset file (repeatable): its figures here, picked if it is the best
     #[arg(long)]
@@ -141,8 +151,9 @@ impl TuneArgs {
 pub(crate) struct Size(pub(crate) u32, pub(crate) u32);
 
 pub(crate) fn parse_size(s: &str) -> std::result::Result<Size, String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().map_err(|_| format!("'{s}' is not WIDTHxHEIGHT"));
+    let bad = || format!("'{s}' is not WIDTHxHEIGHT (two whole numbers of pixels, such as 800x600)");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let parse = |v: &str| v.trim().parse::<u32>().map_err(|_| bad());
     Ok(Size(parse(w)?, parse(h)?))
 }
 
@@ -170,7 +181,7 @@ pub(crate) struct CaptureArgs {
     #[arg(long, default_value = "all", value_parser = parse_mode)]
     pub(crate) mode: ModeChoice,
     /// Image size, WIDTHxHEIGHT
-    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    #[arg(long, default_value = "800x600", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) size: Size,
     /// Output folder
     #[arg(long, default_value = "out")]
@@ -199,7 +210,7 @@ pub(crate) struct ViewArgs {
     #[arg(long, default_value = "both")]
     pub(crate) mode: Mode,
     /// Window size, WIDTHxHEIGHT (the 3D view is the window less the 300-pixel panel)
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) size: Size,
     /// Where F12 screenshots and C comparisons are written
     #[arg(long, default_value = "screenshots")]
@@ -303,7 +314,7 @@ pub(crate) struct BenchArgs {
     #[command(flatten)]
     pub(crate) render: RenderArgs,
     /// Image size, WIDTHxHEIGHT
-    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    #[arg(long, default_value = "800x600", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) size: Size,
     /// Frames measured per mode (after two warm-up frames), 1-10000
     #[arg(long, default_value_t = 20, value_parser = parse_frames)]
@@ -325,8 +336,14 @@ impl Cli {
         use ssdo::render::{Count, ACCUMULATE, SAMPLES, SLICES, STEPS};
         let range = |c: &Count| format!("{}-{}", c.min, c.max);
         let classic = ssdo::render::Variant::Classic.decl().default_samples;
+        // A count that is no whole number (-1, 2.5) is refused saying what the count accepts.
+        let whole = |c: Count| move |s: &str| ssdo::spec::whole_number(s, (c.min, c.max));
         let render_help = |command: clap::Command| {
             command
+                .mut_arg("samples", |a| a.value_parser(whole(SAMPLES)))
+                .mut_arg("slices", |a| a.value_parser(whole(SLICES)))
+                .mut_arg("steps", |a| a.value_parser(whole(STEPS)))
+                .mut_arg("accumulate", |a| a.value_parser(whole(ACCUMULATE)))
                 .mut_arg("samples", |a| {
                     a.help(format!(
                         "Samples per pixel of the points and classic variants, {} [default: {}; classic {classic}]",

@@ -34,7 +34,7 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = scene::DEFAULT_LIGHTS, value_parser = parse_lights)]
     pub lights: usize,
     /// Seed for the lights' colours and positions
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = parse_seed)]
     pub seed: u64,
     /// The point the orbit camera turns about, X,Y,Z [default: the model's centre]
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
@@ -85,6 +85,17 @@ pub fn count_in(s: &str, min: u64, max: u64) -> std::result::Result<u64, String>
     } else {
         Err(bad())
     }
+}
+
+/// A seed: any whole number from 0 to 2^64 - 1 (a negative one is refused by its flag).
+pub fn parse_seed(s: &str) -> std::result::Result<u64, String> {
+    count_in(s, 0, u64::MAX)
+}
+
+/// A whole number for a count whose range the setting checks once it is read: what is no
+/// whole number at all (-1, 2.5, abc) is refused here, saying what is accepted.
+pub fn whole_number(s: &str, (min, max): (usize, usize)) -> std::result::Result<usize, String> {
+    s.trim().parse().map_err(|_| format!("must be a whole number between {min} and {max}"))
 }
 
 pub fn parse_lights(s: &str) -> std::result::Result<usize, String> {

@@ -154,10 +154,26 @@ pub struct ModelFolder {
 }
 
 impl ModelFolder {
-    /// The folder of the model file `model`.
+    /// The folder of the model file `model`: the folder the path names, as every program that
+    /// follows a file's relative names takes it. A model file that is a link is said to be one,
+    /// with the folder used and the one not used, so a map beside the link's target that is not
+    /// found is no mystery.
     pub fn of(model: &Path) -> Self {
         let shown = model.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
         let real = std::fs::canonicalize(&shown).ok();
+        if std::fs::symlink_metadata(model).is_ok_and(|m| m.file_type().is_symlink()) {
+            let target = std::fs::canonicalize(model).ok();
+            let target_folder = target.as_deref().and_then(Path::parent).map(Path::to_path_buf);
+            if target_folder.is_some() && target_folder != real {
+                log::info!(
+                    "{} is a link to {}: the files it names are read from the link's folder ({}), not from {}",
+                    model.display(),
+                    target.as_deref().unwrap_or(model).display(),
+                    shown.display(),
+                    target_folder.as_deref().unwrap_or(Path::new(".")).display()
+                );
+            }
+        }
         Self { shown, real }
     }
 
