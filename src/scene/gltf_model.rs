@@ -34,7 +34,7 @@ use super::gltf_data::{
     VEC3_KINDS, VEC4_KINDS,
 };
 use super::model::{finish, Cutout, Material, Model, NormalMap, Vertex};
-use super::texture::{TextureCache, TextureImage};
+use super::texture::{room_for_maps, TextureCache, TextureImage};
 use super::triangle::{push_triangle, Triangle};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
@@ -92,10 +92,11 @@ fn load_unguarded(path: &Path, texture_room: u64) -> Result<Model> {
             base.into_iter().chain(m.normal_texture().map(|info| info.texture().source().index()))
         })
         .collect();
+    let room = room_for_maps(document.materials().len() + 1, used.len(), texture_room).map_err(input)?;
     let pictures = read_images(&document, &used, &folder, &buffers);
     let mut cache = TextureCache::plan_pictures(
         pictures.iter().flatten().filter_map(|(_, bytes)| bytes.as_deref().ok().map(Vec::as_slice)),
-        texture_room,
+        room,
     );
     let materials = document.materials().map(|m| convert_material(&m, &pictures, &mut cache, &mut warnings));
     let mut materials: Vec<Material> = materials.collect();

@@ -497,11 +497,24 @@ pub(super) fn finish(
     model.generate_tangents(given_tangents);
     model.weld();
     warnings.extend(model.cut_away());
-    for w in &warnings {
-        log::warn!("{}: {w}", path.display());
-    }
+    log_capped(log::Level::Warn, path, &warnings);
     model.warnings = warnings;
     Ok(model)
+}
+
+/// The most lines of one kind of message a load logs; the rest are counted in one line (a model of
+/// a hundred thousand materials said a hundred thousand lines).
+const LOGGED_LINES: usize = 20;
+
+/// Logs `lines` about the model file `path` at `level`, the first [`LOGGED_LINES`] of them, then
+/// how many more there are (all of them stay on the model).
+pub(super) fn log_capped(level: log::Level, path: &Path, lines: &[String]) {
+    for line in lines.iter().take(LOGGED_LINES) {
+        log::log!(level, "{}: {line}", path.display());
+    }
+    if lines.len() > LOGGED_LINES {
+        log::log!(level, "{}: and {} more such lines", path.display(), lines.len() - LOGGED_LINES);
+    }
 }
 
 pub(super) const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";

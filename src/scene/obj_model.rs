@@ -16,7 +16,7 @@ use glam::Vec3;
 use super::files::{check_file, other_model_kind, read_bounded, ModelFolder};
 use super::model::{finish, Cutout, Material, Model, NormalMap, Vertex, NO_TRIANGLES};
 use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
-use super::texture::{load_texture, texture_option, try_load_texture, TextureCache, TextureImage};
+use super::texture::{load_texture, room_for_maps, texture_option, try_load_texture, TextureCache, TextureImage};
 use super::triangle::{push_triangle, Triangle};
 use crate::budget::{self, Share};
 use crate::{Error, Result};
@@ -28,11 +28,13 @@ fn finite3(v: Option<[f32; 3]>, default: [f32; 3]) -> [f32; 3] {
     }
 }
 
+/// The material `m` describes; `warnings` gets what was wrong, `read` what each normal map was
+/// read from.
 fn convert_material(
     m: &tobj::Material,
     folder: &ModelFolder,
     cache: &mut TextureCache,
-    warnings: &mut Vec<String>,
+    (warnings, read): (&mut Vec<String>, &mut Vec<String>),
 ) -> Material {
     Material {
         name: m.name.clone(),
@@ -41,7 +43,7 @@ fn convert_material(
         shininess: m.shininess.filter(|s| s.is_finite()).unwrap_or(32.0).clamp(1.0, 1024.0),
         diffuse_map: m.diffuse_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
         specular_map: m.specular_texture.as_deref().map(|t| load_texture(folder, t, cache, warnings)),
-        normal_map: normal_map(m, folder, cache, warnings),
+        normal_map: normal_map(m, folder, cache, warnings, read),
         cutout: cutout(m, folder, cache, warnings),
     }
 }
@@ -62,6 +64,7 @@ fn normal_map(
     folder: &ModelFolder,
     cache: &mut TextureCache,
     warnings: &mut Vec<String>,
+    read: &mut Vec<String>,
 ) -> Option<NormalMap> {
     let statements = normal_statements(m);
     let mut taken: Option<(&str, &str, NormalMap)> = None;
@@ -96,7 +99,7 @@ fn normal_map(
                 }
             }
         };
-        log::info!("material '{}': normal map from {key} {argument} (scale {scale})", m.name);
+        read.push(format!("material '{}': normal map from {key} {argument} (scale {scale})", m.name));
         taken = Some((key, argument, NormalMap { image, scale }));
     }
     taken.map(|(_, _, map)| map)
@@ -156,9 +159,14 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
         let colour = [m.diffuse_texture.as_deref(), m.specular_texture.as_deref(), m.dissolve_texture.as_deref()];
         colour.into_iter().flatten().chain(normal_statements(m).into_iter().map(|(_, argument)| argument))
     });
-    let mut cache = TextureCache::plan(&folder, maps, texture_room);
+    let distinct = maps.clone().collect::<std::collections::HashSet<&str>>().len();
+    let room = room_for_maps(tobj_materials.len() + 1, distinct, texture_room).map_err(input)?;
+    let mut cache = TextureCache::plan(&folder, maps, room);
+    // What each normal map was read from: logged once for the load, capped.
+    let mut read = Vec::new();
     let mut materials: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, &mut warnings)).collect();
+        tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, (&mut warnings, &mut read))).collect();
+    super::model::log_capped(log::Level::Info, path, &read);
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
     let groups = build_groups(&models, default_material, &mut warnings);

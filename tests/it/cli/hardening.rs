@@ -62,6 +62,14 @@ fn every_count_has_a_range_and_says_it() {
         (vec!["report", "--spp", "1"], "between 2 and 65536"),
         (vec!["report", "--radius", &["1x"; 17].join(",")], "at most 16"),
         (vec!["report", "--samples", &["8"; 200].join(",")], "at most 16"),
+        // A negative or fractional count is the flag's value, refused with its range (it was
+        // "unexpected argument '-1'").
+        (vec!["capture", "--lights", "-1"], "'--lights <LIGHTS>': must be a whole number between 0 and 4096"),
+        (vec!["capture", "--samples", "-1"], "'--samples <SAMPLES>': must be a whole number between 1 and 256"),
+        (vec!["view", "--slices", "2.5"], "'--slices <SLICES>': must be a whole number between 1 and 32"),
+        (vec!["tune", "--views", "-1"], "'--views <VIEWS>': must be a whole number between 1 and 8"),
+        (vec!["bench", "--seed", "-1"], "'--seed <SEED>': must be a whole number between 0 and"),
+        (vec!["capture", "--size", "-1x3"], "'-1x3' is not WIDTHxHEIGHT"),
     ] {
         let result = ssdo(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}: {}", stderr(&result));
@@ -93,6 +101,24 @@ fn the_memory_budget_is_one_flag_and_refuses_before_the_work() {
     std::fs::write(&path, text).unwrap();
     let args = ["capture", "--model", path.to_str().unwrap(), "--memory-budget", "512M", "--mode", "off"];
     refused(&args, 3, "polygon.obj: 1999998 triangles would need");
+    // Materials: each costs its GPU objects and draws whatever its maps' few texels (a hundred
+    // thousand of them outgrew every budget), counted before any map is read.
+    let mut mtl = String::new();
+    let mut obj = String::from("mtllib many.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\n");
+    for i in 0..2000 {
+        mtl.push_str(&format!("newmtl m{i}\nKd 0.5 0.5 0.5\nmap_Bump n{i}.png\n"));
+        obj.push_str(&format!("usemtl m{i}\nf 1 3 2\n"));
+    }
+    std::fs::write(dir.path().join("many.mtl"), mtl).unwrap();
+    std::fs::write(dir.path().join("many.obj"), obj).unwrap();
+    let path = dir.path().join("many.obj");
+    let args = ["capture", "--model", path.to_str().unwrap(), "--memory-budget", "64M", "--mode", "off"];
+    let line = refused(&args, 3, "many.obj: 2001 materials with 2000 distinct maps would need");
+    assert!(line.contains("memory budget for textures"), "{line}");
+    // The image plan halves the largest first in steps of a heap: a hundred thousand pictures
+    // planned into almost nothing end at 1x1 each (this took minutes as a scan a halving).
+    let fitted = ssdo::budget::fit_images(&vec![(64, 64); 100_000], 0);
+    assert!(fitted.iter().all(|&s| s == (1, 1)));
 }
 
 #[test]
