@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of the loaders with cargo-fuzz (libFuzzer), on the nightly toolchain.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     default: 600 s each, every target:
-#   obj (OBJ + MTL), skybox (six faces), gltf (.gltf + a buffer + an image), glb, panorama
+#   obj (OBJ + MTL), skybox (six faces), gltf (.gltf + a buffer + an image), glb, panorama,
+#   preset (a --preset file)
 # Installs cargo-fuzz (from crates.io) and the nightly toolchain (through rustup) where missing.
 # A crash stops its target and leaves the input in fuzz/artifacts/<target>/; copy it into
 # fuzz/regressions/<target>/ before fixing it: the tests run every file there through the same
@@ -12,7 +13,7 @@ cd "$(dirname "$0")/../fuzz"
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj skybox gltf glb panorama)
+[ ${#targets[@]} -gt 0 ] || targets=(obj skybox gltf glb panorama preset)
 
 if ! rustup toolchain list | grep -q '^nightly'; then
     echo "scripts/fuzz.sh: installing the nightly toolchain"

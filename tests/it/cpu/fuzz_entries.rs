@@ -67,12 +67,33 @@ pub fn panorama(data: &[u8]) {
     unguarded("panorama", || drop(ssdo::scene::Skybox::load(&path)));
 }
 
-/// The fuzz targets by name, as `fuzz/Cargo.toml` names them.
-/// A fuzz target: its name and its entry.
+/// The preset reader: the bytes as a preset file. One that is read writes itself back as a file
+/// that reads as the same preset, of at most a few kilobytes (its strings are bounded), and its
+/// knobs make settings, flags and a label without a panic.
+pub fn preset(data: &[u8]) {
+    use ssdo::preset::Preset;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("p.json");
+    std::fs::write(&path, data).unwrap();
+    let Ok(preset) = Preset::load(&path) else { return };
+    let text = preset.to_text();
+    assert!(text.len() < 4 * ssdo::text::MAX_NAME_CHARS * 4 + 4096, "{} bytes written", text.len());
+    assert_eq!(Preset::parse(&path, &text).ok().as_ref(), Some(&preset), "{text}");
+    let settings = preset.knobs.settings(ssdo::render::Settings::default());
+    drop((settings, preset.knobs.flags(0.5), preset.knobs.label(), preset.elsewhere("a device", (8, 8))));
+}
+
+/// A fuzz target: its name and its entry, as `fuzz/Cargo.toml` names them.
 pub type Target = (&'static str, fn(&[u8]));
 
-pub const TARGETS: [Target; 5] =
-    [("obj", obj), ("skybox", skybox), ("gltf", gltf), ("glb", glb), ("panorama", panorama)];
+pub const TARGETS: [Target; 6] = [
+    ("obj", obj),
+    ("skybox", skybox),
+    ("gltf", gltf),
+    ("glb", glb),
+    ("panorama", panorama),
+    ("preset", preset),
+];
 
 #[cfg(test)]
 mod tests {
