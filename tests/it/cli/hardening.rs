@@ -274,3 +274,42 @@ fn a_stale_or_foreign_lock_is_taken_over_at_once_with_a_line() {
         assert!(!lock.exists(), "the lock was left behind");
     }
 }
+
+#[test]
+fn a_preset_that_is_a_device_and_a_model_cut_away_whole_are_each_said_in_a_line() {
+    // /dev/zero was read to 4 GB before "out of memory".
+    if Path::new("/dev/zero").exists() {
+        refused(
+            &["capture", "--preset", "/dev/zero", "--mode", "off"],
+            3,
+            "/dev/zero: is a device, not a regular file",
+        );
+    }
+    if !has_adapter() {
+        return;
+    }
+    // A quad whose map_d is alpha 0 everywhere drew the sky alone with nothing said.
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbaImage::from_pixel(4, 4, image::Rgba([200, 200, 200, 0])).save(dir.path().join("clear.png")).unwrap();
+    std::fs::write(dir.path().join("q.mtl"), "newmtl glass\nmap_Kd clear.png\nmap_d clear.png\n").unwrap();
+    let quad = "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\n";
+    std::fs::write(dir.path().join("q.obj"), format!("mtllib q.mtl\n{quad}usemtl glass\nf 1/1/1 2/2/1 3/3/1 4/4/1\n"))
+        .unwrap();
+    let model = dir.path().join("q.obj");
+    let out = dir.path().join("out");
+    let args = [
+        "capture",
+        "--model",
+        model.to_str().unwrap(),
+        "--size",
+        "16x12",
+        "--mode",
+        "off",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = ssdo(&args);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    let said = stderr(&result);
+    assert!(said.contains("nothing of the model is left to draw") && said.contains("'glass'"), "{said}");
+}

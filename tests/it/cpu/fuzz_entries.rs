@@ -86,14 +86,8 @@ pub fn preset(data: &[u8]) {
 /// A fuzz target: its name and its entry, as `fuzz/Cargo.toml` names them.
 pub type Target = (&'static str, fn(&[u8]));
 
-pub const TARGETS: [Target; 6] = [
-    ("obj", obj),
-    ("skybox", skybox),
-    ("gltf", gltf),
-    ("glb", glb),
-    ("panorama", panorama),
-    ("preset", preset),
-];
+pub const TARGETS: [Target; 6] =
+    [("obj", obj), ("skybox", skybox), ("gltf", gltf), ("glb", glb), ("panorama", panorama), ("preset", preset)];
 
 #[cfg(test)]
 mod tests {
