@@ -324,8 +324,8 @@ fn special_and_huge_files_are_refused_before_they_are_read() {
     let sparse = dir.path().join("sparse.obj");
     std::fs::File::create(&sparse).unwrap().set_len(2 << 30).unwrap();
     for (model, needle) in [
-        ("/dev/zero", "/dev/zero: is not a regular file"),
-        (fifo.to_str().unwrap(), "pipe.obj: is not a regular file"),
+        ("/dev/zero", "/dev/zero: is a device, not a regular file"),
+        (fifo.to_str().unwrap(), "pipe.obj: is a FIFO (a named pipe), not a regular file"),
         (sparse.to_str().unwrap(), "sparse.obj: is 2048 MiB; files over 1024 MiB are refused"),
         (dir.path().to_str().unwrap(), "is a folder, not a file"),
     ] {
@@ -430,7 +430,7 @@ fn a_bad_preset_is_one_line_and_exit_3_everywhere() {
         if command != "view" {
             args.extend(["--out", out.to_str().unwrap()].iter().take(if command == "bench" { 0 } else { 2 }));
         }
-        let line = refused(&args, 3, "bad.json: settings: --slices 99");
+        let line = refused(&args, 3, "bad.json: settings.slices: 99 is out of range");
         assert!(!line.contains('\n'));
     }
     refused(&["capture", "--preset", "no/such.json"], 3, "no/such.json: cannot read");
