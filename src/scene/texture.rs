@@ -176,10 +176,11 @@ fn note_picture(pictures: &mut Vec<(ContentKey, (u32, u32))>, bytes: &[u8]) {
     }
 }
 
-/// The room left for the maps' texels once a model's `materials` and its `maps` distinct maps
-/// are paid for ([`crate::budget::BYTES_PER_MATERIAL`], [`crate::budget::BYTES_PER_MAP`]): all
-/// of it from the textures' share, checked before any map is read, so that a hundred thousand
-/// materials of a few texels each are refused in one line instead of outgrowing the budget.
+/// The room for the maps' texels (at most `room`) once a model's `materials` and its `maps`
+/// distinct maps are paid for ([`crate::budget::BYTES_PER_MATERIAL`],
+/// [`crate::budget::BYTES_PER_MAP`]): materials and texels together within the textures' share,
+/// checked before any map is read, so that a hundred thousand materials of a few texels each
+/// are refused in one line instead of outgrowing the budget.
 pub(super) fn room_for_maps(materials: usize, maps: usize, room: u64) -> std::result::Result<u64, String> {
     use crate::budget::{self, Share, BYTES_PER_MAP, BYTES_PER_MATERIAL};
     let overhead = (materials as u64)
@@ -187,7 +188,7 @@ pub(super) fn room_for_maps(materials: usize, maps: usize, room: u64) -> std::re
         .saturating_add((maps as u64).saturating_mul(BYTES_PER_MAP));
     budget::check(Share::Textures, overhead, || format!("{materials} materials with {maps} distinct maps"))?;
     // The room counts level-0 texels, 3/7 of what they cost (see `texture_room`).
-    Ok(room.saturating_sub(overhead / 7 * 3))
+    Ok(room.min(budget::share(Share::Textures).saturating_sub(overhead) / 7 * 3))
 }
 
 /// Splits a texture statement's argument into the file name, dropping the options exporters put

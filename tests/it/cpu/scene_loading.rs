@@ -295,11 +295,8 @@ fn textures_are_shared_by_path_link_and_content_and_kept_within_the_budget() {
     }
     std::fs::write(d.join("m.obj"), obj).unwrap();
 
-    // A room of one 64x64 texture and a half once the 34 materials and 4 named maps are paid for
-    // (3/7 of their cost: the room counts level-0 texels): a.png fits, b.png is halved to fit.
-    let overhead = (34 * ssdo::budget::BYTES_PER_MATERIAL + 4 * ssdo::budget::BYTES_PER_MAP) / 7 * 3;
-    let room = 64 * 64 * 4 * 3 / 2 + overhead;
-    let model = ssdo::scene::obj_model::load_obj_with_budget(&d.join("m.obj"), room).unwrap();
+    // A budget of one 64x64 texture and a half: a.png fits, b.png is halved to fit.
+    let model = ssdo::scene::obj_model::load_obj_with_budget(&d.join("m.obj"), 64 * 64 * 4 * 3 / 2).unwrap();
     let maps: Vec<_> = model.materials.iter().filter_map(|m| m.diffuse_map.as_ref()).collect();
     assert_eq!(maps.len(), 33);
     let first = &maps[0].rgba;
