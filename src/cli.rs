@@ -198,6 +198,13 @@ pub(crate) struct CaptureArgs {
     /// Also write the linear HDR image as <out>/<mode>.exr
     #[arg(long)]
     pub(crate) raw: bool,
+    /// Also trace the view's truth (as the report's): write truth.png and error_<mode>.png, add
+    /// the truth to compare.png, and print each mode's HDR RMSE, DO RMSE and FLIP against it
+    #[arg(long)]
+    pub(crate) truth: bool,
+    /// With --truth: rays per pixel in each of the truth's two traces, 2-65536
+    #[arg(long, default_value_t = 256, value_parser = parse_spp, requires = "truth")]
+    pub(crate) spp: u32,
 }
 
 #[derive(Args)]

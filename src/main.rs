@@ -91,8 +91,11 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
     gpu.check_size(size.0, size.1)?;
     warn_if_elsewhere(preset.as_ref(), &gpu, size);
     let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
-    // --raw and --stats read the linear HDR image back; otherwise the frame tone-maps in place.
-    renderer.keep_hdr(&gpu, args.raw || args.stats);
+    // --raw, --stats and --truth read the linear HDR image back; otherwise the frame tone-maps
+    // in place.
+    renderer.keep_hdr(&gpu, args.raw || args.stats || args.truth);
+    let truth = if args.truth { Some(trace_truth(&gpu, &mut renderer, (&scene, &sky), &camera, args)?) } else { None };
+    let mut errors = Vec::new();
     let mut panels = Vec::new();
     let mut stats_json = serde_json::Map::new();
     // Every file of the run lands together, or none does; leftovers of killed runs go first.
@@ -129,6 +132,9 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         }
         let started = Instant::now();
         let image = capture_converged(&gpu, &mut renderer, &camera)?;
+        if let Some(truth) = &truth {
+            errors.push(truth.measure(&gpu, &renderer, mode, &image)?);
+        }
         let path = args.out.join(format!("{}.png", mode.name()));
         batch.stage(&path, &output::png_bytes(&path, &image)?)?;
         if args.raw {
@@ -138,7 +144,44 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
     }
-    if args.stats && args.json {
+    if let Some(truth) = &truth {
+        let (image, exposure) = (&panels[panels.len() - 1].1, renderer.settings.exposure);
+        let path = args.out.join("truth.png");
+        let truth_image = truth.image(image, exposure);
+        batch.stage(&path, &output::png_bytes(&path, &truth_image)?)?;
+        for (error, map) in errors.iter().zip(ssdo::headless::truth::error_maps(&errors, size)) {
+            let path = args.out.join(format!("error_{}.png", error.mode.name()));
+            batch.stage(&path, &output::png_bytes(&path, &map)?)?;
+        }
+        let (measured, all) = truth.pixels();
+        let about = format!(
+            "the truth: 2 × {} rays a pixel in {:.1} s, noise floor HDR {:.4}, {measured} of {all} pixels measured",
+            truth.rays_per_pixel,
+            truth.seconds,
+            truth.noise_hdr()
+        );
+        let modes: serde_json::Map<String, serde_json::Value> =
+            errors.iter().map(|e| (e.mode.name().to_string(), e.json())).collect();
+        let json = serde_json::json!({ "rays_per_pixel": truth.rays_per_pixel, "noise_hdr": truth.noise_hdr(),
+            "pixels_measured": measured, "modes": modes });
+        stats_json.insert("truth".into(), json);
+        say(about)?;
+        for e in &errors {
+            // An error within twice the truth's own noise is mostly the truth's.
+            let noisy = if e.hdr_rmse < 2.0 * truth.noise_hdr() {
+                " (within twice the truth's noise: raise --spp)"
+            } else {
+                ""
+            };
+            say(format!("{:>5} against the truth: {}{noisy}", e.mode.name(), e.summary()))?;
+        }
+        let caption = vec![
+            "Truth (ray traced)".to_string(),
+            format!("2 × {} rays a pixel, noise floor HDR {:.4}", truth.rays_per_pixel, truth.noise_hdr()),
+        ];
+        panels.push((caption, truth_image));
+    }
+    if args.json && (args.stats || args.truth) {
         output::print_line(
             &serde_json::to_string_pretty(&serde_json::Value::Object(stats_json)).expect("JSON of numbers"),
         )?;
@@ -151,6 +194,21 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         say(format!("wrote {}", path.display()))?;
     }
     Ok(())
+}
+
+/// The truth of the capture's view, with a progress bar over its rows.
+fn trace_truth(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    scene: (&ssdo::scene::Scene, &ssdo::scene::Skybox),
+    camera: &ssdo::scene::OrbitCamera,
+    args: &CaptureArgs,
+) -> Result<ssdo::headless::truth::ViewTruth> {
+    let bar = progress::bar(2 * args.size.1 as u64, " truth rows");
+    let rays = (args.spp, args.scene.seed);
+    let truth = ssdo::headless::truth::ViewTruth::trace(gpu, renderer, scene, camera, rays, &|| bar.inc(1));
+    bar.finish_and_clear();
+    truth
 }
 
 /// The scene and sky of `args`, with a spinner on the terminal while each loads.

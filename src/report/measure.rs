@@ -48,14 +48,26 @@ impl<'a> TruthSource<'a> {
         options: &ReportOptions,
         base: &crate::render::Settings,
     ) -> Self {
+        Self::of_view(scene, (sky, sky_name), options.size, (options.samples_per_pixel, options.seed), base)
+    }
+
+    /// The truth of `scene` under `sky` (and its name) at `size`, with `rays` (rays per pixel in
+    /// each of the two traces, the first trace's seed), lit as `base` lights the GPU's frames.
+    pub fn of_view(
+        scene: &'a crate::scene::Scene,
+        (sky, sky_name): (&'a crate::scene::Skybox, &'a str),
+        size: (u32, u32),
+        (samples_per_pixel, seed): (u32, u64),
+        base: &crate::render::Settings,
+    ) -> Self {
         Self {
             bvh: crate::reference::ReferenceScene::new(&scene.model),
             scene,
             sky,
             sky_name,
-            size: options.size,
-            samples_per_pixel: options.samples_per_pixel,
-            seed: options.seed,
+            size,
+            samples_per_pixel,
+            seed,
             sky_scale: base.sky_scale,
             ambient: base.ambient,
         }
@@ -81,6 +93,19 @@ impl<'a> TruthSource<'a> {
 }
 
 impl Truth {
+    /// The truth as the GPU's `gpu_image` displays (the same exposure and tone map): its
+    /// radiance where it is measured, the GPU's pixels elsewhere (the sky, the lights' cubes,
+    /// silhouettes).
+    pub fn displayed(&self, gpu_image: &image::RgbImage, ambient: f32, exposure: f32) -> image::RgbImage {
+        let mut image = gpu_image.clone();
+        let width = image.width();
+        for &i in &self.valid {
+            let (x, y) = ((i as u32) % width, (i as u32) / width);
+            image.put_pixel(x, y, image::Rgb(metrics::display(self.reference.radiance(i, ambient), exposure)));
+        }
+        image
+    }
+
     /// Joins two traces; nothing to measure, or a truth beyond 32-bit floats, is an error.
     pub fn from_traces(a: &Reference, b: &Reference, ambient: f32, sky_name: &str, sky_peak: f32) -> Result<Self> {
         let truth = Reference::mean(a, b);
@@ -226,16 +251,7 @@ impl Bench<'_> {
         maps: Option<(&mut Vec<(String, Vec<u8>)>, &Option<Vec<f32>>)>,
     ) -> Result<f64> {
         let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
-        let mut ref_image = gpu_image.clone();
-        let width = self.options.size.0;
-        for &i in &truth.valid {
-            let (x, y) = ((i as u32) % width, (i as u32) / width);
-            ref_image.put_pixel(
-                x,
-                y,
-                image::Rgb(metrics::display(truth.reference.radiance(i, self.ambient), exposure)),
-            );
-        }
+        let ref_image = truth.displayed(&gpu_image, self.ambient, exposure);
         let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.reference.valid);
         if let Some((kept, ao)) = maps {
             kept.extend(maps::encode(&self.options.out, &truth.reference, ao, &ref_image, &gpu_image, &flip_map)?);
@@ -245,27 +261,27 @@ impl Bench<'_> {
 }
 
 /// A frame's linear buffers as read back, pre-exposure divided out.
-struct Frame {
+pub(crate) struct Frame {
     ao: Option<Vec<f32>>,
     directional: Option<Vec<[f32; 4]>>,
-    hdr: Vec<Vec3>,
+    pub hdr: Vec<Vec3>,
     /// 1 / the pre-exposure the half-float buffers hold radiance at.
     unexpose: f32,
 }
 
 /// A frame's errors against the truth, over its valid pixels.
-struct Errors {
-    hdr_rmse: f64,
-    hdr_rmse_near: f64,
+pub(crate) struct Errors {
+    pub hdr_rmse: f64,
+    pub hdr_rmse_near: f64,
     /// The truth's brightest channel (PSNR's peak).
-    hdr_peak: f64,
-    ao_rmse: Option<f64>,
-    do_rmse: Option<f64>,
-    do_rmse_near: Option<f64>,
+    pub hdr_peak: f64,
+    pub ao_rmse: Option<f64>,
+    pub do_rmse: Option<f64>,
+    pub do_rmse_near: Option<f64>,
 }
 
 impl Frame {
-    fn read(gpu: &Gpu, renderer: &Renderer, mode: Mode) -> Result<Self> {
+    pub fn read(gpu: &Gpu, renderer: &Renderer, mode: Mode) -> Result<Self> {
         // The half-float buffers hold radiance × pre-exposure: divided out here.
         let unexpose = 1.0 / renderer.pre_exposure();
         let values = read_occlusion(gpu, renderer.targets().occlusion(), mode.declaration().ambient_occlusion)?;
@@ -279,7 +295,7 @@ impl Frame {
         Ok(Self { ao: values.ao, directional, hdr, unexpose })
     }
 
-    fn errors(&self, truth: &Truth, ambient: f32) -> Errors {
+    pub fn errors(&self, truth: &Truth, ambient: f32) -> Errors {
         let (valid, truth) = (&truth.valid, &truth.reference);
         let against = |want: &dyn Fn(usize) -> Vec3| {
             metrics::rmse(valid.iter().flat_map(|&i| {

@@ -38,6 +38,7 @@ mod gpu {
     mod surface_maps;
     mod temporal;
     mod tune;
+    mod view_truth;
     mod winding;
 }
 
