@@ -82,3 +82,51 @@ pub fn grid(panels: &[(Vec<String>, RgbaImage)]) -> RgbaImage {
     }
     out
 }
+
+/// `top` over `base`, where `top` is opaque: `top` scaled to `base`'s size first (each pixel of
+/// `base` takes the `top` pixel under its centre). The viewer's truth and error views on a frame.
+pub fn overlay(base: &RgbaImage, top: &RgbaImage) -> RgbaImage {
+    let (w, h) = base.dimensions();
+    let (tw, th) = top.dimensions();
+    RgbaImage::from_fn(w, h, |x, y| {
+        let tx = (((x as u64 * 2 + 1) * tw as u64) / (2 * w as u64)).min(tw as u64 - 1) as u32;
+        let ty = (((y as u64 * 2 + 1) * th as u64) / (2 * h as u64)).min(th as u64 - 1) as u32;
+        let t = *top.get_pixel(tx, ty);
+        if t[3] == 255 {
+            t
+        } else {
+            *base.get_pixel(x, y)
+        }
+    })
+}
+
+/// `left`'s pixels left of the divider at `divider` (a share of the width, the column
+/// `round(divider · width)` the first of the right) and `right`'s from there on.
+pub fn split(left: &RgbaImage, right: &RgbaImage, divider: f32) -> RgbaImage {
+    let (w, h) = left.dimensions();
+    let column = (divider.clamp(0.0, 1.0) * w as f32).round() as u32;
+    RgbaImage::from_fn(w, h, |x, y| if x < column { *left.get_pixel(x, y) } else { *right.get_pixel(x, y) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_split_is_each_image_on_its_side_and_an_overlay_covers_only_where_it_is_opaque() {
+        let (red, blue) = (
+            RgbaImage::from_pixel(10, 4, Rgba([255, 0, 0, 255])),
+            RgbaImage::from_pixel(10, 4, Rgba([0, 0, 255, 255])),
+        );
+        let both = split(&red, &blue, 0.3);
+        assert!((0..4).all(|y| (0..3).all(|x| both.get_pixel(x, y) == red.get_pixel(x, y))));
+        assert!((0..4).all(|y| (3..10).all(|x| both.get_pixel(x, y) == blue.get_pixel(x, y))));
+        // A 5x2 overlay, opaque in its left half, over a 10x4 image.
+        let top = RgbaImage::from_fn(5, 2, |x, _| if x < 2 { Rgba([0, 255, 0, 255]) } else { Rgba([0, 0, 0, 0]) });
+        let over = overlay(&red, &top);
+        assert_eq!(over.get_pixel(0, 0), &Rgba([0, 255, 0, 255]));
+        assert_eq!(over.get_pixel(3, 3), &Rgba([0, 255, 0, 255]));
+        assert_eq!(over.get_pixel(4, 0), red.get_pixel(4, 0));
+        assert_eq!(over.get_pixel(9, 3), red.get_pixel(9, 3));
+    }
+}

@@ -271,7 +271,8 @@ impl Journal {
         let journal = Self::path(dir);
         let Ok(text) = std::fs::read_to_string(&journal) else { return };
         let unhex = |word: &str| -> Option<Vec<u8>> {
-            (word.len() % 2 == 0)
+            word.len()
+                .is_multiple_of(2)
                 .then(|| (0..word.len()).step_by(2).map(|i| u8::from_str_radix(word.get(i..i + 2)?, 16).ok()).collect())
                 .flatten()
         };

@@ -26,6 +26,8 @@ pub struct ViewDescription<'a> {
     pub settings: &'a Settings,
     /// The 3D view's size in pixels.
     pub size: (u32, u32),
+    /// The truth is on, with this many rays a pixel in each of its traces: `--truth --spp N`.
+    pub truth_rays: Option<u32>,
 }
 
 /// The arguments after `ssdo`, one string each.
@@ -65,6 +67,10 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
     }
     settings_flags(view.settings, &mut flag);
     flag("size", format!("{}x{}", view.size.0, view.size.1));
+    if let Some(rays) = view.truth_rays {
+        // capture --truth takes at least 2 rays a trace.
+        flag("spp", rays.max(2).to_string());
+    }
     let s = view.settings;
     let switches = [
         (view.no_surface_maps, "--no-surface-maps"),
@@ -76,6 +82,9 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
         if on {
             args.push(name.into());
         }
+    }
+    if view.truth_rays.is_some() {
+        args.push("--truth".into());
     }
     args
 }
@@ -158,6 +167,7 @@ mod tests {
             fly,
             settings,
             size: (320, 240),
+            truth_rays: None,
         }
     }
 

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use super::loader::Loaded;
 use super::ui::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
-use crate::headless::capture::{capture_converged, capture_settled};
+use crate::headless::capture::capture_converged;
 use crate::render::Mode;
 use crate::scene::Scene;
 use crate::{compare, output, Result};
@@ -30,6 +30,7 @@ impl Viewer {
             Action::Relight { lights, seed } => {
                 self.scene.relight(lights, seed);
                 self.renderer.set_lights(&self.gpu, self.scene.lights.clone());
+                self.scene_changed();
             }
             Action::ToggleAccumulation => {
                 let s = &mut self.renderer.settings;
@@ -46,9 +47,8 @@ impl Viewer {
                     timestamp(),
                     self.renderer.settings.mode.name()
                 ));
-                let camera = self.view_camera();
-                let result = capture_settled(&self.gpu, &mut self.renderer, &camera)
-                    .and_then(|image| output::save_png(&path, &image));
+                // What is on screen: the frame, or the truth, the error map or the split over it.
+                let result = self.screen_image().and_then(|image| output::save_png(&path, &image));
                 match result {
                     Ok(()) => {
                         self.panel.say(format!("saved {}", path.display()), false);
@@ -112,36 +112,67 @@ impl Viewer {
             fly: self.controls.fly,
             settings: &self.renderer.settings,
             size: self.renderer.size(),
+            truth_rays: self.truth_rays(),
         };
         crate::reproduce::shell_line(&crate::reproduce::capture_arguments(&view))
     }
 
-    /// The four modes of the current view, rendered offscreen at the 3D view's size.
+    /// The four modes of the current view, rendered offscreen at the 3D view's size; with the
+    /// truth of this view traced, the truth and each mode's error map too (on one scale).
     fn compare(&mut self) -> Result<PathBuf> {
-        let mode = self.renderer.settings.mode;
+        let (mode, hdr) = (self.renderer.settings.mode, self.renderer.keeps_hdr());
+        let with_truth = self.truth_for_compare().is_some();
+        if with_truth {
+            self.renderer.keep_hdr(&self.gpu, true);
+        }
+        let panels = self.compare_panels();
+        self.renderer.set_mode(&self.gpu, mode);
+        self.renderer.keep_hdr(&self.gpu, hdr);
+        let path = self.screenshot_dir.join(format!("compare-{}.png", timestamp()));
+        output::save_png(&path, &compare::grid(&panels?))?;
+        Ok(path)
+    }
+
+    /// The comparison's panels: each mode's image, then the truth and the modes' error maps
+    /// where the truth of this view is traced.
+    fn compare_panels(&mut self) -> Result<Vec<(Vec<String>, image::RgbaImage)>> {
         let mut panels = Vec::new();
+        let mut errors = Vec::new();
+        let camera = self.view_camera();
         for m in Mode::ALL {
             self.renderer.set_mode(&self.gpu, m);
-            let camera = self.view_camera();
-            let image = capture_converged(&self.gpu, &mut self.renderer, &camera);
+            let image = capture_converged(&self.gpu, &mut self.renderer, &camera)?;
+            if let Some(truth) = self.truth_for_compare() {
+                errors.push(truth.measure(&self.gpu, &self.renderer, m, &image)?);
+            }
             let caption = compare::caption(
                 &self.renderer.settings,
                 self.renderer.radius(),
                 &self.panel.sky_name,
                 self.scene.lights.len(),
             );
-            match image {
-                Ok(image) => panels.push((caption, image)),
-                Err(e) => {
-                    self.renderer.set_mode(&self.gpu, mode);
-                    return Err(e);
-                }
+            panels.push((caption, image));
+        }
+        if let Some(truth) = self.truth_for_compare() {
+            let caption = vec![
+                "Truth (ray traced)".to_string(),
+                format!("{} rays a pixel, noise floor HDR {:.4}", 2 * truth.rays_per_pixel, truth.noise_hdr()),
+            ];
+            let image = compare::overlay(&panels[0].1, &truth.overlay(self.renderer.settings.exposure));
+            panels.push((caption, image));
+            let maps = crate::headless::truth::error_maps(&errors, self.renderer.size());
+            for (e, map) in errors.iter().zip(maps) {
+                panels.push((vec![format!("{} error", e.mode.title()), e.summary()], map));
             }
         }
-        self.renderer.set_mode(&self.gpu, mode);
-        let path = self.screenshot_dir.join(format!("compare-{}.png", timestamp()));
-        output::save_png(&path, &compare::grid(&panels))?;
-        Ok(path)
+        Ok(panels)
+    }
+
+    /// The model, the sky or the lights changed: the truth is traced anew, and a split's second
+    /// renderer is made anew with them.
+    fn scene_changed(&mut self) {
+        self.scene_number += 1;
+        self.drop_second();
     }
 
     /// Applies finished loads: the old sky or model stays unless the new one is complete.
@@ -156,6 +187,8 @@ impl Viewer {
                         self.panel.sky_name = sky.name.clone();
                         self.sky_path = Some(path.clone());
                         self.panel.say(format!("sky {} loaded", path.display()), false);
+                        self.sky = std::sync::Arc::new(sky);
+                        self.scene_changed();
                     }
                     Err(e) => self.panel.say(format!("{e}; keeping sky {}", self.panel.sky_name), true),
                 },
@@ -170,6 +203,7 @@ impl Viewer {
                     };
                     self.scene = Scene::new(model, self.panel.lights, self.panel.seed);
                     self.renderer.set_scene(&self.gpu, &self.scene);
+                    self.scene_changed();
                     self.home = self.layout.camera(&self.scene.model.bounds);
                     self.camera = self.home;
                     self.panel.model_name = self.scene.model.name.clone();
@@ -244,7 +278,12 @@ impl Viewer {
         let mut encoder =
             self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer_frame") });
         let camera = self.view_camera();
+        if let Err(e) = self.encode_second(&mut encoder) {
+            self.panel.say(format!("the split's right side cannot be drawn: {e}"), true);
+            self.panel.truth.display = super::truth_ui::Display::Live;
+        }
         self.renderer.encode_at(&self.gpu, &mut encoder, &camera, &target, (self.panel_pixels(), 0));
+        self.drawn_camera = Some(camera);
         self.submit_with_panel(encoder, panel, &target);
         self.pending = Some((frame, started));
         // Timestamps of a frame or two ago, never waited for.
@@ -289,8 +328,16 @@ impl Viewer {
         let default_radius = self.scene.default_radius();
         let ctx = self.egui.egui_ctx().clone();
         let mut actions = Vec::new();
-        let mut full = ctx
-            .run_ui(input, |ui| actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius));
+        let scale = self.window.scale_factor() as f32;
+        let (w, h) = self.renderer.size();
+        let view = egui::Rect::from_min_size(
+            egui::pos2(self.panel_pixels() as f32 / scale, 0.0),
+            egui::vec2(w as f32 / scale, h as f32 / scale),
+        );
+        let mut full = ctx.run_ui(input, |ui| {
+            actions = ui::panel(ui, &mut self.panel, &mut self.renderer.settings, default_radius);
+            self.paint_view(ui.ctx(), view);
+        });
         let delay = full.viewport_output.get(&egui::ViewportId::ROOT).map_or(Duration::MAX, |v| v.repaint_delay);
         self.egui_repaint = Instant::now().checked_add(delay);
         self.egui.handle_platform_output(&self.window, std::mem::take(&mut full.platform_output));

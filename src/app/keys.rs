@@ -7,6 +7,7 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 
 use super::controls::mode_for_key;
+use super::truth_ui::Display;
 use super::ui::Action;
 
 impl super::Viewer {
@@ -21,6 +22,11 @@ impl super::Viewer {
             KeyCode::KeyT => self.act(Action::ToggleAccumulation),
             KeyCode::KeyF => self.act(Action::ToggleFly),
             KeyCode::KeyP => self.act(Action::CopyCommand),
+            // The truth (G), the current mode's error against it (X), the split view (V: the
+            // truth right of the divider, then each mode in turn).
+            KeyCode::KeyG => self.panel.truth.toggle(Display::Truth),
+            KeyCode::KeyX => self.panel.truth.toggle(Display::Error),
+            KeyCode::KeyV => self.panel.truth.cycle_split(),
             KeyCode::Escape => event_loop.exit(),
             _ => {}
         }

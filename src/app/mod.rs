@@ -8,6 +8,9 @@ mod controls;
 mod frame;
 mod keys;
 mod loader;
+mod truth;
+mod truth_ui;
+mod truth_view;
 mod ui;
 
 use std::path::PathBuf;
@@ -158,6 +161,17 @@ struct Viewer {
     gpu_busy: Arc<std::sync::atomic::AtomicBool>,
     /// A frame was asked for while one was pending: drawn once that one is presented.
     redraw_wanted: bool,
+    /// The sky on screen as the truth traces it.
+    sky: Arc<Skybox>,
+    /// Bumped whenever the model, the sky or the lights change: the truth is then traced anew.
+    scene_number: u64,
+    /// The camera of the last frame drawn (its G-buffer's depth is what the truth checks).
+    drawn_camera: Option<OrbitCamera>,
+    /// The truth of the view (`truth_view.rs`), and the renderer of a split's right side.
+    truth: truth_view::TruthState,
+    second: Option<truth_view::SecondView>,
+    /// The split's divider is being dragged.
+    dragging_divider: bool,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -287,6 +301,12 @@ impl Viewer {
             pending: None,
             gpu_busy: Arc::new(std::sync::atomic::AtomicBool::new(false)),
             redraw_wanted: false,
+            sky: Arc::new(sky),
+            scene_number: 0,
+            drawn_camera: None,
+            truth: truth_view::TruthState::default(),
+            second: None,
+            dragging_divider: false,
         })
     }
 
@@ -326,8 +346,12 @@ impl Viewer {
             wake = Some(wake.map_or(poll, |w| w.min(poll)));
         }
         // A still view still averaging its frames draws the next one; so does a flying camera.
-        if self.renderer.converging() || self.controls.flying() {
+        if self.renderer.converging() || self.second_converging() || self.controls.flying() {
             self.window.request_redraw();
+        }
+        // The truth: started once a changed view settles, its rounds shown as they come.
+        if let Some(next) = self.truth_tick() {
+            wake = Some(wake.map_or(next, |w| w.min(next)));
         }
         // Each deadline that has come asks for a frame; the others say when to wake.
         let egui_due = self.egui_repaint.is_some_and(|t| t <= now);
@@ -384,10 +408,31 @@ impl Viewer {
             }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x, position.y);
+                if self.dragging_divider {
+                    let width = self.renderer.size().0.max(1) as f64;
+                    self.panel.truth.divider = ((position.x - panel) / width).clamp(0.0, 1.0) as f32;
+                    return Ok(());
+                }
                 let height = self.renderer.size().1;
                 self.controls.moved(&mut self.camera, position.x, position.y, height);
             }
             WindowEvent::MouseInput { button, state, .. } => {
+                // A split's divider is dragged by the mouse within a few pixels of it; the rest
+                // of the view turns the camera.
+                let divider_x = panel + self.panel.truth.divider as f64 * self.renderer.size().0 as f64;
+                let on_divider = matches!(self.panel.truth.display, truth_ui::Display::Split(_))
+                    && (self.cursor.0 - divider_x).abs() <= 6.0 * self.window.scale_factor();
+                if button == winit::event::MouseButton::Left
+                    && state == ElementState::Pressed
+                    && on_divider
+                    && over_view
+                {
+                    self.dragging_divider = true;
+                    return Ok(());
+                }
+                if state == ElementState::Released && std::mem::take(&mut self.dragging_divider) {
+                    return Ok(());
+                }
                 self.controls.button(button, state, over_view && !response.consumed);
             }
             WindowEvent::MouseWheel { delta, .. } if over_view && !response.consumed => {

@@ -68,6 +68,8 @@ pub struct PanelState {
     /// The preset file field, and the preset or quality level last taken.
     pub preset_path: String,
     pub preset: Option<crate::preset::Preset>,
+    /// What the view shows (the truth, the error, a split) and the truth's progress.
+    pub truth: super::truth_ui::TruthPanel,
 }
 
 impl PanelState {
@@ -141,6 +143,7 @@ impl PanelState {
             command: String::new(),
             preset_path: String::new(),
             preset: None,
+            truth: super::truth_ui::TruthPanel::default(),
         }
     }
 }
@@ -153,6 +156,8 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             status(ui, state);
             ui.separator();
             mode_section(ui, settings, &mut actions);
+            ui.separator();
+            super::truth_ui::section(ui, &mut state.truth, settings.mode);
             ui.separator();
             preset_section(ui, state, settings, default_radius, &mut actions);
             ui.separator();

@@ -11,6 +11,7 @@ use image::RgbaImage;
 use super::capture::capture;
 use super::readback::read_depth;
 use crate::gpu::Gpu;
+use crate::reference::Reference;
 use crate::render::{Mode, Renderer};
 use crate::report::measure::{Frame, Truth, TruthSource};
 use crate::report::metrics;
@@ -57,6 +58,37 @@ impl ViewTruth {
         let source = TruthSource::of_view(scene, (sky, &sky.name), renderer.size(), (rays_per_pixel, seed), &base);
         let truth = source.trace(camera, &depth, renderer.radius(), tick)?;
         Ok(Self { truth, ambient: base.ambient, rays_per_pixel, seconds: started.elapsed().as_secs_f64() })
+    }
+
+    /// The truth of two traces of `rays_per_pixel` rays each (`a`, `b`: the viewer's rounds),
+    /// with `ambient`; `sky` names the sky and gives its peak for the error when the truth
+    /// overflows.
+    pub fn from_traces(
+        (a, b): (&Reference, &Reference),
+        ambient: f32,
+        sky: &Skybox,
+        rays_per_pixel: u32,
+        seconds: f64,
+    ) -> Result<Self> {
+        let truth = Truth::from_traces(a, b, ambient, &sky.name, sky.max_value())?;
+        Ok(Self { truth, ambient, rays_per_pixel, seconds })
+    }
+
+    /// The truth's size.
+    pub fn size(&self) -> (u32, u32) {
+        (self.truth.reference.width, self.truth.reference.height)
+    }
+
+    /// The truth displayed at `exposure` where it is measured, transparent elsewhere (the view
+    /// under it shows there: the sky, the lights' cubes, silhouettes).
+    pub fn overlay(&self, exposure: f32) -> RgbaImage {
+        let (w, h) = self.size();
+        let mut image = RgbaImage::new(w, h);
+        for &i in &self.truth.valid {
+            let [r, g, b] = metrics::display(self.truth.reference.radiance(i, self.ambient), exposure);
+            image.put_pixel(i as u32 % w, i as u32 / w, image::Rgba([r, g, b, 255]));
+        }
+        image
     }
 
     /// The truth's own noise: the HDR RMSE of the mean of its two traces (an error below it is
@@ -110,8 +142,13 @@ impl ModeError {
 /// nothing is measured) over one shared scale, the largest 99th percentile of the modes' pixel
 /// errors, so the maps compare; a colour bar with the scale's numbers is drawn under each.
 pub fn error_maps(errors: &[ModeError], size: (u32, u32)) -> Vec<RgbaImage> {
-    let scale = errors.iter().map(|e| percentile(&e.per_pixel, 0.99)).fold(0.0f32, f32::max).max(1e-6);
-    errors.iter().map(|e| heat_map(&e.per_pixel, size, scale)).collect()
+    let scale = error_scale(errors);
+    errors.iter().map(|e| heat_map_with_bar(&e.per_pixel, size, scale)).collect()
+}
+
+/// The scale the maps of `errors` share: the largest 99th percentile of their pixel errors.
+pub fn error_scale(errors: &[ModeError]) -> f32 {
+    errors.iter().map(|e| percentile(&e.per_pixel, 0.99)).fold(0.0f32, f32::max).max(1e-6)
 }
 
 /// The `q` quantile of the measured values (0 without any).
@@ -124,33 +161,42 @@ fn percentile(values: &[Option<f32>], q: f64) -> f32 {
     kept[((kept.len() - 1) as f64 * q).round() as usize]
 }
 
-/// One heat map with its colour bar under it.
-fn heat_map(values: &[Option<f32>], (w, h): (u32, u32), scale: f32) -> RgbaImage {
-    let lut = nv_flip::magma_lut();
-    let colour = |t: &[f32], width: u32, height: u32| {
-        let mapped = nv_flip::FlipImageFloat::with_data(width, height, t).apply_color_lut(&lut).to_vec();
-        image::RgbImage::from_raw(width, height, mapped).expect("the LUT keeps the image's size")
-    };
+/// `t` (each in [0, 1]) in magma, as FLIP's maps, `width` x `height`.
+fn magma(t: &[f32], width: u32, height: u32) -> image::RgbImage {
+    let mapped = nv_flip::FlipImageFloat::with_data(width, height, t).apply_color_lut(&nv_flip::magma_lut()).to_vec();
+    image::RgbImage::from_raw(width, height, mapped).expect("the LUT keeps the image's size")
+}
+
+/// The errors `values` of a `w` x `h` view as a heat map: magma from 0 to `scale`, dark grey
+/// where nothing is measured.
+pub fn heat_map(values: &[Option<f32>], (w, h): (u32, u32), scale: f32) -> RgbaImage {
     let t: Vec<f32> = values.iter().map(|v| v.map_or(0.0, |e| (e / scale).clamp(0.0, 1.0))).collect();
-    let map = colour(&t, w, h);
+    let map = magma(&t, w, h);
+    RgbaImage::from_fn(w, h, |x, y| match values[(y * w + x) as usize] {
+        Some(_) => {
+            let p = map.get_pixel(x, y);
+            image::Rgba([p[0], p[1], p[2], 255])
+        }
+        None => image::Rgba([40, 40, 40, 255]),
+    })
+}
+
+/// The heat map's colour bar, `width` pixels from 0 to the scale.
+pub fn colour_bar(width: u32) -> RgbaImage {
+    let ramp: Vec<f32> = (0..width).map(|x| x as f32 / (width - 1).max(1) as f32).collect();
+    image::DynamicImage::ImageRgb8(magma(&ramp, width, 1)).to_rgba8()
+}
+
+/// One heat map with its colour bar and the scale's numbers under it.
+fn heat_map_with_bar(values: &[Option<f32>], (w, h): (u32, u32), scale: f32) -> RgbaImage {
     let bar = (h / 8).clamp(10, 40);
     let mut out = RgbaImage::from_pixel(w, h + bar, image::Rgba([24, 24, 28, 255]));
-    for (i, v) in values.iter().enumerate() {
-        let (x, y) = (i as u32 % w, i as u32 / w);
-        let p = map.get_pixel(x, y);
-        out.put_pixel(
-            x,
-            y,
-            if v.is_some() { image::Rgba([p[0], p[1], p[2], 255]) } else { image::Rgba([40, 40, 40, 255]) },
-        );
-    }
-    // The colour bar: the ramp in the top half of the band, its ends' numbers under it.
-    let ramp: Vec<f32> = (0..w).map(|x| x as f32 / (w - 1).max(1) as f32).collect();
-    let ramp = colour(&ramp, w, 1);
+    image::imageops::replace(&mut out, &heat_map(values, (w, h), scale), 0, 0);
+    // The ramp in the top half of the band, its ends' numbers under it.
+    let ramp = colour_bar(w);
     for x in 0..w {
-        let p = ramp.get_pixel(x, 0);
         for y in h + 1..h + bar / 2 {
-            out.put_pixel(x, y, image::Rgba([p[0], p[1], p[2], 255]));
+            out.put_pixel(x, y, *ramp.get_pixel(x, 0));
         }
     }
     let text = (bar as f32 / 2.0).max(6.0);

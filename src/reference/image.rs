@@ -68,7 +68,28 @@ pub fn trace(
     settings: &TraceSettings,
     progress: &(dyn Fn() + Sync),
 ) -> Reference {
+    let go_on = || {
+        progress();
+        true
+    };
+    let traced = trace_while(scene, (lights, rig), sky, camera, (size, gpu_depth), settings, &go_on);
+    traced.expect("a trace that is never stopped ends")
+}
+
+/// [`trace`], stopped as soon as `go_on` (called once per finished row) says no: `None` then.
+/// The viewer's truth stops a trace whose view has changed without waiting for its rows.
+pub fn trace_while(
+    scene: &ReferenceScene,
+    (lights, rig): (&[PointLight], &LightRig),
+    sky: &Skybox,
+    camera: &OrbitCamera,
+    (size, gpu_depth): ((u32, u32), &[f32]),
+    settings: &TraceSettings,
+    go_on: &(dyn Fn() -> bool + Sync),
+) -> Option<Reference> {
+    use std::sync::atomic::{AtomicBool, Ordering};
     let (w, h) = size;
+    let stopped = AtomicBool::new(false);
     let tracer = Tracer {
         scene,
         lights,
@@ -84,12 +105,20 @@ pub fn trace(
     let rows: Vec<Vec<PixelResult>> = (0..h)
         .into_par_iter()
         .map(|y| {
+            if stopped.load(Ordering::Relaxed) {
+                return Vec::new();
+            }
             let row = (0..w).map(|x| tracer.pixel(x, y)).collect();
-            progress();
+            if !go_on() {
+                stopped.store(true, Ordering::Relaxed);
+            }
             row
         })
         .collect();
-    Reference::from_pixels(rows.into_iter().flatten().collect(), gpu_depth, size)
+    if stopped.load(Ordering::Relaxed) {
+        return None;
+    }
+    Some(Reference::from_pixels(rows.into_iter().flatten().collect(), gpu_depth, size))
 }
 
 /// What every pixel of one trace shares.
@@ -217,8 +246,17 @@ impl Reference {
 
     /// The mean of two independent traces of the same view (the truth with half the noise).
     pub fn mean(a: &Reference, b: &Reference) -> Reference {
-        let avg3 = |x: &[Vec3], y: &[Vec3]| x.iter().zip(y).map(|(p, q)| 0.5 * (*p + *q)).collect();
-        let avg1 = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| 0.5 * (p + q)).collect();
+        Self::weighted_mean((a, 1.0), (b, 1.0))
+    }
+
+    /// The mean of two independent traces of the same view with `wa` and `wb` rays a pixel: one
+    /// trace of `wa + wb` rays, as the viewer's truth adds its passes up.
+    pub fn weighted_mean((a, wa): (&Reference, f64), (b, wb): (&Reference, f64)) -> Reference {
+        let (ka, kb) = ((wa / (wa + wb)) as f32, (wb / (wa + wb)) as f32);
+        let avg3 = |x: &[Vec3], y: &[Vec3]| x.iter().zip(y).map(|(p, q)| ka * *p + kb * *q).collect();
+        let avg1 = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| ka * p + kb * q).collect();
+        // Independent errors: their weighted sum's standard error.
+        let error = |ea: f64, eb: f64| ((ka as f64 * ea).powi(2) + (kb as f64 * eb).powi(2)).sqrt();
         Reference {
             width: a.width,
             height: a.height,
@@ -231,9 +269,9 @@ impl Reference {
             sky_near: avg3(&a.sky_near, &b.sky_near),
             bounce_near: avg3(&a.bounce_near, &b.bounce_near),
             direct: a.direct.clone(),
-            ao_error: 0.5 * (a.ao_error + b.ao_error) / std::f64::consts::SQRT_2,
-            sky_error: 0.5 * (a.sky_error + b.sky_error) / std::f64::consts::SQRT_2,
-            bounce_error: 0.5 * (a.bounce_error + b.bounce_error) / std::f64::consts::SQRT_2,
+            ao_error: error(a.ao_error, b.ao_error),
+            sky_error: error(a.sky_error, b.sky_error),
+            bounce_error: error(a.bounce_error, b.bounce_error),
             mismatched: a.mismatched.max(b.mismatched),
             covered: a.covered,
         }

@@ -198,6 +198,11 @@ impl Renderer {
         self.apply(gpu);
     }
 
+    /// Whether the HDR image is kept ([`Renderer::keep_hdr`]).
+    pub fn keeps_hdr(&self) -> bool {
+        self.keep_hdr
+    }
+
     fn rebuild_targets(&mut self, gpu: &Gpu) {
         self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan.targets());
         // A history outlives the re-plan unless its size or its own inputs changed.

@@ -142,6 +142,9 @@ impl Truth {
     }
 }
 
+/// Error maps as PNG files by name.
+pub(crate) type MapFiles = Vec<(String, Vec<u8>)>;
+
 /// What every measurement of one report shares.
 pub(crate) struct Bench<'a> {
     pub gpu: &'a Gpu,
@@ -164,7 +167,7 @@ impl Bench<'_> {
         config: Config,
         radius: f32,
         truth: &Truth,
-        maps: Option<&mut Vec<(String, Vec<u8>)>>,
+        maps: Option<&mut MapFiles>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
         let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half_resolution } =
@@ -248,7 +251,7 @@ impl Bench<'_> {
         image: image::RgbaImage,
         truth: &Truth,
         exposure: f32,
-        maps: Option<(&mut Vec<(String, Vec<u8>)>, &Option<Vec<f32>>)>,
+        maps: Option<(&mut MapFiles, &Option<Vec<f32>>)>,
     ) -> Result<f64> {
         let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
         let ref_image = truth.displayed(&gpu_image, self.ambient, exposure);
