@@ -8,7 +8,7 @@ mod controls;
 mod frame;
 mod keys;
 mod loader;
-mod truth;
+pub mod truth;
 mod truth_ui;
 mod truth_view;
 mod ui;

@@ -156,6 +156,21 @@ fn work(jobs: &mpsc::Receiver<Job>, generation: &AtomicU64, latest: &Mutex<Optio
     }
 }
 
+/// Traces `job` in rounds until each trace holds `rays_per_trace` rays a pixel (or the most
+/// there are), on `pool`: the rounds the viewer shows, at once (for tests and tools).
+pub fn trace_to(pool: &rayon::ThreadPool, job: &Job, rays_per_trace: u32) -> Option<Rounds> {
+    let scene = pool.install(|| ReferenceScene::new(&job.model));
+    let last = Mutex::new(None);
+    let short = |l: &Option<Rounds>| l.as_ref().is_none_or(|r| r.rays_per_trace < rays_per_trace);
+    let go_on = || last.lock().is_ok_and(|l| short(&l));
+    trace_rounds(pool, &scene, job, &go_on, &|rounds| {
+        if let Ok(mut l) = last.lock() {
+            *l = Some(rounds);
+        }
+    });
+    last.into_inner().ok().flatten()
+}
+
 /// The two independent traces of a view.
 type TwoTraces = (Arc<Reference>, Arc<Reference>);
 

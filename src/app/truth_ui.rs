@@ -18,6 +18,18 @@ pub enum Display {
     Split(Side),
 }
 
+impl Display {
+    /// "live", "truth", "error", "split with SSAO".
+    pub fn name(self) -> String {
+        match self {
+            Display::Live => "live".into(),
+            Display::Truth => "truth".into(),
+            Display::Error => "error".into(),
+            Display::Split(side) => format!("split with {}", side.label()),
+        }
+    }
+}
+
 /// The image right of the divider.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Side {

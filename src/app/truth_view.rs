@@ -36,6 +36,8 @@ pub(super) struct TruthState {
     model: Option<(u64, Arc<Model>)>,
     /// Why there is no truth for this view (too large for the budget, nothing to measure).
     failure: Option<String>,
+    /// What the view showed at the last tick (each change is logged).
+    display: Option<Display>,
 }
 
 /// The rounds on screen, the truth made of them and its image.
@@ -70,6 +72,11 @@ impl Viewer {
     /// The truth's part of the event loop: starts, stops and reads the trace, measures the
     /// current mode against it; when to look again.
     pub(super) fn truth_tick(&mut self) -> Option<Instant> {
+        let display = self.panel.truth.display;
+        if self.truth.display != Some(display) {
+            self.truth.display = Some(display);
+            log::info!("view: {}", display.name());
+        }
         let wanted = self.panel.truth.wants_truth();
         let hdr = self.panel.truth.display == Display::Error;
         if self.renderer.keeps_hdr() != hdr {
@@ -77,7 +84,8 @@ impl Viewer {
         }
         if !wanted {
             if self.truth.tracer.is_some() {
-                self.truth = TruthState { model: self.truth.model.take(), ..TruthState::default() };
+                let (model, display) = (self.truth.model.take(), self.truth.display);
+                self.truth = TruthState { model, display, ..TruthState::default() };
                 self.panel.truth.status.clear();
                 self.panel.truth.errors.clear();
                 self.panel.truth.bar = None;
@@ -190,6 +198,8 @@ impl Viewer {
         );
         match made {
             Ok(truth) => {
+                let (w, h) = rounds.key.size;
+                log::info!("the truth: {} rays a pixel at {w}x{h} after {seconds:.1} s", rounds.rays());
                 let exposure = self.renderer.settings.exposure;
                 let image = truth.overlay(exposure);
                 let texture = self.texture("ssdo_truth", &image);

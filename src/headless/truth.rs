@@ -74,6 +74,17 @@ impl ViewTruth {
         Ok(Self { truth, ambient, rays_per_pixel, seconds })
     }
 
+    /// The HDR RMSE between this truth and `other` (of the same view) over the pixels both
+    /// measure: two estimates of one image differ by about √2 of their noise.
+    pub fn rmse_against(&self, other: &ViewTruth) -> f64 {
+        let (a, b) = (&self.truth.reference, &other.truth.reference);
+        let both = self.truth.valid.iter().filter(|&&i| b.valid[i]);
+        metrics::rmse(both.flat_map(|&i| {
+            let (x, y) = (a.radiance(i, self.ambient), b.radiance(i, other.ambient));
+            (0..3).map(move |c| (x[c], y[c]))
+        }))
+    }
+
     /// The truth's size.
     pub fn size(&self) -> (u32, u32) {
         (self.truth.reference.width, self.truth.reference.height)

@@ -282,3 +282,97 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
         }
     }
 }
+
+/// Presses `key` until the viewer in `dir` has logged `line` last among its "view: " lines
+/// (each press is logged as the view it leads to).
+fn press_until(display: &str, dir: &Path, key: &str, line: &str) {
+    let last_view = || log(dir).lines().filter_map(|l| l.split("] view: ").nth(1).map(str::to_owned)).last();
+    let wanted = line.trim_start_matches("view: ");
+    for attempt in 0.. {
+        assert!(attempt < 12, "'{key}' never led to '{line}'; the viewer's stderr:\n{}", log(dir));
+        if last_view().as_deref() == Some(wanted) {
+            return;
+        }
+        let seen = log(dir).matches("] view: ").count();
+        xdotool(display, &["key", "--clearmodifiers", key]);
+        let start = Instant::now();
+        while log(dir).matches("] view: ").count() == seen && start.elapsed() < Duration::from_secs(20) {
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
+/// The rays a pixel of the truth's rounds the viewer in `dir` has logged, in order.
+fn truth_rounds(dir: &Path) -> Vec<u32> {
+    log(dir).lines().filter_map(|l| l.split("the truth: ").nth(1)?.split(' ').next()?.parse().ok()).collect()
+}
+
+#[test]
+fn viewer_traces_the_truth_of_its_view_and_splits_two_modes_at_a_divider() {
+    if !have("Xvfb") || !have("xdotool") || ssdo::gpu::Gpu::headless().is_err() {
+        assert!(std::env::var("CI").map_or(true, |v| v != "true"), "CI has Xvfb, xdotool and an adapter");
+        return;
+    }
+    let (_xvfb, display) = start_xvfb();
+    let shots = tempfile::tempdir().unwrap();
+    let dir = shots.path();
+    let (mut viewer, window) = start_viewer(&display, dir, &["--mode", "off"]);
+    xdotool(&display, &["windowfocus", "--sync", &window]);
+    // G: the truth of the view, traced in rounds that double its rays. Pressed until the log
+    // says the view shows it (a key sent to a window still starting can be lost).
+    press_until(&display, dir, "g", "view: truth");
+    wait_for("the truth's rounds", Duration::from_secs(120), || truth_rounds(dir).iter().any(|&r| r >= 8));
+    // A camera that turns starts the truth anew: its rays fall back to the first round's.
+    let before = truth_rounds(dir).len();
+    xdotool(&display, &["mousemove", "--window", &window, "450", "150", "mousedown", "1"]);
+    xdotool(&display, &["mousemove", "--window", &window, "500", "140", "mouseup", "1"]);
+    wait_for("the truth traced anew after the turn", Duration::from_secs(120), || {
+        truth_rounds(dir).get(before..).is_some_and(|after| after.first() == Some(&2))
+    });
+    // V three times: the split with the truth, with Off, then with SSAO right of the divider;
+    // F12 saves what is on screen, with the command of the view in the log.
+    press_until(&display, dir, "v", "view: split with SSAO");
+    xdotool(&display, &["key", "--clearmodifiers", "F12"]);
+    let mut command = String::new();
+    wait_for("the split's screenshot and its command", Duration::from_secs(60), || {
+        let text = log(dir);
+        if let Some(line) = text.lines().filter(|l| l.contains(": the same view headless: ssdo ")).last() {
+            command = line.split(": the same view headless: ssdo ").nth(1).unwrap().trim().to_owned();
+        }
+        !command.is_empty() && !pngs(dir, "screenshot-").is_empty()
+    });
+    // Escape while the truth traces ends the viewer at once.
+    let rounds = truth_rounds(dir).len();
+    press_until(&display, dir, "g", "view: truth");
+    wait_for("the truth tracing again", Duration::from_secs(60), || truth_rounds(dir).len() > rounds);
+    let asked = Instant::now();
+    xdotool(&display, &["key", "--clearmodifiers", "Escape"]);
+    wait_for("the viewer to quit", Duration::from_secs(30), || viewer.0.try_wait().ok().flatten().is_some());
+    assert!(asked.elapsed() < Duration::from_secs(10), "Escape took {:?} while tracing", asked.elapsed());
+    assert_eq!(viewer.0.wait().unwrap().code(), Some(0), "{}", log(dir));
+
+    // The split screenshot: Off's own image left of the divider (the view's middle), SSAO's right.
+    let out = tempfile::tempdir().unwrap();
+    // The command with every mode instead of the one it names.
+    let words: Vec<&str> = command.split_whitespace().collect();
+    let mode_at = words.iter().position(|w| *w == "--mode").expect("the command names its mode");
+    let args: Vec<&str> =
+        words.iter().enumerate().filter(|(i, _)| *i != mode_at && *i != mode_at + 1).map(|(_, w)| *w).collect();
+    let status = ssdo().args(&args).args(["--mode", "all", "--out", out.path().to_str().unwrap()]).status().unwrap();
+    assert!(status.success(), "{command}");
+    let shot = image::open(&pngs(dir, "screenshot-")[0]).unwrap().to_rgb8();
+    let column = VIEW.0 / 2;
+    for (mode, columns) in [("off", 0..column), ("ssao", column..VIEW.0)] {
+        let own = image::open(out.path().join(format!("{mode}.png"))).unwrap().to_rgb8();
+        let (shot, own) = (&shot, &own);
+        let diffs: Vec<u8> = (0..VIEW.1)
+            .flat_map(|y| columns.clone().map(move |x| (x, y)))
+            .flat_map(|(x, y)| (0..3).map(move |c| shot.get_pixel(x, y)[c].abs_diff(own.get_pixel(x, y)[c])))
+            .collect();
+        let mean = diffs.iter().map(|d| *d as f64).sum::<f64>() / diffs.len() as f64;
+        let max = diffs.iter().copied().max().unwrap_or(0);
+        assert!(mean <= 0.5 && max <= 6, "{mode}'s side of the split: mean {mean:.3}, max {max}: {command}");
+    }
+    let off = image::open(out.path().join("off.png")).unwrap().to_rgb8();
+    assert_ne!(shot, off, "the right of the divider is not Off's");
+}

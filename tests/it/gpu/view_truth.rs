@@ -112,3 +112,50 @@ fn capture_truth_writes_the_truth_the_maps_and_the_numbers() {
     // --spp asks for --truth.
     common::refused(&["capture", "--spp", "8"], 2, "--truth");
 }
+
+#[test]
+fn the_viewers_truth_in_rounds_is_the_reports_truth_within_its_noise() {
+    let Some(gpu) = common::gpu() else { return };
+    let (model, _) = report::scenes::by_name("cornell").unwrap();
+    let scene = Scene::new(model, 3, 7);
+    let sky = Skybox::load(std::path::Path::new("skyboxes/day")).unwrap();
+    let camera = OrbitCamera::framing(&scene.model.bounds);
+    let size = (40, 30);
+    let settings = Settings::default();
+    let mut renderer = common::renderer(gpu, &scene, &sky, size, settings);
+    renderer.keep_hdr(gpu, true);
+    // The report's truth: two traces of 16 rays.
+    let report_truth = ViewTruth::trace(gpu, &mut renderer, (&scene, &sky), &camera, (16, 7), &|| {}).unwrap();
+    // The viewer's: rounds of 1, 1, 2, 4, 8 rays added up to 16 in each of its two traces.
+    let depth = ssdo::headless::readback::read_depth(gpu, &renderer.targets().depth().texture).unwrap();
+    let key = ssdo::app::truth::ViewKey {
+        camera,
+        scene: 0,
+        size,
+        sky_scale: settings.sky_scale,
+        ambient: settings.ambient,
+        radius: renderer.radius(),
+    };
+    let job = ssdo::app::truth::Job {
+        key,
+        model: std::sync::Arc::new(scene.model.clone()),
+        sky: std::sync::Arc::new(sky.clone()),
+        lights: scene.lights.clone(),
+        rig: scene.rig,
+        depth,
+        seed: 7,
+    };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let rounds = ssdo::app::truth::trace_to(&pool, &job, 16).expect("the rounds end");
+    assert_eq!(rounds.rays(), 32);
+    let viewer_truth =
+        ViewTruth::from_traces((&rounds.a, &rounds.b), settings.ambient, &sky, rounds.rays_per_trace, 0.0).unwrap();
+    // Two independent estimates of one image: they differ by about √2 of either's noise.
+    let (a, b) = (report_truth.overlay(1.0), viewer_truth.overlay(1.0));
+    assert_eq!(report_truth.pixels(), viewer_truth.pixels(), "the same pixels measured");
+    let noise = (report_truth.noise_hdr().powi(2) + viewer_truth.noise_hdr().powi(2)).sqrt();
+    let difference = report_truth.rmse_against(&viewer_truth);
+    assert!(difference > 0.0, "independent rays");
+    assert!(difference < 2.0 * noise, "the truths differ by {difference:.4}, their noise {noise:.4}");
+    assert_ne!(a, b);
+}
