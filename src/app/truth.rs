@@ -1,6 +1,7 @@
 //! The viewer's truth: the report's ray-traced truth (`src/reference`: the sky with exact
 //! visibility, the point lights, one bounce, normal maps and cut-outs) of the view on screen,
-//! traced progressively on a thread of its own with a pool that leaves a core to the window.
+//! traced progressively on a thread of its own with a pool that takes only what the window leaves
+//! (the system's idle class on every core; where there is none, the cores less one).
 //!
 //! A trace is two independent traces added up in rounds, each round doubling the rays a pixel
 //! of both (1, 2, 4, ...), so after every round the truth is the report's mean of two traces of
@@ -79,19 +80,41 @@ pub struct Tracer {
     /// The job the thread should be tracing; a round whose job is older stops at its next row.
     generation: Arc<AtomicU64>,
     latest: Arc<Mutex<Option<Arc<Rounds>>>>,
-    /// The traces' worker threads (the machine's cores less one, at least one).
+    /// The traces' worker threads: every core in the idle class, else the cores less one.
     pub threads: usize,
 }
 
 impl Tracer {
     /// Starts the thread (and its pool); it waits for a job.
     pub fn start() -> std::io::Result<Self> {
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).saturating_sub(1).max(1);
         let (jobs, received) = mpsc::channel();
         let generation = Arc::new(AtomicU64::new(0));
         let latest = Arc::new(Mutex::new(None));
         let (g, l) = (generation.clone(), latest.clone());
-        std::thread::Builder::new().name("ssdo-truth".into()).spawn(move || work(&received, &g, &l, threads))?;
+        let (told, threads) = mpsc::sync_channel(1);
+        std::thread::Builder::new().name("ssdo-truth".into()).spawn(move || {
+            // The window's threads first: where the system has an idle class (Linux), the
+            // trace's threads run in it on every core, and take only what the window leaves
+            // (measured: no frame of the bench slower with two such threads tracing); elsewhere
+            // one core fewer than the machine has is the trace's.
+            let idle = run_when_idle();
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            let threads = if idle { cores } else { cores.saturating_sub(1).max(1) };
+            let _ = told.send(threads);
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("ssdo-truth-{i}"))
+                .start_handler(move |_| {
+                    if idle {
+                        run_when_idle();
+                    }
+                })
+                .build();
+            if let Ok(pool) = pool {
+                work(&received, &g, &l, &pool);
+            }
+        })?;
+        let threads = threads.recv().map_err(std::io::Error::other)?;
         Ok(Self { jobs, generation, latest, threads })
     }
 
@@ -123,13 +146,29 @@ impl Drop for Tracer {
     }
 }
 
-/// The thread's loop: the newest job, traced round after round until it is done or replaced.
-fn work(jobs: &mpsc::Receiver<Job>, generation: &AtomicU64, latest: &Mutex<Option<Arc<Rounds>>>, threads: usize) {
-    let Ok(pool) =
-        rayon::ThreadPoolBuilder::new().num_threads(threads).thread_name(|i| format!("ssdo-truth-{i}")).build()
-    else {
-        return;
-    };
+/// Puts the calling thread in the system's idle scheduling class, where it runs only when no
+/// other thread wants the core (Linux's `SCHED_IDLE`); whether it could.
+fn run_when_idle() -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        let param = libc::sched_param { sched_priority: 0 };
+        // SAFETY: pid 0 is the calling thread; the parameter is a valid, initialised struct.
+        unsafe { libc::sched_setscheduler(0, libc::SCHED_IDLE, &param) == 0 }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        false
+    }
+}
+
+/// The thread's loop: the newest job, traced round after round on `pool` until it is done or
+/// replaced.
+fn work(
+    jobs: &mpsc::Receiver<Job>,
+    generation: &AtomicU64,
+    latest: &Mutex<Option<Arc<Rounds>>>,
+    pool: &rayon::ThreadPool,
+) {
     let mut built: Option<(Arc<Model>, Arc<ReferenceScene>)> = None;
     while let Ok(mut job) = jobs.recv() {
         // Only the newest job counts; the others' views are gone.
@@ -146,7 +185,7 @@ fn work(jobs: &mpsc::Receiver<Job>, generation: &AtomicU64, latest: &Mutex<Optio
             }
         };
         let go_on = || generation.load(Ordering::Relaxed) == wanted;
-        trace_rounds(&pool, &scene, &job, &go_on, &|rounds| {
+        trace_rounds(pool, &scene, &job, &go_on, &|rounds| {
             if go_on() {
                 if let Ok(mut l) = latest.lock() {
                     *l = Some(Arc::new(rounds));

@@ -149,7 +149,8 @@ pub fn section(ui: &mut egui::Ui, state: &mut TruthPanel, mode: Mode) {
         ui.label(egui::RichText::new(line).strong());
     }
     if let Some((bar, scale)) = &state.bar {
-        ui.add(egui::Image::new(bar).fit_to_exact_size(egui::vec2(super::ui::PANEL_WIDTH - 24.0, 10.0)));
+        let size = egui::vec2(super::ui::PANEL_WIDTH - 24.0, 10.0);
+        ui.add(egui::Image::new(bar).maintain_aspect_ratio(false).fit_to_exact_size(size));
         ui.horizontal(|ui| {
             ui.label("0");
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| ui.label(format!("{scale:.3}")));

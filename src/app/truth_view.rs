@@ -54,8 +54,8 @@ struct Measured {
     mode: Mode,
     rays: u32,
     error: ModeError,
-    /// The heat map's scale: the first mode measured against this truth sets it, so the modes'
-    /// maps compare.
+    /// The heat map's scale: the first mode measured against this round of the truth sets it,
+    /// so the modes' maps compare.
     scale: f32,
     image: RgbaImage,
     texture: egui::TextureHandle,
@@ -199,7 +199,11 @@ impl Viewer {
         match made {
             Ok(truth) => {
                 let (w, h) = rounds.key.size;
-                log::info!("the truth: {} rays a pixel at {w}x{h} after {seconds:.1} s", rounds.rays());
+                log::info!(
+                    "the truth: {} rays a pixel at {w}x{h} after {seconds:.1} s, noise HDR {:.4}",
+                    rounds.rays(),
+                    truth.noise_hdr()
+                );
                 let exposure = self.renderer.settings.exposure;
                 let image = truth.overlay(exposure);
                 let texture = self.texture("ssdo_truth", &image);
@@ -248,7 +252,10 @@ impl Viewer {
             }
         };
         let rays = shown.rounds.rays();
-        let scale = self.truth.errors.as_ref().map_or_else(|| error_scale(std::slice::from_ref(&error)), |m| m.scale);
+        // A new round of the truth sets the scale anew (its noise was part of the last one's);
+        // another mode against the same round keeps it, so the modes' maps compare.
+        let kept = self.truth.errors.as_ref().filter(|m| m.rays == rays).map(|m| m.scale);
+        let scale = kept.unwrap_or_else(|| error_scale(std::slice::from_ref(&error)));
         let image = heat_map(&error.per_pixel, shown.truth.size(), scale);
         let texture = self.texture("ssdo_error", &image);
         if self.panel.truth.bar.is_none() {

@@ -286,7 +286,7 @@ fn viewer_switches_modes_and_writes_screenshots_that_match_capture() {
 /// Presses `key` until the viewer in `dir` has logged `line` last among its "view: " lines
 /// (each press is logged as the view it leads to).
 fn press_until(display: &str, dir: &Path, key: &str, line: &str) {
-    let last_view = || log(dir).lines().filter_map(|l| l.split("] view: ").nth(1).map(str::to_owned)).last();
+    let last_view = || log(dir).lines().rev().find_map(|l| l.split("] view: ").nth(1).map(str::to_owned));
     let wanted = line.trim_start_matches("view: ");
     for attempt in 0.. {
         assert!(attempt < 12, "'{key}' never led to '{line}'; the viewer's stderr:\n{}", log(dir));
@@ -336,7 +336,7 @@ fn viewer_traces_the_truth_of_its_view_and_splits_two_modes_at_a_divider() {
     let mut command = String::new();
     wait_for("the split's screenshot and its command", Duration::from_secs(60), || {
         let text = log(dir);
-        if let Some(line) = text.lines().filter(|l| l.contains(": the same view headless: ssdo ")).last() {
+        if let Some(line) = text.lines().rev().find(|l| l.contains(": the same view headless: ssdo ")) {
             command = line.split(": the same view headless: ssdo ").nth(1).unwrap().trim().to_owned();
         }
         !command.is_empty() && !pngs(dir, "screenshot-").is_empty()
