@@ -19,6 +19,21 @@ use crate::{Error, Result};
 /// The version of the file format this build writes and reads.
 pub const FORMAT: u64 = 1;
 
+/// The keys of a preset's `settings`, in the order it writes them (and tune's CSV columns).
+pub const SETTINGS_KEYS: [&str; 11] = [
+    "variant",
+    "samples",
+    "slices",
+    "steps",
+    "depth_pyramid",
+    "radius_scale",
+    "blur",
+    "half_resolution",
+    "accumulate",
+    "sender_sky",
+    "indirect_strength",
+];
+
 /// The largest preset file read: one that tune writes is under a kilobyte.
 pub const MAX_PRESET_BYTES: u64 = 64 << 10;
 
@@ -251,23 +266,7 @@ impl Knobs {
 
     fn from_json(v: &Value, at: &Reader) -> Result<Self> {
         let object = at.object(v, "settings")?;
-        at.only(
-            object,
-            "settings",
-            &[
-                "variant",
-                "samples",
-                "slices",
-                "steps",
-                "depth_pyramid",
-                "radius_scale",
-                "blur",
-                "half_resolution",
-                "accumulate",
-                "sender_sky",
-                "indirect_strength",
-            ],
-        )?;
+        at.only(object, "settings", &SETTINGS_KEYS)?;
         let variant = match object.get("variant") {
             Some(v) => at.parse::<Variant>(v, "settings.variant")?,
             None => Variant::default(),

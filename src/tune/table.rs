@@ -125,30 +125,13 @@ impl Tune {
 
     /// Every measured setting, one row each, the front marked.
     pub fn csv(&self, options: &TuneOptions) -> String {
-        const HEADER: [&str; 22] = [
-            "front",
-            "pick",
-            "ms",
-            "off_multiple",
-            "frames_timed",
-            "hdr_rmse",
-            "do_rmse",
-            "flip",
-            "hdr_rmse_per_view",
-            "mode",
-            "variant",
-            "samples",
-            "slices",
-            "steps",
-            "depth_pyramid",
-            "radius_scale",
-            "blur",
-            "half_resolution",
-            "accumulate",
-            "sender_sky",
-            "indirect_strength",
-            "preset",
-        ];
+        let measured = ["front", "pick", "ms", "off_multiple", "frames_timed", "hdr_rmse", "do_rmse", "flip"];
+        let header: Vec<&str> = measured
+            .into_iter()
+            .chain(["hdr_rmse_per_view", "mode"])
+            .chain(crate::preset::SETTINGS_KEYS)
+            .chain(["preset"])
+            .collect();
         let rows = self.points.iter().enumerate().filter_map(|(i, p)| {
             let k = p.knobs?;
             let per_view: Vec<String> = p.hdr_per_view.iter().map(|e| format!("{e:.6}")).collect();
@@ -177,7 +160,7 @@ impl Tune {
                 p.name.clone().unwrap_or_default(),
             ])
         });
-        output::csv_text(&HEADER, rows)
+        output::csv_text(&header, rows)
     }
 
     /// The pick as a preset, with what was measured of it.
