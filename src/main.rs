@@ -145,41 +145,13 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
     }
     if let Some(truth) = &truth {
-        let (image, exposure) = (&panels[panels.len() - 1].1, renderer.settings.exposure);
-        let path = args.out.join("truth.png");
-        let truth_image = truth.image(image, exposure);
-        batch.stage(&path, &output::png_bytes(&path, &truth_image)?)?;
-        for (error, map) in errors.iter().zip(ssdo::headless::truth::error_maps(&errors, size)) {
-            let path = args.out.join(format!("error_{}.png", error.mode.name()));
-            batch.stage(&path, &output::png_bytes(&path, &map)?)?;
+        let image = &panels[panels.len() - 1].1;
+        let said = truth.outputs(&errors, (image, renderer.settings.exposure), &args.out, &mut batch)?;
+        stats_json.insert("truth".into(), said.json);
+        for line in said.lines {
+            say(line)?;
         }
-        let (measured, all) = truth.pixels();
-        let about = format!(
-            "the truth: 2 × {} rays a pixel in {:.1} s, noise floor HDR {:.4}, {measured} of {all} pixels measured",
-            truth.rays_per_pixel,
-            truth.seconds,
-            truth.noise_hdr()
-        );
-        let modes: serde_json::Map<String, serde_json::Value> =
-            errors.iter().map(|e| (e.mode.name().to_string(), e.json())).collect();
-        let json = serde_json::json!({ "rays_per_pixel": truth.rays_per_pixel, "noise_hdr": truth.noise_hdr(),
-            "pixels_measured": measured, "modes": modes });
-        stats_json.insert("truth".into(), json);
-        say(about)?;
-        for e in &errors {
-            // An error within twice the truth's own noise is mostly the truth's.
-            let noisy = if e.hdr_rmse < 2.0 * truth.noise_hdr() {
-                " (within twice the truth's noise: raise --spp)"
-            } else {
-                ""
-            };
-            say(format!("{:>5} against the truth: {}{noisy}", e.mode.name(), e.summary()))?;
-        }
-        let caption = vec![
-            "Truth (ray traced)".to_string(),
-            format!("2 × {} rays a pixel, noise floor HDR {:.4}", truth.rays_per_pixel, truth.noise_hdr()),
-        ];
-        panels.push((caption, truth_image));
+        panels.push(said.panel);
     }
     if args.json && (args.stats || args.truth) {
         output::print_line(

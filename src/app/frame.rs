@@ -154,12 +154,8 @@ impl Viewer {
             panels.push((caption, image));
         }
         if let Some(truth) = self.truth_for_compare() {
-            let caption = vec![
-                "Truth (ray traced)".to_string(),
-                format!("{} rays a pixel, noise floor HDR {:.4}", 2 * truth.rays_per_pixel, truth.noise_hdr()),
-            ];
             let image = compare::overlay(&panels[0].1, &truth.overlay(self.renderer.settings.exposure));
-            panels.push((caption, image));
+            panels.push((truth.caption(), image));
             let maps = crate::headless::truth::error_maps(&errors, self.renderer.size());
             for (e, map) in errors.iter().zip(maps) {
                 panels.push((vec![format!("{} error", e.mode.title()), e.summary()], map));

@@ -8,6 +8,7 @@ mod controls;
 mod frame;
 mod keys;
 mod loader;
+mod split;
 pub mod truth;
 mod truth_ui;
 mod truth_view;
@@ -167,11 +168,9 @@ struct Viewer {
     scene_number: u64,
     /// The camera of the last frame drawn (its G-buffer's depth is what the truth checks).
     drawn_camera: Option<OrbitCamera>,
-    /// The truth of the view (`truth_view.rs`), and the renderer of a split's right side.
+    /// The truth of the view (`truth_view.rs`), and the split's right side and divider.
     truth: truth_view::TruthState,
-    second: Option<truth_view::SecondView>,
-    /// The split's divider is being dragged.
-    dragging_divider: bool,
+    split: split::SplitState,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -305,8 +304,7 @@ impl Viewer {
             scene_number: 0,
             drawn_camera: None,
             truth: truth_view::TruthState::default(),
-            second: None,
-            dragging_divider: false,
+            split: split::SplitState::default(),
         })
     }
 
@@ -389,6 +387,13 @@ impl Viewer {
             self.refreshing = false;
             self.window.request_redraw();
         }
+        if let WindowEvent::CursorMoved { position, .. } = &event {
+            self.cursor = (position.x, position.y);
+        }
+        // A split's divider takes the mouse near it; the rest of the view turns the camera.
+        if self.divider_event(&event, panel, over_view) {
+            return Ok(());
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => self.resize(size),
@@ -407,32 +412,10 @@ impl Viewer {
                 }
             }
             WindowEvent::CursorMoved { position, .. } => {
-                self.cursor = (position.x, position.y);
-                if self.dragging_divider {
-                    let width = self.renderer.size().0.max(1) as f64;
-                    self.panel.truth.divider = ((position.x - panel) / width).clamp(0.0, 1.0) as f32;
-                    return Ok(());
-                }
                 let height = self.renderer.size().1;
                 self.controls.moved(&mut self.camera, position.x, position.y, height);
             }
             WindowEvent::MouseInput { button, state, .. } => {
-                // A split's divider is dragged by the mouse within a few pixels of it; the rest
-                // of the view turns the camera.
-                let divider_x = panel + self.panel.truth.divider as f64 * self.renderer.size().0 as f64;
-                let on_divider = matches!(self.panel.truth.display, truth_ui::Display::Split(_))
-                    && (self.cursor.0 - divider_x).abs() <= 6.0 * self.window.scale_factor();
-                if button == winit::event::MouseButton::Left
-                    && state == ElementState::Pressed
-                    && on_divider
-                    && over_view
-                {
-                    self.dragging_divider = true;
-                    return Ok(());
-                }
-                if state == ElementState::Released && std::mem::take(&mut self.dragging_divider) {
-                    return Ok(());
-                }
                 self.controls.button(button, state, over_view && !response.consumed);
             }
             WindowEvent::MouseWheel { delta, .. } if over_view && !response.consumed => {

@@ -149,7 +149,7 @@ pub fn section(ui: &mut egui::Ui, state: &mut TruthPanel, mode: Mode) {
         ui.label(egui::RichText::new(line).strong());
     }
     if let Some((bar, scale)) = &state.bar {
-        let size = egui::vec2(super::ui::PANEL_WIDTH - 24.0, 10.0);
+        let size = egui::vec2(ui.available_width(), 10.0);
         ui.add(egui::Image::new(bar).maintain_aspect_ratio(false).fit_to_exact_size(size));
         ui.horizontal(|ui| {
             ui.label("0");

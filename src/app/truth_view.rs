@@ -13,7 +13,7 @@ use super::Viewer;
 use crate::headless::capture::capture_settled;
 use crate::headless::readback::read_depth;
 use crate::headless::truth::{colour_bar, error_scale, heat_map, ModeError, ViewTruth};
-use crate::render::{Mode, Renderer};
+use crate::render::Mode;
 use crate::scene::Model;
 use crate::{compare, Result};
 
@@ -59,13 +59,6 @@ struct Measured {
     scale: f32,
     image: RgbaImage,
     texture: egui::TextureHandle,
-}
-
-/// The renderer of the image right of a split's divider, and the texture it draws into.
-pub(super) struct SecondView {
-    renderer: Renderer,
-    view: wgpu::TextureView,
-    id: egui::TextureId,
 }
 
 impl Viewer {
@@ -339,7 +332,7 @@ impl Viewer {
                 let uv = egui::Rect::from_min_max(egui::pos2(d, 0.0), egui::pos2(1.0, 1.0));
                 let id = match side {
                     Side::Truth => truth,
-                    Side::Mode(_) => self.second.as_ref().map(|s| s.id),
+                    Side::Mode(_) => self.split.texture(),
                 };
                 if let Some(id) = id {
                     painter.image(id, right, uv, egui::Color32::WHITE);
@@ -350,70 +343,26 @@ impl Viewer {
         }
     }
 
-    /// Draws the image right of a split's divider into its texture, in `encoder`, when the split
-    /// is between two modes (the second renderer made, or made anew, as needed).
-    pub(super) fn encode_second(&mut self, encoder: &mut wgpu::CommandEncoder) -> Result<()> {
-        let Display::Split(Side::Mode(mode)) = self.panel.truth.display else {
-            self.drop_second();
-            return Ok(());
-        };
-        let size = self.renderer.size();
-        if self.second.as_ref().is_none_or(|s| s.renderer.size() != size) {
-            self.drop_second();
-            let settings = crate::render::Settings { mode, ..self.renderer.settings };
-            let renderer = Renderer::new(&self.gpu, &self.scene, &self.sky, size, self.config.format, settings)?;
-            let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("viewer_split_right"),
-                size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: self.config.format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-            let id = self.egui_renderer.register_native_texture(&self.gpu.device, &view, wgpu::FilterMode::Nearest);
-            self.second = Some(SecondView { renderer, view, id });
-        }
-        let camera = self.view_camera();
-        if let Some(second) = &mut self.second {
-            second.renderer.settings = crate::render::Settings { mode, ..self.renderer.settings };
-            second.renderer.encode(&self.gpu, encoder, &camera, &second.view);
-        }
-        Ok(())
-    }
-
-    /// Forgets the second renderer (its scene, sky or lights are no longer the view's).
-    pub(super) fn drop_second(&mut self) {
-        if let Some(second) = self.second.take() {
-            self.egui_renderer.free_texture(&second.id);
-        }
-    }
-
-    /// Whether the second renderer still averages frames of a still view.
-    pub(super) fn second_converging(&self) -> bool {
-        self.second.as_ref().is_some_and(|s| s.renderer.converging())
-    }
-
     /// What the view shows, as an image of its size: the live frame settled, with the truth,
     /// the error map or the right of the divider over it.
     pub(super) fn screen_image(&mut self) -> Result<RgbaImage> {
         let camera = self.view_camera();
         let live = capture_settled(&self.gpu, &mut self.renderer, &camera)?;
+        let display = self.panel.truth.display;
+        let second = match display {
+            Display::Split(Side::Mode(_)) => self.capture_second(&camera)?,
+            _ => None,
+        };
+        let over = |top: Option<&RgbaImage>| top.map_or_else(|| live.clone(), |t| compare::overlay(&live, t));
         let truth = self.truth.shown.as_ref().map(|s| &s.image);
-        Ok(match self.panel.truth.display {
-            Display::Live => live,
-            Display::Truth => truth.map_or_else(|| live.clone(), |t| compare::overlay(&live, t)),
-            Display::Error => match &self.truth.errors {
-                Some(m) => compare::overlay(&live, &m.image),
-                None => live,
-            },
+        Ok(match display {
+            Display::Live => live.clone(),
+            Display::Truth => over(truth),
+            Display::Error => over(self.truth.errors.as_ref().map(|m| &m.image)),
             Display::Split(side) => {
-                let right = match (side, &mut self.second) {
-                    (Side::Truth, _) => truth.map_or_else(|| live.clone(), |t| compare::overlay(&live, t)),
-                    (Side::Mode(_), Some(second)) => capture_settled(&self.gpu, &mut second.renderer, &camera)?,
-                    (Side::Mode(_), None) => live.clone(),
+                let right = match side {
+                    Side::Truth => over(truth),
+                    Side::Mode(_) => second.unwrap_or_else(|| live.clone()),
                 };
                 compare::split(&live, &right, self.panel.truth.divider)
             }

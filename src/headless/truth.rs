@@ -137,6 +137,58 @@ impl ViewTruth {
     }
 }
 
+/// What `capture --truth` adds to a capture: the lines it prints, its figures as JSON, and the
+/// truth's panel of `compare.png`.
+pub struct Outputs {
+    pub lines: Vec<String>,
+    pub json: serde_json::Value,
+    pub panel: (Vec<String>, RgbaImage),
+}
+
+impl ViewTruth {
+    /// Stages `truth.png` (the truth over `image`, a mode's capture, at its `exposure`) and each
+    /// of `errors`' map (`error_<mode>.png`) into `batch` in `out`; what to print and show.
+    pub fn outputs(
+        &self,
+        errors: &[ModeError],
+        (image, exposure): (&RgbaImage, f32),
+        out: &std::path::Path,
+        batch: &mut crate::output::Batch,
+    ) -> Result<Outputs> {
+        use crate::output::png_bytes;
+        let path = out.join("truth.png");
+        let truth = self.image(image, exposure);
+        batch.stage(&path, &png_bytes(&path, &truth)?)?;
+        for (error, map) in errors.iter().zip(error_maps(errors, self.size())) {
+            let path = out.join(format!("error_{}.png", error.mode.name()));
+            batch.stage(&path, &png_bytes(&path, &map)?)?;
+        }
+        let (measured, all) = self.pixels();
+        let (rays, noise) = (self.rays_per_pixel, self.noise_hdr());
+        let mut lines = vec![format!(
+            "the truth: 2 × {rays} rays a pixel in {:.1} s, noise floor HDR {noise:.4}, {measured} of {all} pixels measured",
+            self.seconds
+        )];
+        for e in errors {
+            // An error within twice the truth's own noise is mostly the truth's.
+            let noisy = if e.hdr_rmse < 2.0 * noise { " (within twice the truth's noise: raise --spp)" } else { "" };
+            lines.push(format!("{:>5} against the truth: {}{noisy}", e.mode.name(), e.summary()));
+        }
+        let modes: serde_json::Map<String, serde_json::Value> =
+            errors.iter().map(|e| (e.mode.name().to_string(), e.json())).collect();
+        let json = serde_json::json!({
+            "rays_per_pixel": rays, "noise_hdr": noise, "pixels_measured": measured, "modes": modes
+        });
+        Ok(Outputs { lines, json, panel: (self.caption(), truth) })
+    }
+
+    /// The truth's caption in a comparison.
+    pub fn caption(&self) -> Vec<String> {
+        let (rays, noise) = (self.rays_per_pixel, self.noise_hdr());
+        vec!["Truth (ray traced)".to_string(), format!("2 × {rays} rays a pixel, noise floor HDR {noise:.4}")]
+    }
+}
+
 impl ModeError {
     /// "HDR RMSE 0.0197, DO RMSE 0.0307, FLIP 0.0512".
     pub fn summary(&self) -> String {

@@ -1,0 +1,110 @@
+//! The split view's second renderer: the mode right of the divider drawn live, with the same
+//! settings and camera as the view, into a texture the panel shows there; and the divider the
+//! mouse drags.
+
+use winit::event::{ElementState, MouseButton, WindowEvent};
+
+use super::truth_ui::{Display, Side};
+use super::Viewer;
+use crate::headless::capture::capture_settled;
+use crate::render::Renderer;
+use crate::scene::OrbitCamera;
+use crate::Result;
+
+/// What the split keeps: the second renderer while the right side is a mode, and whether the
+/// divider is being dragged.
+#[derive(Default)]
+pub(super) struct SplitState {
+    second: Option<SecondView>,
+    dragging: bool,
+}
+
+/// The renderer of the image right of a split's divider, and the texture it draws into.
+pub(super) struct SecondView {
+    renderer: Renderer,
+    view: wgpu::TextureView,
+    id: egui::TextureId,
+}
+
+impl SplitState {
+    /// The texture of the right side's mode, while there is one.
+    pub(super) fn texture(&self) -> Option<egui::TextureId> {
+        self.second.as_ref().map(|s| s.id)
+    }
+}
+
+impl Viewer {
+    /// Draws the image right of a split's divider into its texture, in `encoder`, when the split
+    /// is between two modes (the second renderer made, or made anew, as needed).
+    pub(super) fn encode_second(&mut self, encoder: &mut wgpu::CommandEncoder) -> Result<()> {
+        let Display::Split(Side::Mode(mode)) = self.panel.truth.display else {
+            self.drop_second();
+            return Ok(());
+        };
+        let size = self.renderer.size();
+        if self.split.second.as_ref().is_none_or(|s| s.renderer.size() != size) {
+            self.drop_second();
+            let settings = crate::render::Settings { mode, ..self.renderer.settings };
+            let renderer = Renderer::new(&self.gpu, &self.scene, &self.sky, size, self.config.format, settings)?;
+            let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("viewer_split_right"),
+                size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: self.config.format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            });
+            let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+            let id = self.egui_renderer.register_native_texture(&self.gpu.device, &view, wgpu::FilterMode::Nearest);
+            self.split.second = Some(SecondView { renderer, view, id });
+        }
+        let camera = self.view_camera();
+        if let Some(second) = &mut self.split.second {
+            second.renderer.settings = crate::render::Settings { mode, ..self.renderer.settings };
+            second.renderer.encode(&self.gpu, encoder, &camera, &second.view);
+        }
+        Ok(())
+    }
+
+    /// Forgets the second renderer (its scene, sky or lights are no longer the view's).
+    pub(super) fn drop_second(&mut self) {
+        if let Some(second) = self.split.second.take() {
+            self.egui_renderer.free_texture(&second.id);
+        }
+    }
+
+    /// Whether the second renderer still averages frames of a still view.
+    pub(super) fn second_converging(&self) -> bool {
+        self.split.second.as_ref().is_some_and(|s| s.renderer.converging())
+    }
+
+    /// The right side's mode as a settled image of the view, if a second renderer draws it.
+    pub(super) fn capture_second(&mut self, camera: &OrbitCamera) -> Result<Option<image::RgbaImage>> {
+        match &mut self.split.second {
+            Some(second) => capture_settled(&self.gpu, &mut second.renderer, camera).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// The divider's share of the mouse: a press within a few pixels of it takes it, a move then
+    /// drags it, the release lets go. Whether `event` was the divider's.
+    pub(super) fn divider_event(&mut self, event: &WindowEvent, panel: f64, over_view: bool) -> bool {
+        let width = self.renderer.size().0.max(1) as f64;
+        match event {
+            WindowEvent::CursorMoved { position, .. } if self.split.dragging => {
+                self.panel.truth.divider = ((position.x - panel) / width).clamp(0.0, 1.0) as f32;
+                true
+            }
+            WindowEvent::MouseInput { button: MouseButton::Left, state: ElementState::Pressed, .. } => {
+                let x = panel + self.panel.truth.divider as f64 * width;
+                let near = (self.cursor.0 - x).abs() <= 6.0 * self.window.scale_factor();
+                self.split.dragging = matches!(self.panel.truth.display, Display::Split(_)) && near && over_view;
+                self.split.dragging
+            }
+            WindowEvent::MouseInput { state: ElementState::Released, .. } => std::mem::take(&mut self.split.dragging),
+            _ => false,
+        }
+    }
+}
