@@ -13,6 +13,7 @@ pub mod truth;
 mod truth_ui;
 mod truth_view;
 mod ui;
+mod view_state;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -169,8 +170,8 @@ struct Viewer {
     /// The camera of the last frame drawn (its G-buffer's depth is what the truth checks).
     drawn_camera: Option<OrbitCamera>,
     /// The truth of the view (`truth_view.rs`), and the split's right side and divider.
-    truth: truth_view::TruthState,
-    split: split::SplitState,
+    truth: view_state::TruthState,
+    split: view_state::SplitState,
 }
 
 /// How often the viewer looks for finished loads while one runs.
@@ -303,8 +304,8 @@ impl Viewer {
             sky: Arc::new(sky),
             scene_number: 0,
             drawn_camera: None,
-            truth: truth_view::TruthState::default(),
-            split: split::SplitState::default(),
+            truth: view_state::TruthState::default(),
+            split: view_state::SplitState::default(),
         })
     }
 

@@ -5,33 +5,12 @@
 use winit::event::{ElementState, MouseButton, WindowEvent};
 
 use super::truth_ui::{Display, Side};
+use super::view_state::SecondView;
 use super::Viewer;
 use crate::headless::capture::capture_settled;
 use crate::render::Renderer;
 use crate::scene::OrbitCamera;
 use crate::Result;
-
-/// What the split keeps: the second renderer while the right side is a mode, and whether the
-/// divider is being dragged.
-#[derive(Default)]
-pub(super) struct SplitState {
-    second: Option<SecondView>,
-    dragging: bool,
-}
-
-/// The renderer of the image right of a split's divider, and the texture it draws into.
-pub(super) struct SecondView {
-    renderer: Renderer,
-    view: wgpu::TextureView,
-    id: egui::TextureId,
-}
-
-impl SplitState {
-    /// The texture of the right side's mode, while there is one.
-    pub(super) fn texture(&self) -> Option<egui::TextureId> {
-        self.second.as_ref().map(|s| s.id)
-    }
-}
 
 impl Viewer {
     /// Draws the image right of a split's divider into its texture, in `encoder`, when the split

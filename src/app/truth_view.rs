@@ -1,6 +1,6 @@
-//! The viewer's truth, error and split views: when the truth is traced anew (a view that has
-//! settled), what is shown of it, the current mode's error against it, the second renderer a
-//! split between two modes draws with, and the image F12 saves of what is on screen.
+//! The viewer's truth and error views: when the truth is traced anew (a view that has
+//! settled), what is shown of it, the current mode's error against it, and the image F12 saves
+//! of what is on screen (the split's second renderer is `split.rs`'s).
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -9,57 +9,17 @@ use image::RgbaImage;
 
 use super::truth::{depth_at, Job, Rounds, Tracer, ViewKey, BYTES_PER_PIXEL};
 use super::truth_ui::{Display, Side};
+use super::view_state::{Measured, Shown, TruthState};
 use super::Viewer;
 use crate::headless::capture::capture_settled;
 use crate::headless::readback::read_depth;
-use crate::headless::truth::{colour_bar, error_scale, heat_map, ModeError, ViewTruth};
-use crate::render::Mode;
-use crate::scene::Model;
+use crate::headless::truth::{colour_bar, error_scale, heat_map, ViewTruth};
 use crate::{compare, Result};
 
 /// How long a changed view must stay still before its truth is traced.
 const SETTLE: Duration = Duration::from_millis(200);
 /// How often the viewer looks for the truth's next round while it traces.
 const POLL: Duration = Duration::from_millis(150);
-
-/// What the viewer keeps of the truth.
-#[derive(Default)]
-pub(super) struct TruthState {
-    /// The thread, made when the truth is first wanted and gone when it no longer is.
-    tracer: Option<Tracer>,
-    /// The view being traced, and a new one waiting to settle (since when).
-    traced: Option<ViewKey>,
-    settling: Option<(ViewKey, Instant)>,
-    shown: Option<Shown>,
-    errors: Option<Measured>,
-    /// The model as the trace reads it, for its scene number.
-    model: Option<(u64, Arc<Model>)>,
-    /// Why there is no truth for this view (too large for the budget, nothing to measure).
-    failure: Option<String>,
-    /// What the view showed at the last tick (each change is logged).
-    display: Option<Display>,
-}
-
-/// The rounds on screen, the truth made of them and its image.
-struct Shown {
-    rounds: Arc<Rounds>,
-    truth: ViewTruth,
-    exposure: f32,
-    image: RgbaImage,
-    texture: egui::TextureHandle,
-}
-
-/// The current mode's error against the shown truth.
-struct Measured {
-    mode: Mode,
-    rays: u32,
-    error: ModeError,
-    /// The heat map's scale: the first mode measured against this round of the truth sets it,
-    /// so the modes' maps compare.
-    scale: f32,
-    image: RgbaImage,
-    texture: egui::TextureHandle,
-}
 
 impl Viewer {
     /// The truth's part of the event loop: starts, stops and reads the trace, measures the
