@@ -10,17 +10,9 @@ use glam::Vec3;
 use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
 use super::triangle::wound_against;
+pub use super::triangle::Vertex;
 use crate::budget::{self, Share};
 use crate::{Error, Result};
-
-/// One vertex as the G-buffer pass reads it.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct Vertex {
-    pub position: [f32; 3],
-    pub normal: [f32; 3],
-    pub uv: [f32; 2],
-}
 
 /// Surface description: Blinn-Phong with optional diffuse and specular maps, a tangent-space
 /// normal map and an alpha cutout.

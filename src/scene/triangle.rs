@@ -1,8 +1,16 @@
-//! One triangle of a loaded model, built the same way for every file format.
+//! One triangle of a loaded model, built the same way for every file format, and the vertex it
+//! is made of (which `model.rs` hands on as `model::Vertex`).
 
 use glam::Vec3;
 
-use super::model::Vertex;
+/// One vertex as the G-buffer pass reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+}
 
 /// What became of a triangle handed to [`push_triangle`].
 pub(super) enum Triangle {

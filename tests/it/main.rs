@@ -20,6 +20,7 @@ mod cpu {
     mod fuzz_entries;
     mod fuzz_loaders;
     mod hostile_files;
+    mod imports;
     mod presets;
     mod scene_loading;
     mod shaders;

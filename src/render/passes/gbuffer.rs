@@ -23,7 +23,7 @@ use crate::render::bindings::{sampler_entry, texture_entry, uniform_entry};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::{Entry, Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
-use crate::render::resources::scene::{upload_texture, Draw, SceneGpu};
+use crate::render::resources::scene::{upload_texture, Draw, Features, SceneGpu, SpecularMap};
 use crate::render::targets::{shininess_bits, ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
 use crate::render::uniforms::MaterialParams;
 use crate::scene::model::TextureImage;
@@ -36,52 +36,6 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(Step::GBUFFER, |_| true, GBufferPass::io, |cx| Ok(Box::new(GBufferPass::new(cx)?)));
 
-/// What a material's pipeline reads besides its constants (the shader's overrides).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Features {
-    /// Colour maps (diffuse, specular).
-    pub textured: bool,
-    /// Where the specular strength's map is: none, its own, or the diffuse map's alpha.
-    pub specular: SpecularMap,
-    pub normal_mapped: bool,
-    pub cut_out: bool,
-}
-
-/// Where a material's specular map is read from.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum SpecularMap {
-    /// No map: the material's constant strength.
-    #[default]
-    None,
-    /// A texture of its own.
-    Own,
-    /// The diffuse map's alpha (the specular map's red, packed there at upload: one sample
-    /// for both maps, with the same texels and the same mips, since the alpha of an sRGB texture
-    /// is linear like the specular map's own format).
-    DiffuseAlpha,
-}
-
-impl SpecularMap {
-    /// Where material `m`'s specular map goes: into its diffuse map's alpha when the two maps
-    /// are one size.
-    pub fn of(m: &crate::scene::Material) -> Self {
-        match (&m.diffuse_map, &m.specular_map) {
-            (_, None) => SpecularMap::None,
-            (Some(d), Some(s)) if (d.width, d.height) == (s.width, s.height) => SpecularMap::DiffuseAlpha,
-            (_, Some(_)) => SpecularMap::Own,
-        }
-    }
-
-    /// The value of the G-buffer shader's `SPECULAR_MAP` constant.
-    fn shader_code(self) -> f64 {
-        match self {
-            SpecularMap::None => 0.0,
-            SpecularMap::Own => 1.0,
-            SpecularMap::DiffuseAlpha => 2.0,
-        }
-    }
-}
-
 /// The diffuse map's colour with the specular map's red as its alpha (two maps of one size).
 fn pack_specular(diffuse: &TextureImage, specular: &TextureImage) -> TextureImage {
     let mut rgba = diffuse.rgba.to_vec();
@@ -89,18 +43,6 @@ fn pack_specular(diffuse: &TextureImage, specular: &TextureImage) -> TextureImag
         texel[3] = spec[0];
     }
     TextureImage { width: diffuse.width, height: diffuse.height, rgba: std::sync::Arc::new(rgba) }
-}
-
-impl Features {
-    /// What material `m` of a model reads; its normal map only where the model has tangents.
-    pub fn of(m: &crate::scene::Material, has_tangents: bool) -> Self {
-        Self {
-            textured: m.is_textured(),
-            specular: SpecularMap::of(m),
-            normal_mapped: m.normal_map.is_some() && has_tangents,
-            cut_out: m.cutout.is_some(),
-        }
-    }
 }
 
 /// How a material's faces are drawn; every face is drawn, two-sided, in one of two rounds. A

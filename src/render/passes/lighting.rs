@@ -10,7 +10,8 @@
 //! moved (reprojecting) and for a still one. A frame with no last frame (the first after a
 //! reset) reads this frame's sender-sky march, as `--sender-sky march` does.
 
-use super::sender_sky::{self, last_sky_held, LAST_SKY};
+use super::sampling::{last_sky_held, LAST_SKY};
+use super::sender_sky;
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};

@@ -3,17 +3,17 @@
 //! writes DO + AO); the variant (default or classic) and whether there is a bounce buffer are
 //! override constants. The pipeline is built for what the plan needs and rebuilt only when that
 //! changes. With `--sender-sky last-frame` the march also writes the sky each pixel sees, for the
-//! next frame's senders (`sender_sky::LAST_SKY`).
+//! next frame's senders ([`LAST_SKY`], which this pass writes and the lighting pass reads).
 
 use super::depth_pyramid::PYRAMID;
-use super::sender_sky::{last_sky_history, LAST_SKY};
 use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::PassState;
 use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, Role};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
-use crate::render::modes::{Plan, Step};
+use crate::render::history::HistorySpec;
+use crate::render::modes::{Plan, PlanFacts, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{Stage, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
+use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
 use crate::render::variant::{Estimator, Sampler};
 use crate::{shaders, Result};
 
@@ -27,6 +27,24 @@ pub const ENTRY: Entry =
         .binding(&["points.wgsl", "march.wgsl"])
         .keeping(last_sky_history)
         .role(Role::Sampling);
+
+/// The sky each pixel's march saw (as `sender_sky::SENDER_SKY`), at the sampling pass's size, kept for
+/// the next frame's lighting pass (`--sender-sky last-frame`): written by the sampling pass.
+pub const LAST_SKY: TargetId = TargetId::new("history_sender_sky", DO_FORMAT, Place::History);
+
+/// The history of [`LAST_SKY`] where the plan takes the senders' sky from the last frame: at
+/// the samples' size, meaning one thing in every DO mode (the key is the format's alone).
+pub fn last_sky_history(facts: &PlanFacts) -> Vec<HistorySpec> {
+    let wanted = facts.sender_sky() == SenderSky::LastFrame;
+    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, half: facts.half_resolution(), key: 0 };
+    wanted.then_some(spec).into_iter().collect()
+}
+
+/// Whether the last frame left its senders' sky for this one: the plan keeps it and it holds a
+/// frame.
+pub fn last_sky_held(plan: &Plan, history: &crate::render::history::History) -> bool {
+    plan.sender_sky == SenderSky::LastFrame && history.get(LAST_SKY).is_some_and(|h| h.frames > 0)
+}
 
 /// What a plan's sampling (and blur) pass produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

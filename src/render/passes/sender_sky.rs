@@ -5,15 +5,14 @@
 //! sender bounces, so the bounce carries the sky with the sender's own visibility.
 //!
 //! With `--sender-sky last-frame` the march of the sampling pass writes that sky for the next
-//! frame ([`LAST_SKY`]), and this pass runs only on a frame with no last frame to read (the
-//! first after a reset).
+//! frame (`sampling::LAST_SKY`), and this pass runs only on a frame with no last frame to read
+//! (the first after a reset).
 
-use super::sampling::SamplingPass;
+use super::sampling::{last_sky_held, SamplingPass};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
-use crate::render::history::HistorySpec;
-use crate::render::modes::{Plan, PlanFacts, Step};
+use crate::render::modes::{Plan, Step};
 use crate::render::settings::SenderSky;
 use crate::render::targets::{Place, TargetId, DO_FORMAT};
 use crate::Result;
@@ -36,24 +35,6 @@ pub const ENTRY: Entry = Entry::new(
 pub const SENDER_SKY: TargetId = TargetId::new("sender_sky", DO_FORMAT, Place::HalfScreen);
 /// The same at a quarter of the width and height (`--sender-sky march-quarter`).
 pub const SENDER_SKY_QUARTER: TargetId = TargetId::new("sender_sky_quarter", DO_FORMAT, Place::QuarterScreen);
-
-/// The sky each pixel's march saw (as [`SENDER_SKY`]), at the sampling pass's size, kept for
-/// the next frame's lighting pass (`--sender-sky last-frame`): written by the sampling pass.
-pub const LAST_SKY: TargetId = TargetId::new("history_sender_sky", DO_FORMAT, Place::History);
-
-/// The history of [`LAST_SKY`] where the plan takes the senders' sky from the last frame: at
-/// the samples' size, meaning one thing in every DO mode (the key is the format's alone).
-pub fn last_sky_history(facts: &PlanFacts) -> Vec<HistorySpec> {
-    let wanted = facts.sender_sky() == SenderSky::LastFrame;
-    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, half: facts.half_resolution(), key: 0 };
-    wanted.then_some(spec).into_iter().collect()
-}
-
-/// Whether the last frame left its senders' sky for this one: the plan keeps it and it holds a
-/// frame.
-pub fn last_sky_held(plan: &Plan, history: &crate::render::history::History) -> bool {
-    plan.sender_sky == SenderSky::LastFrame && history.get(LAST_SKY).is_some_and(|h| h.frames > 0)
-}
 
 /// The senders' sky target of a plan: at half or at quarter resolution.
 pub fn target(plan: &Plan) -> TargetId {

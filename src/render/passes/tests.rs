@@ -10,7 +10,8 @@ use crate::render::targets::{
     DO_BLURRED, DO_HALF, DO_HALF_ACCUMULATED, DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
 };
 use depth_pyramid::PYRAMID;
-use sender_sky::{LAST_SKY, SENDER_SKY, SENDER_SKY_QUARTER};
+use sampling::LAST_SKY;
+use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
 
 /// The old set of flags, read from the plan's targets.
 struct Set {

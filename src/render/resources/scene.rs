@@ -1,5 +1,5 @@
-//! The model on the GPU: vertex and index buffers, one draw a material with its bind group, and
-//! the material maps with their mip chains. The G-buffer pass fills it (`GBufferPass::upload`,
+//! The model on the GPU: vertex and index buffers, one draw a material with its bind group and
+//! what its pipeline reads (`Features`), and the material maps with their mip chains. The G-buffer pass fills it (`GBufferPass::upload`,
 //! which owns the material layout and sampler) and draws it.
 
 use rayon::prelude::*;
@@ -13,7 +13,65 @@ pub(crate) struct Draw {
     pub index_count: u32,
     pub bind_group: wgpu::BindGroup,
     /// The pipeline it draws with.
-    pub features: crate::render::passes::gbuffer::Features,
+    pub features: Features,
+}
+
+/// What a material's pipeline reads besides its constants (the shader's overrides).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Features {
+    /// Colour maps (diffuse, specular).
+    pub textured: bool,
+    /// Where the specular strength's map is: none, its own, or the diffuse map's alpha.
+    pub specular: SpecularMap,
+    pub normal_mapped: bool,
+    pub cut_out: bool,
+}
+
+/// Where a material's specular map is read from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SpecularMap {
+    /// No map: the material's constant strength.
+    #[default]
+    None,
+    /// A texture of its own.
+    Own,
+    /// The diffuse map's alpha (the specular map's red, packed there at upload: one sample
+    /// for both maps, with the same texels and the same mips, since the alpha of an sRGB texture
+    /// is linear like the specular map's own format).
+    DiffuseAlpha,
+}
+
+impl SpecularMap {
+    /// Where material `m`'s specular map goes: into its diffuse map's alpha when the two maps
+    /// are one size.
+    pub fn of(m: &crate::scene::Material) -> Self {
+        match (&m.diffuse_map, &m.specular_map) {
+            (_, None) => SpecularMap::None,
+            (Some(d), Some(s)) if (d.width, d.height) == (s.width, s.height) => SpecularMap::DiffuseAlpha,
+            (_, Some(_)) => SpecularMap::Own,
+        }
+    }
+
+    /// The value of the G-buffer shader's `SPECULAR_MAP` constant.
+    pub(crate) fn shader_code(self) -> f64 {
+        match self {
+            SpecularMap::None => 0.0,
+            SpecularMap::Own => 1.0,
+            SpecularMap::DiffuseAlpha => 2.0,
+        }
+    }
+}
+
+impl Features {
+    /// What material `m` of a model reads; its normal map only where the model has tangents.
+    pub fn of(m: &crate::scene::Material, has_tangents: bool) -> Self {
+        Self {
+            textured: m.is_textured(),
+            specular: SpecularMap::of(m),
+            normal_mapped: m.normal_map.is_some() && has_tangents,
+            cut_out: m.cutout.is_some(),
+        }
+    }
 }
 
 /// The model on the GPU.
