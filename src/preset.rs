@@ -374,22 +374,6 @@ impl Measured {
             date: text("date")?,
         })
     }
-
-    /// "38.2 ms (9.1× Off), HDR RMSE 0.0190, FLIP 0.045 on cornell 320x240, llvmpipe": the figures in a line.
-    pub fn summary(&self) -> String {
-        format!(
-            "{:.2} ms ({:.1}× Off), HDR RMSE {:.4}{}, FLIP {:.4} on {} {}x{}, {}",
-            self.ms,
-            self.ms / self.off_ms.max(1e-9),
-            self.hdr_rmse,
-            self.do_rmse.map_or_else(String::new, |d| format!(", DO RMSE {d:.4}")),
-            self.flip,
-            self.scene,
-            self.size.0,
-            self.size.1,
-            self.device
-        )
-    }
 }
 
 impl Preset {

@@ -171,10 +171,11 @@ pub struct RenderArgs {
     /// Multiplier on SSDO's indirect bounce [default: 1]
     #[arg(long, allow_hyphen_values = true)]
     pub indirect_strength: Option<f32>,
-    /// What lights the bounce's senders besides the point lights: march (the sky each sender
-    /// sees, from a half-resolution march), march-quarter (the same march at quarter resolution),
-    /// irradiance (the sky's unoccluded irradiance for its normal) or off (the point lights
-    /// only); all but off add the ambient [default: march]
+    /// What lights the bounce's senders besides the point lights: last-frame (the sky each saw
+    /// in the last frame's march), march (the sky each sender sees, from a half-resolution march
+    /// of its own), march-quarter (the same march at quarter resolution), irradiance (the sky's
+    /// unoccluded irradiance for its normal) or off (the point lights only); all but off add the
+    /// ambient [default: last-frame]
     #[arg(long)]
     pub sender_sky: Option<SenderSky>,
     /// Leave the AO/DO noise unfiltered

@@ -20,14 +20,6 @@ pub fn texture_entry(
     }
 }
 
-/// A bind-group-layout entry for the depth buffer read with `textureLoad`. It is bound as an
-/// unfilterable float texture (`texture_2d<f32>` in WGSL), which WebGPU allows for `depth32float`:
-/// wgpu's GL backend cannot translate `textureLoad` from a `texture_depth_2d`, and on Vulkan the
-/// two compile to the same image read.
-pub fn depth_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    texture_entry(binding, false, wgpu::TextureViewDimension::D2)
-}
-
 pub fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -35,11 +27,6 @@ pub fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
         count: None,
     }
-}
-
-/// A layout entry for the G-buffer's packed normal target (`u32`, read with `textureLoad`).
-pub fn normal_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    uint_entry(binding)
 }
 
 /// A layout entry for an unsigned-integer texture read with `textureLoad` (the packed normal, the

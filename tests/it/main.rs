@@ -19,6 +19,7 @@ mod backends;
 mod cpu {
     mod fuzz_entries;
     mod fuzz_loaders;
+    mod help_defaults;
     mod hostile_files;
     mod imports;
     mod presets;

@@ -160,9 +160,9 @@ impl<'a> Inputs<'a> {
 /// What is bound where a plan lacks an input: one texture of each kind, 1x1, never read (the
 /// shader's override constants skip the code that would). Kept in one place, the renderer's.
 pub struct Fallbacks {
-    /// For a float input: a missing bounce, sampling output or HDR image.
+    /// For a float input: a missing sampling output, HDR image or senders' sky.
     pub absent_float: wgpu::TextureView,
-    /// For an integer input: a missing depth pyramid.
+    /// For an integer input: a missing bounce (`Rg32Uint`) or depth pyramid.
     pub absent_uint: wgpu::TextureView,
 }
 
