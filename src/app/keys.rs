@@ -39,7 +39,11 @@ impl super::Viewer {
             self.act(Action::LoadModel(path));
         } else {
             self.panel.say(
-                format!("{}: drop a skybox folder, a panorama image or a model (.obj, .gltf, .glb)", path.display()),
+                format!(
+                    "{}: drop a skybox folder, a panorama image or a model ({})",
+                    path.display(),
+                    crate::scene::files::model_extensions()
+                ),
                 true,
             );
         }

@@ -359,7 +359,7 @@ fn files_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Ac
     if let Some(path) = path_field(ui, &mut state.sky_path, "sky folder or panorama.hdr") {
         actions.push(Action::LoadSky(path));
     }
-    ui.label("Model: .obj, .gltf, .glb (or drop one on the window)");
+    ui.label(format!("Model: {} (or drop one on the window)", crate::scene::files::model_extensions()));
     if let Some(path) = path_field(ui, &mut state.model_path, "path/to/model.obj or .glb") {
         actions.push(Action::LoadModel(path));
     }

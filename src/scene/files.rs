@@ -318,6 +318,30 @@ impl ModelFolder {
     }
 }
 
+/// The model formats this program loads and their extensions: the one list every check and
+/// message reads.
+pub const MODEL_FORMATS: [(&str, &[&str]); 2] = [("OBJ", &["obj"]), ("glTF 2.0", &["gltf", "glb"])];
+
+/// Whether `path`'s extension is one of `extensions`, in any letter case.
+pub fn has_extension(path: &Path, extensions: &[&str]) -> bool {
+    path.extension().is_some_and(|e| extensions.iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
+/// "OBJ (.obj) and glTF 2.0 (.gltf, .glb)": the formats in words.
+pub fn model_formats() -> String {
+    let each = MODEL_FORMATS.map(|(name, exts)| format!("{name} ({})", dotted(exts)));
+    each.join(" and ")
+}
+
+/// ".obj, .gltf, .glb": every model extension.
+pub fn model_extensions() -> String {
+    dotted(&MODEL_FORMATS.iter().flat_map(|(_, exts)| exts.iter().copied()).collect::<Vec<_>>())
+}
+
+fn dotted(extensions: &[&str]) -> String {
+    extensions.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
+}
+
 /// The kind of a model file in another format than OBJ or glTF, by its extension (read as OBJ it would
 /// say only that it holds no triangles).
 pub fn other_model_kind(path: &Path) -> Option<&'static str> {

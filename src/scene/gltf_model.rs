@@ -45,7 +45,7 @@ const MAX_DEPTH: usize = 64;
 
 /// Whether `path` names a glTF file by its extension.
 pub fn is_gltf(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+    super::files::has_extension(path, super::files::MODEL_FORMATS[1].1)
 }
 
 /// Loads a glTF 2.0 file with its buffers and base colour textures. Everything it names is read

@@ -17,18 +17,19 @@ pub const SKYBOX_ROOT: &str = "skyboxes";
 /// The default number of point lights, as in the SSDO course project.
 pub const DEFAULT_LIGHTS: usize = 8;
 
-/// Whether `path` names a model file this program loads: `.obj`, `.gltf` or `.glb`.
+/// Whether `path` names a model file this program loads (`files::MODEL_FORMATS`).
 pub fn is_model(path: &Path) -> bool {
-    path.extension().is_some_and(|e| ["obj", "gltf", "glb"].iter().any(|x| e.eq_ignore_ascii_case(x)))
+    super::files::MODEL_FORMATS.iter().any(|(_, extensions)| super::files::has_extension(path, extensions))
 }
 
 /// Loads a model file by its extension: glTF 2.0 (`.gltf`, `.glb`) or else Wavefront OBJ, with
 /// its materials and textures, within the run's memory budget.
 pub fn load_model_file(path: &Path) -> Result<Model> {
     if panorama::is_image(path) {
+        let formats = super::files::model_formats();
         return Err(crate::Error::input(
             path,
-            "an image, not a model: a panorama sky goes to --skybox; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)",
+            format!("an image, not a model: a panorama sky goes to --skybox; models load from {formats}"),
         ));
     }
     if gltf_model::is_gltf(path) {

@@ -133,7 +133,7 @@ pub fn load_obj(path: &Path) -> Result<Model> {
 pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     let input = |problem: String| Error::input(path, problem);
     if let Some(kind) = other_model_kind(path) {
-        return Err(input(format!("a {kind} file; models load from OBJ (.obj) and glTF 2.0 (.gltf, .glb)")));
+        return Err(input(format!("a {kind} file; models load from {}", super::files::model_formats())));
     }
     check_size(path).map_err(input)?;
     let bytes = read_bounded(path, MAX_OBJ_BYTES).map_err(input)?;
