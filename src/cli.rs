@@ -333,6 +333,10 @@ pub(crate) struct BenchArgs {
     /// the sky and the tone map are passes of their own
     #[arg(long)]
     pub(crate) hdr: bool,
+    /// Degrees the camera turns about its target every frame, -180 to 180 (0: a still view,
+    /// which stops blurring and reprojecting once it has settled) [default: 0]
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) orbit: Option<f32>,
 }
 
 impl Cli {

@@ -191,6 +191,7 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
 }
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
+    let orbit = ssdo::spec::in_range("orbit", args.orbit.unwrap_or(0.0), -180.0, 180.0)?;
     let preset = args.render.preset()?;
     let settings = args.render.settings_with(Mode::Off, preset.as_ref())?;
     let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
@@ -211,7 +212,8 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
     for mode in Mode::ALL {
         renderer.set_mode(&gpu, mode);
         bar.set_message(mode.name());
-        modes.push((mode, ssdo::headless::bench::measure(&gpu, &mut renderer, &camera, &view, args.frames)?));
+        let frames = (args.frames, orbit);
+        modes.push((mode, ssdo::headless::bench::measure_turning(&gpu, &mut renderer, &camera, &view, frames)?));
         bar.inc(1);
     }
     bar.finish_and_clear();
@@ -221,6 +223,7 @@ fn run_bench(args: &BenchArgs) -> Result<()> {
         timestamps,
         size,
         frames: args.frames,
+        orbit,
         settings: renderer.settings,
         modes,
     };

@@ -41,6 +41,8 @@ pub struct BenchReport {
     pub timestamps: bool,
     pub size: (u32, u32),
     pub frames: usize,
+    /// Degrees the camera turned about its target every frame (0: a still view).
+    pub orbit: f32,
     pub settings: Settings,
     pub modes: Vec<(Mode, Measurement)>,
 }
@@ -79,6 +81,7 @@ impl BenchReport {
             "timing": if self.timestamps { "timestamp" } else { "wall" },
             "size": [self.size.0, self.size.1],
             "frames": self.frames,
+            "orbit_deg": self.orbit,
             "variant": s.sampling.variant.name(),
             "samples": s.sampling.samples,
             "blur": s.blur,
@@ -99,7 +102,12 @@ impl BenchReport {
         };
         let count = s.sampling.count_label();
         let _ = writeln!(out, "device: {}{software}", self.device);
-        let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames", self.frames);
+        let camera = if self.orbit == 0.0 {
+            "a still camera".to_string()
+        } else {
+            format!("the camera turning {}° a frame", self.orbit)
+        };
+        let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames, {camera}", self.frames);
         let blur = if s.blur { "on" } else { "off" };
         let _ =
             writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.sampling.variant);
@@ -144,6 +152,19 @@ pub fn measure(
     output: &wgpu::TextureView,
     frames: usize,
 ) -> Result<Measurement> {
+    measure_turning(gpu, renderer, camera, output, (frames, 0.0))
+}
+
+/// [`measure`] with the camera turned `orbit` degrees about its target every frame (0: still):
+/// the frame a person gets while the view moves, which pays the blur and the reprojecting
+/// history that a settled view skips.
+pub fn measure_turning(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    camera: &OrbitCamera,
+    output: &wgpu::TextureView,
+    (frames, orbit): (usize, f32),
+) -> Result<Measurement> {
     renderer.apply(gpu);
     let names = renderer.plan().step_names();
     let (mut totals, mut walls) = (Vec::new(), Vec::new());
@@ -152,7 +173,8 @@ pub fn measure(
         let started = std::time::Instant::now();
         let mut encoder =
             gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("measure_encoder") });
-        renderer.encode(gpu, &mut encoder, camera, output);
+        let turned = OrbitCamera { yaw_deg: camera.yaw_deg + orbit * frame as f32, ..*camera };
+        renderer.encode(gpu, &mut encoder, &turned, output);
         gpu.queue.submit([encoder.finish()]);
         renderer.timings_submitted();
         gpu.wait()?;

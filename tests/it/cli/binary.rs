@@ -134,6 +134,15 @@ fn bench_json_has_every_mode_and_pass() {
     }
     assert!(json["modes"]["both"]["passes"].get("ssao_ssdo").is_some() || json["timing"] != "timestamp");
     assert!(json["ratios"]["ssdo_over_ssao"].as_f64().is_some());
+    assert_eq!(json["orbit_deg"], 0.0, "a still camera by default");
+    // --orbit: the camera turns every frame, and the report says so; past half a turn is refused.
+    let turning = ssdo(&["bench", "--size", "32x24", "--frames", "2", "--orbit", "-1.5", "--json"]);
+    assert!(turning.status.success(), "{}", stderr(&turning));
+    let json: serde_json::Value = serde_json::from_slice(&turning.stdout).expect("stdout is JSON");
+    assert_eq!(json["orbit_deg"], -1.5);
+    let table = ssdo(&["bench", "--size", "32x24", "--frames", "2", "--orbit", "1"]);
+    assert!(String::from_utf8_lossy(&table.stdout).contains("the camera turning 1° a frame"), "{}", stderr(&table));
+    crate::common::refused(&["bench", "--orbit", "200"], 2, "--orbit 200: must be a finite number from -180 to 180");
 }
 
 #[test]
