@@ -80,20 +80,11 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         ModeChoice::One(mode) => vec![mode],
         ModeChoice::All => Mode::ALL.to_vec(),
     };
-    let preset = args.render.preset()?;
-    let settings = args.render.settings_with(modes[0], preset.as_ref())?;
-    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
-    Renderer::check_memory(size, &settings, features, args.raw || args.stats, &modes)?;
-    output::check_folder(&args.out)?;
-    let (scene, sky) = load_scene(&args.scene)?;
-    let camera = args.scene.camera(&scene)?;
-    let gpu = Gpu::headless()?;
-    gpu.check_size(size.0, size.1)?;
-    warn_if_elsewhere(preset.as_ref(), &gpu, size);
-    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
     // --raw, --stats and --truth read the linear HDR image back; otherwise the frame tone-maps
     // in place.
-    renderer.keep_hdr(&gpu, args.raw || args.stats || args.truth);
+    let hdr = args.raw || args.stats || args.truth;
+    let Headless { gpu, scene, sky, camera, mut renderer, size } =
+        set_up((&args.scene, &args.render), args.size, (&modes, hdr), Some(&args.out))?;
     let truth = if args.truth { Some(trace_truth(&gpu, &mut renderer, (&scene, &sky), &camera, args)?) } else { None };
     let mut errors = Vec::new();
     let mut panels = Vec::new();
@@ -183,6 +174,43 @@ fn trace_truth(
     truth
 }
 
+/// What `capture` and `bench` set up alike: the device, the scene and sky, the camera, and the
+/// renderer at the first of the modes.
+struct Headless {
+    gpu: Gpu,
+    scene: ssdo::scene::Scene,
+    sky: ssdo::scene::Skybox,
+    camera: ssdo::scene::OrbitCamera,
+    renderer: Renderer,
+    size: (u32, u32),
+}
+
+/// The settings from the preset and the flags, checked against the memory budget for `modes`
+/// (with the HDR image kept: `hdr`) before `out` (where there is one) is checked and anything is
+/// loaded; then the scene, the camera, the device and the renderer.
+fn set_up(
+    (scene_args, render_args): (&SceneArgs, &ssdo::spec::RenderArgs),
+    size: cli::Size,
+    (modes, hdr): (&[Mode], bool),
+    out: Option<&std::path::Path>,
+) -> Result<Headless> {
+    let preset = render_args.preset()?;
+    let settings = render_args.settings_with(modes[0], preset.as_ref())?;
+    let (size, features) = ((size.0, size.1), ssdo::render::SceneFeatures::lit(scene_args.lights));
+    Renderer::check_memory(size, &settings, features, hdr, modes)?;
+    if let Some(out) = out {
+        output::check_folder(out)?;
+    }
+    let (scene, sky) = load_scene(scene_args)?;
+    let camera = scene_args.camera(&scene)?;
+    let gpu = Gpu::headless()?;
+    gpu.check_size(size.0, size.1)?;
+    warn_if_elsewhere(preset.as_ref(), &gpu, size);
+    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
+    renderer.keep_hdr(&gpu, hdr);
+    Ok(Headless { gpu, scene, sky, camera, renderer, size })
+}
+
 /// The scene and sky of `args`, with a spinner on the terminal while each loads.
 fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skybox)> {
     let model = progress::spinner("loading the model", || args.load_model())?;
@@ -192,17 +220,8 @@ fn load_scene(args: &SceneArgs) -> Result<(ssdo::scene::Scene, ssdo::scene::Skyb
 
 fn run_bench(args: &BenchArgs) -> Result<()> {
     let orbit = ssdo::spec::in_range("orbit", args.orbit.unwrap_or(0.0), -180.0, 180.0)?;
-    let preset = args.render.preset()?;
-    let settings = args.render.settings_with(Mode::Off, preset.as_ref())?;
-    let (size, features) = ((args.size.0, args.size.1), ssdo::render::SceneFeatures::lit(args.scene.lights));
-    Renderer::check_memory(size, &settings, features, args.hdr, &Mode::ALL)?;
-    let (scene, sky) = load_scene(&args.scene)?;
-    let camera = args.scene.camera(&scene)?;
-    let gpu = Gpu::headless()?;
-    gpu.check_size(size.0, size.1)?;
-    warn_if_elsewhere(preset.as_ref(), &gpu, size);
-    let mut renderer = Renderer::new(&gpu, &scene, &sky, size, CAPTURE_FORMAT, settings)?;
-    renderer.keep_hdr(&gpu, args.hdr);
+    let Headless { gpu, camera, mut renderer, size, .. } =
+        set_up((&args.scene, &args.render), args.size, (&Mode::ALL, args.hdr), None)?;
     let timestamps = renderer.enable_timing(&gpu);
     log::info!("planned: {} modes × {} frames at {}x{}", Mode::ALL.len(), args.frames + 2, size.0, size.1);
     let bar = progress::bar(Mode::ALL.len() as u64, " modes");
