@@ -154,7 +154,7 @@ impl Viewer {
             panels.push((caption, image));
         }
         if let Some(truth) = self.truth_for_compare() {
-            let image = compare::overlay(&panels[0].1, &truth.overlay(self.renderer.settings.exposure));
+            let image = truth.image(&panels[0].1, self.renderer.settings.exposure);
             panels.push((truth.caption(), image));
             let maps = crate::headless::truth::error_maps(&errors, self.renderer.size());
             for (e, map) in errors.iter().zip(maps) {

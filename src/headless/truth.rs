@@ -116,8 +116,7 @@ impl ViewTruth {
     /// The truth displayed as `gpu_image` is (the same exposure and tone curve), the GPU's own
     /// pixels where nothing is measured.
     pub fn image(&self, gpu_image: &RgbaImage, exposure: f32) -> RgbaImage {
-        let rgb = image::DynamicImage::ImageRgba8(gpu_image.clone()).to_rgb8();
-        image::DynamicImage::ImageRgb8(self.truth.displayed(&rgb, self.ambient, exposure)).to_rgba8()
+        crate::compare::overlay(gpu_image, &self.overlay(exposure))
     }
 
     /// The frame `renderer` has just drawn in `mode` (as `image`, displayed) against the truth,
