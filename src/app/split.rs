@@ -16,14 +16,27 @@ impl Viewer {
     /// Draws the image right of a split's divider into its texture, in `encoder`, when the split
     /// is between two modes (the second renderer made, or made anew, as needed).
     pub(super) fn encode_second(&mut self, encoder: &mut wgpu::CommandEncoder) -> Result<()> {
+        let camera = self.view_camera();
+        if self.second_for_display()? {
+            let second = self.split.second.as_mut().expect("the display's second renderer");
+            second.renderer.encode(&self.gpu, encoder, &camera, &second.view);
+        }
+        Ok(())
+    }
+
+    /// The second renderer as the display wants it now: made (or made anew at the view's size)
+    /// where the split is between two modes, with the view's settings in the right side's mode;
+    /// forgotten otherwise. Drawing and F12 both take it from here, so a screenshot taken before
+    /// the next frame is drawn already shows the side just chosen. Whether there is one.
+    fn second_for_display(&mut self) -> Result<bool> {
         let Display::Split(Side::Mode(mode)) = self.panel.truth.display else {
             self.drop_second();
-            return Ok(());
+            return Ok(false);
         };
         let size = self.renderer.size();
+        let settings = crate::render::Settings { mode, ..self.renderer.settings };
         if self.split.second.as_ref().is_none_or(|s| s.renderer.size() != size) {
             self.drop_second();
-            let settings = crate::render::Settings { mode, ..self.renderer.settings };
             let renderer = Renderer::new(&self.gpu, &self.scene, &self.sky, size, self.config.format, settings)?;
             let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("viewer_split_right"),
@@ -39,12 +52,10 @@ impl Viewer {
             let id = self.egui_renderer.register_native_texture(&self.gpu.device, &view, wgpu::FilterMode::Nearest);
             self.split.second = Some(SecondView { renderer, view, id });
         }
-        let camera = self.view_camera();
         if let Some(second) = &mut self.split.second {
-            second.renderer.settings = crate::render::Settings { mode, ..self.renderer.settings };
-            second.renderer.encode(&self.gpu, encoder, &camera, &second.view);
+            second.renderer.settings = settings;
         }
-        Ok(())
+        Ok(true)
     }
 
     /// Forgets the second renderer (its scene, sky or lights are no longer the view's).
@@ -59,12 +70,14 @@ impl Viewer {
         self.split.second.as_ref().is_some_and(|s| s.renderer.converging())
     }
 
-    /// The right side's mode as a settled image of the view, if a second renderer draws it.
+    /// The right side's mode as a settled image of the view, where the split is between two
+    /// modes: the side chosen now, even if no frame has drawn it yet.
     pub(super) fn capture_second(&mut self, camera: &OrbitCamera) -> Result<Option<image::RgbaImage>> {
-        match &mut self.split.second {
-            Some(second) => capture_settled(&self.gpu, &mut second.renderer, camera).map(Some),
-            None => Ok(None),
+        if !self.second_for_display()? {
+            return Ok(None);
         }
+        let second = self.split.second.as_mut().expect("the display's second renderer");
+        capture_settled(&self.gpu, &mut second.renderer, camera).map(Some)
     }
 
     /// The divider's share of the mouse: a press within a few pixels of it takes it, a move then

@@ -371,7 +371,15 @@ fn viewer_traces_the_truth_of_its_view_and_splits_two_modes_at_a_divider() {
             .collect();
         let mean = diffs.iter().map(|d| *d as f64).sum::<f64>() / diffs.len() as f64;
         let max = diffs.iter().copied().max().unwrap_or(0);
-        assert!(mean <= 0.5 && max <= 6, "{mode}'s side of the split: mean {mean:.3}, max {max}: {command}");
+        if !(mean <= 0.5 && max <= 6) {
+            // Kept for a look: the screenshot, the mode's own capture and the viewer's log.
+            let kept = Path::new(env!("CARGO_TARGET_TMPDIR")).join("viewer-split");
+            std::fs::create_dir_all(&kept).unwrap();
+            shot.save(kept.join("screenshot.png")).unwrap();
+            own.save(kept.join(format!("{mode}.png"))).unwrap();
+            std::fs::write(kept.join("viewer.log"), log(dir)).unwrap();
+            panic!("{mode}'s side of the split: mean {mean:.3}, max {max}: {command} (images in {})", kept.display());
+        }
     }
     let off = image::open(out.path().join("off.png")).unwrap().to_rgb8();
     assert_ne!(shot, off, "the right of the divider is not Off's");
