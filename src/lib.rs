@@ -11,6 +11,7 @@ pub mod error;
 pub mod gpu;
 pub mod guard;
 pub mod headless;
+pub mod knobs;
 pub mod output;
 pub mod preset;
 pub mod reference;

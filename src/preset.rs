@@ -12,54 +12,16 @@ use std::path::Path;
 
 use serde_json::{json, Map, Value};
 
-use crate::render::{Mode, SenderSky, Settings, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::knobs::Knobs;
+use crate::render::Mode;
 use crate::text::num;
 use crate::{Error, Result};
 
 /// The version of the file format this build writes and reads.
 pub const FORMAT: u64 = 1;
 
-/// The keys of a preset's `settings`, in the order it writes them (and tune's CSV columns).
-pub const SETTINGS_KEYS: [&str; 11] = [
-    "variant",
-    "samples",
-    "slices",
-    "steps",
-    "depth_pyramid",
-    "radius_scale",
-    "blur",
-    "half_resolution",
-    "accumulate",
-    "sender_sky",
-    "indirect_strength",
-];
-
 /// The largest preset file read: one that tune writes is under a kilobyte.
 pub const MAX_PRESET_BYTES: u64 = 64 << 10;
-
-/// The radius scales a preset may hold: the default radius of the scene it is used on, times this.
-pub const RADIUS_SCALE: (f32, f32) = (0.125, 8.0);
-
-/// The settings a preset sets; everything else (exposure, ambient, strengths of AO and sky, the
-/// view) stays the user's.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Knobs {
-    pub variant: Variant,
-    /// Samples of the points and classic variants.
-    pub samples: usize,
-    /// The march's slices and steps.
-    pub slices: usize,
-    pub steps: usize,
-    pub depth_pyramid: bool,
-    /// The sampling radius as a multiple of the scene's default (a preset travels between scenes).
-    pub radius_scale: f32,
-    pub blur: bool,
-    pub half_resolution: bool,
-    pub accumulate: usize,
-    pub sender_sky: SenderSky,
-    /// 0: no bounce.
-    pub indirect_strength: f32,
-}
 
 /// What tune measured of a preset, and where.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,216 +55,6 @@ pub struct Preset {
     pub mode: Mode,
     pub knobs: Knobs,
     pub measured: Option<Measured>,
-}
-
-impl Default for Knobs {
-    fn default() -> Self {
-        Self::from_settings(&Settings::default())
-    }
-}
-
-impl Knobs {
-    /// The knobs of `settings` (an explicit radius is not a scale: it stays the settings').
-    pub fn from_settings(s: &Settings) -> Self {
-        Self {
-            variant: s.sampling.variant,
-            samples: s.sampling.samples,
-            slices: s.sampling.slices,
-            steps: s.sampling.steps,
-            depth_pyramid: s.sampling.depth_pyramid,
-            radius_scale: s.sampling.radius_scale,
-            blur: s.blur,
-            half_resolution: s.half_resolution,
-            accumulate: s.accumulate,
-            sender_sky: s.sender_sky,
-            indirect_strength: s.indirect_strength,
-        }
-    }
-
-    /// Sets these knobs in `s`. The radius goes back to the scene's default times the scale.
-    pub fn apply(&self, s: &mut Settings) {
-        if s.sampling.variant != self.variant {
-            s.ambient = self.variant.decl().default_ambient;
-        }
-        s.sampling.variant = self.variant;
-        s.sampling.samples = self.samples;
-        s.sampling.slices = self.slices;
-        s.sampling.steps = self.steps;
-        s.sampling.depth_pyramid = self.depth_pyramid;
-        s.sampling.radius = None;
-        s.sampling.radius_scale = self.radius_scale;
-        s.blur = self.blur;
-        s.half_resolution = self.half_resolution;
-        s.accumulate = self.accumulate;
-        s.sender_sky = self.sender_sky;
-        s.indirect_strength = self.indirect_strength;
-    }
-
-    /// Sets these knobs in `s` with the radius made a length for a scene whose default radius is
-    /// `default_radius` (what the viewer shows and its command line states).
-    pub fn apply_resolved(&self, s: &mut Settings, default_radius: f32) {
-        self.apply(s);
-        s.sampling = s.sampling.resolved(default_radius);
-    }
-
-    /// The settings: `base` with these knobs.
-    pub fn settings(&self, base: Settings) -> Settings {
-        let mut s = base;
-        self.apply(&mut s);
-        s
-    }
-
-    /// Every value within its range, or the problem naming its key in the file and what is
-    /// accepted.
-    pub fn check(&self) -> std::result::Result<(), String> {
-        for (key, n, count) in [
-            ("samples", self.samples, SAMPLES),
-            ("slices", self.slices, SLICES),
-            ("steps", self.steps, STEPS),
-            ("accumulate", self.accumulate, ACCUMULATE),
-        ] {
-            if !count.range().contains(&n) {
-                return Err(format!(
-                    "settings.{key}: {n} is out of range; expected a whole number from {} to {}",
-                    count.min, count.max
-                ));
-            }
-        }
-        let within = |key: &str, v: f32, (lo, hi): (f32, f32)| {
-            if v.is_finite() && (lo..=hi).contains(&v) {
-                Ok(())
-            } else {
-                Err(format!(
-                    "settings.{key}: {} is out of range; expected a finite number from {} to {}",
-                    num(v),
-                    num(lo),
-                    num(hi)
-                ))
-            }
-        };
-        within("radius_scale", self.radius_scale, RADIUS_SCALE)?;
-        within("indirect_strength", self.indirect_strength, (0.0, crate::render::settings::MAX_GAIN))
-    }
-
-    /// The flags that give these knobs on the command line (those at their defaults left out).
-    pub fn flags(&self, default_radius: f32) -> Vec<String> {
-        let base = Knobs::from_settings(&Settings::for_variant(self.variant));
-        let mut out = Vec::new();
-        let mut flag = |name: &str, value: Option<String>| {
-            out.push(format!("--{name}"));
-            out.extend(value);
-        };
-        if self.variant != Variant::default() {
-            flag("variant", Some(self.variant.name().into()));
-        }
-        if self.variant.decl().marched_lengths {
-            if self.slices != base.slices {
-                flag("slices", Some(self.slices.to_string()));
-            }
-            if self.steps != base.steps {
-                flag("steps", Some(self.steps.to_string()));
-            }
-            if self.depth_pyramid {
-                flag("depth-pyramid", None);
-            }
-        } else if self.samples != base.samples {
-            flag("samples", Some(self.samples.to_string()));
-        }
-        if self.radius_scale != 1.0 {
-            flag("radius", Some(format!("{}", default_radius * self.radius_scale)));
-        }
-        if !self.blur {
-            flag("no-blur", None);
-        }
-        if !self.half_resolution {
-            flag("full-res", None);
-        }
-        if self.accumulate != base.accumulate {
-            flag("accumulate", Some(self.accumulate.to_string()));
-        }
-        if self.sender_sky != base.sender_sky {
-            flag("sender-sky", Some(self.sender_sky.name().into()));
-        }
-        if self.indirect_strength != base.indirect_strength {
-            flag("indirect-strength", Some(self.indirect_strength.to_string()));
-        }
-        out
-    }
-
-    /// "march 2×16, radius 1x, blur, half, 16 frames, senders march": the knobs in a line.
-    pub fn label(&self) -> String {
-        let counts = self.variant.decl().count_label(self.samples, self.slices, self.steps);
-        let bounce = if self.indirect_strength == 0.0 {
-            "no bounce".to_string()
-        } else {
-            format!("senders {}", self.sender_sky)
-        };
-        format!(
-            "{} {counts}{}, radius {:.2}x, blur {}, {} res, {} frames, {bounce}",
-            self.variant,
-            if self.depth_pyramid && self.variant.decl().marched_lengths { " pyramid" } else { "" },
-            self.radius_scale,
-            if self.blur { "on" } else { "off" },
-            if self.half_resolution { "half" } else { "full" },
-            self.accumulate,
-        )
-    }
-
-    fn json(&self) -> Value {
-        json!({
-            "variant": self.variant.name(),
-            "samples": self.samples,
-            "slices": self.slices,
-            "steps": self.steps,
-            "depth_pyramid": self.depth_pyramid,
-            "radius_scale": self.radius_scale,
-            "blur": self.blur,
-            "half_resolution": self.half_resolution,
-            "accumulate": self.accumulate,
-            "sender_sky": self.sender_sky.name(),
-            "indirect_strength": self.indirect_strength,
-        })
-    }
-
-    fn from_json(v: &Value, at: &Reader) -> Result<Self> {
-        let object = at.object(v, "settings")?;
-        at.only(object, "settings", &SETTINGS_KEYS)?;
-        let variant = match object.get("variant") {
-            Some(v) => at.parse::<Variant>(v, "settings.variant")?,
-            None => Variant::default(),
-        };
-        let mut k = Knobs::from_settings(&Settings::for_variant(variant));
-        let count = |key: &str, n: &mut usize| -> Result<()> {
-            if let Some(v) = object.get(key) {
-                *n = at.count(v, &format!("settings.{key}"))?;
-            }
-            Ok(())
-        };
-        count("samples", &mut k.samples)?;
-        count("slices", &mut k.slices)?;
-        count("steps", &mut k.steps)?;
-        count("accumulate", &mut k.accumulate)?;
-        let flag = |key: &str, b: &mut bool| -> Result<()> {
-            if let Some(v) = object.get(key) {
-                *b = v.as_bool().ok_or_else(|| at.bad(&format!("settings.{key}"), "true or false"))?;
-            }
-            Ok(())
-        };
-        flag("depth_pyramid", &mut k.depth_pyramid)?;
-        flag("blur", &mut k.blur)?;
-        flag("half_resolution", &mut k.half_resolution)?;
-        if let Some(v) = object.get("radius_scale") {
-            k.radius_scale = at.number(v, "settings.radius_scale")? as f32;
-        }
-        if let Some(v) = object.get("indirect_strength") {
-            k.indirect_strength = at.number(v, "settings.indirect_strength")? as f32;
-        }
-        if let Some(v) = object.get("sender_sky") {
-            k.sender_sky = at.parse::<SenderSky>(v, "settings.sender_sky")?;
-        }
-        k.check().map_err(|problem| at.error(&problem))?;
-        Ok(k)
-    }
 }
 
 impl Measured {
@@ -423,7 +175,7 @@ impl Preset {
             None => Mode::Ssdo,
         };
         let knobs = match o.get("settings") {
-            Some(v) => Knobs::from_json(v, &at)?,
+            Some(v) => Knobs::from_json(at.object(v, "settings")?).map_err(|problem| at.error(&problem))?,
             None => Knobs::default(),
         };
         let measured = o.get("measured").map(|v| Measured::from_json(v, &at)).transpose()?;
@@ -513,10 +265,6 @@ impl Reader<'_> {
             Some(problem) => Err(self.error(&format!("{key}: {problem}"))),
             None => Ok(text.to_owned()),
         }
-    }
-
-    fn count(&self, v: &Value, key: &str) -> Result<usize> {
-        v.as_u64().map(|n| n as usize).ok_or_else(|| self.bad(key, "a whole number"))
     }
 
     fn number(&self, v: &Value, key: &str) -> Result<f64> {

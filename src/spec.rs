@@ -7,7 +7,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::preset::{Knobs, Preset};
+use crate::knobs::Knobs;
+use crate::preset::Preset;
 use crate::render::sampling::DEFAULT_BIAS;
 use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
 use crate::scene::camera::{DISTANCE_RADII, REACH_RADII};
@@ -147,7 +148,7 @@ pub struct RenderArgs {
     /// The march's reach, in model units [default: 24 radii]
     #[arg(long, allow_hyphen_values = true)]
     pub reach: Option<f32>,
-    /// The march's surface thickness, in model units [default: 1 radius]
+    /// The march's surface thickness, in model units [default: 1 radius, or the preset's multiple of it]
     #[arg(long, allow_hyphen_values = true)]
     pub thickness: Option<f32>,
     /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see docs/accuracy.md)
@@ -340,7 +341,7 @@ impl RenderArgs {
         let mut k = match from {
             Some(k) if k.variant == variant => k,
             Some(k) => Knobs { variant, samples: variant.decl().default_samples, ..k },
-            None => Knobs::from_settings(&Settings::for_variant(variant)),
+            None => Knobs::for_variant(variant),
         };
         k.samples = self.samples.unwrap_or(k.samples);
         k.slices = self.slices.unwrap_or(k.slices);
@@ -369,6 +370,7 @@ impl RenderArgs {
             radius_scale: k.radius_scale,
             reach: length("reach", self.reach)?,
             thickness: length("thickness", self.thickness)?,
+            thickness_scale: k.thickness_scale,
             bias: non_negative("bias", self.bias)?,
             depth_pyramid: k.depth_pyramid,
         };

@@ -8,7 +8,7 @@ use super::loader::Loaded;
 use super::ui::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
 use crate::headless::capture::capture_converged;
-use crate::render::Mode;
+use crate::render::{Mode, Settings};
 use crate::scene::Scene;
 use crate::{compare, output, Result};
 
@@ -68,7 +68,7 @@ impl Viewer {
             }
             Action::LoadPreset(path) => match crate::preset::Preset::load(&path) {
                 Ok(preset) => {
-                    preset.knobs.apply_resolved(&mut self.renderer.settings, self.scene.default_radius());
+                    preset.knobs.apply(&mut self.renderer.settings);
                     self.panel.say(format!("preset '{}': {}", preset.name, preset.knobs.label()), false);
                     if let Some(warning) = preset.elsewhere(&self.panel.adapter, self.renderer.size()) {
                         self.panel.say(warning, true);
@@ -99,6 +99,9 @@ impl Viewer {
 
     /// The `ssdo capture` command that renders what the 3D view shows.
     pub(super) fn command(&self) -> String {
+        // The lengths a preset gives as multiples, stated as this scene's.
+        let settings = &self.renderer.settings;
+        let settings = Settings { sampling: settings.sampling.resolved(self.scene.default_radius()), ..*settings };
         let view = crate::reproduce::ViewDescription {
             model: self.model_path.as_deref(),
             skybox: self.sky_path.as_deref(),
@@ -110,7 +113,7 @@ impl Viewer {
             seed: self.panel.seed,
             camera: &self.camera,
             fly: self.controls.fly,
-            settings: &self.renderer.settings,
+            settings: &settings,
             size: self.renderer.size(),
             truth_rays: self.truth_rays(),
         };

@@ -159,7 +159,7 @@ pub fn panel(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings,
             ui.separator();
             super::truth_ui::section(ui, &mut state.truth, settings.mode);
             ui.separator();
-            preset_section(ui, state, settings, default_radius, &mut actions);
+            preset_section(ui, state, settings, &mut actions);
             ui.separator();
             sampling_section(ui, state, settings, default_radius);
             lighting_section(ui, settings);
@@ -214,18 +214,12 @@ fn mode_section(ui: &mut egui::Ui, settings: &mut Settings, actions: &mut Vec<Ac
 
 /// The quality levels, a preset file, and what the preset taken expects beside what this frame
 /// measures.
-fn preset_section(
-    ui: &mut egui::Ui,
-    state: &mut PanelState,
-    settings: &mut Settings,
-    default_radius: f32,
-    actions: &mut Vec<Action>,
-) {
+fn preset_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, actions: &mut Vec<Action>) {
     use crate::preset::Quality;
     // The level whose knobs the settings hold now, if any.
     let current = Quality::ALL.into_iter().find(|q| {
         let mut s = *settings;
-        q.knobs().apply_resolved(&mut s, default_radius);
+        q.knobs().apply(&mut s);
         s == *settings
     });
     let mut chosen = current;
@@ -239,7 +233,7 @@ fn preset_section(
         .response
         .on_hover_text("tune's picks on the default scene at multiples of the Off frame's time (docs/quality.md)");
     if let Some(level) = chosen.filter(|&q| Some(q) != current) {
-        level.knobs().apply_resolved(settings, default_radius);
+        level.knobs().apply(settings);
         state.preset = Some(level.preset());
     }
     ui.label("Preset file (from ssdo tune)");
@@ -258,6 +252,11 @@ fn preset_section(
     }
 }
 
+/// The panel's name of the knob with preset key `key` (`crate::knobs::KNOBS`).
+fn knob_label(key: &str) -> &'static str {
+    crate::knobs::KNOBS.iter().find(|k| k.key == key).map_or("?", |k| k.label)
+}
+
 /// The variant's counts and lengths, the bias, blur, half resolution and accumulation.
 fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) {
     ui.label("Sampling");
@@ -274,17 +273,19 @@ fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Se
             *value = Some(v);
         }
     };
-    length(ui, &mut settings.sampling.radius, default_radius, default_radius * 5.0, "radius");
+    // The lengths in use (a preset's multiples made this scene's), within the sliders' ranges.
+    let now = settings.sampling.lengths(default_radius);
+    let defaults = crate::render::Sampling::default().lengths(default_radius);
+    length(ui, &mut settings.sampling.radius, now.radius, (default_radius * 5.0).max(now.radius), "radius");
     if settings.sampling.variant.decl().marched_lengths {
-        let defaults = crate::render::Sampling::default().lengths(default_radius);
-        let (reach, thickness) = (defaults.reach, defaults.thickness);
-        length(ui, &mut settings.sampling.reach, reach, reach * 4.0, "reach");
-        length(ui, &mut settings.sampling.thickness, thickness, thickness * 10.0, "thickness");
-        ui.checkbox(&mut settings.sampling.depth_pyramid, "depth pyramid for far steps");
+        length(ui, &mut settings.sampling.reach, now.reach, (defaults.reach * 4.0).max(now.reach), "reach");
+        let thickness = (defaults.thickness * 10.0).max(now.thickness);
+        length(ui, &mut settings.sampling.thickness, now.thickness, thickness, "thickness");
+        ui.checkbox(&mut settings.sampling.depth_pyramid, knob_label("depth_pyramid"));
     }
     slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
-    ui.checkbox(&mut settings.blur, "blur");
-    ui.checkbox(&mut settings.half_resolution, "half resolution")
+    ui.checkbox(&mut settings.blur, knob_label("blur"));
+    ui.checkbox(&mut settings.half_resolution, knob_label("half_resolution"))
         .on_hover_text("sample at half width and height, then upsample by depth and normal");
     // Accumulation: on with the last count it had, off as 1 frame.
     let mut on = settings.accumulates();
@@ -309,7 +310,7 @@ fn lighting_section(ui: &mut egui::Ui, settings: &mut Settings) {
     slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
     slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
     slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
-    egui::ComboBox::from_label("bounce senders lit by")
+    egui::ComboBox::from_label(knob_label("sender_sky"))
         .selected_text(settings.sender_sky.name())
         .show_ui(ui, |ui| {
             for option in crate::render::SenderSky::ALL {

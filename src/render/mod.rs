@@ -92,7 +92,6 @@ impl Renderer {
     ) -> Result<Self> {
         gpu.check_size(size.0, size.1)?;
         let device = &gpu.device;
-        let settings = Settings { sampling: settings.sampling.resolved(scene.default_radius()), ..settings };
         // As the G-buffer's upload decides (`GBufferPass::upload`).
         let normal_mapped = scene.model.is_normal_mapped() && scene.model.has_tangents();
         let features = SceneFeatures { lights: scene.lights.len(), normal_mapped };

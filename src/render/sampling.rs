@@ -38,6 +38,9 @@ pub struct Sampling {
     pub radius_scale: f32,
     pub reach: Option<f32>,
     pub thickness: Option<f32>,
+    /// The default thickness is the scene's times this (a preset's, which travels between
+    /// scenes); an explicit `thickness` wins over it.
+    pub thickness_scale: f32,
     /// Depth bias of the occlusion test, as a fraction of the radius.
     pub bias: f32,
     /// The march's far steps read a closest-depth pyramid instead of the depth buffer (off by
@@ -75,6 +78,7 @@ impl Sampling {
             radius_scale: 1.0,
             reach: None,
             thickness: None,
+            thickness_scale: 1.0,
             bias: DEFAULT_BIAS,
             depth_pyramid: false,
         }
@@ -115,15 +119,13 @@ impl Sampling {
         self.variant.decl().marched_lengths && self.depth_pyramid
     }
 
-    /// The same sampling with the radius scale made an explicit radius for a scene whose default
-    /// radius is `default_radius` (what the reproduce line and the panel show).
+    /// The same sampling with the radius and thickness scales made explicit lengths for a scene
+    /// whose default radius is `default_radius` (what the reproduce line states).
     pub fn resolved(&self, default_radius: f32) -> Self {
-        match self.radius {
-            None if self.radius_scale != 1.0 => {
-                Self { radius: Some(default_radius * self.radius_scale), radius_scale: 1.0, ..*self }
-            }
-            _ => Self { radius_scale: 1.0, ..*self },
-        }
+        let lengths = self.lengths(default_radius);
+        let radius = self.radius.or((self.radius_scale != 1.0).then_some(lengths.radius));
+        let thickness = self.thickness.or((self.thickness_scale != 1.0).then_some(lengths.thickness));
+        Self { radius, thickness, radius_scale: 1.0, thickness_scale: 1.0, ..*self }
     }
 
     /// The lengths in use for a scene whose default radius is `default_radius`.
@@ -132,7 +134,7 @@ impl Sampling {
         Lengths {
             radius,
             reach: self.reach.unwrap_or(REACH_RADII * default_radius).max(radius),
-            thickness: self.thickness.unwrap_or(THICKNESS_RADII * default_radius),
+            thickness: self.thickness.unwrap_or(THICKNESS_RADII * default_radius * self.thickness_scale),
             bias_length: self.bias * radius,
         }
     }

@@ -170,8 +170,7 @@ impl Bench<'_> {
         maps: Option<&mut MapFiles>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
-        let Config { mode, variant, samples, steps, blur, pyramid, bounce, accumulate, orbit, half_resolution } =
-            config;
+        let (mode, variant, orbit, bounce) = (config.mode, config.knobs.variant, config.orbit, config.bounce());
         renderer.settings = config.settings(radius);
         let ms = if self.timed {
             crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms
@@ -193,10 +192,10 @@ impl Bench<'_> {
         Ok(Row {
             mode,
             variant,
-            samples,
-            steps,
-            pyramid,
-            blur,
+            samples: config.samples(),
+            steps: config.steps(),
+            pyramid: config.pyramid(),
+            blur: config.knobs.blur,
             // What lit the senders (the variants that do not march take `march` for `last-frame`).
             bounce: if mode.declaration().directional_occlusion {
                 bounce.map(|b| b.for_variant(variant))
@@ -204,9 +203,9 @@ impl Bench<'_> {
                 None
             },
             radius: if mode == Mode::Off { 0.0 } else { radius },
-            accumulate,
+            accumulate: config.knobs.accumulate,
             orbit,
-            half_resolution,
+            half_resolution: config.knobs.half_resolution,
             ms,
             ao_rmse,
             do_rmse,

@@ -64,7 +64,7 @@ impl Row {
             if self.half_resolution { " half" } else { "" },
             self.radius,
             self.blur,
-            Row::bounce_label(self.mode, config.bounce),
+            Row::bounce_label(self.mode, config.bounce()),
             self.accumulate,
             self.orbit,
             self.ms,

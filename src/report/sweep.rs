@@ -2,29 +2,19 @@
 //! radius. The count is known before anything renders, so the report can say its planned work.
 
 use super::options::ReportOptions;
+use crate::knobs::Knobs;
 use crate::render::variant::{Sampler, VARIANTS};
-use crate::render::{Mode, Sampling, SenderSky, Settings, Variant};
+use crate::render::{Mode, SenderSky, Settings, Variant};
 
-/// One configuration the report renders and measures at a radius.
+/// One configuration the report renders and measures at a radius: the knobs in a mode (the
+/// radius given apart), and the camera's turn a frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Config {
     pub mode: Mode,
-    pub variant: Variant,
-    /// Samples of the points and classic variants; slices of the march (0 for Off).
-    pub samples: usize,
-    /// Steps a side of the march's slices (0 otherwise).
-    pub steps: usize,
-    pub blur: bool,
-    /// The march's far steps read the depth pyramid.
-    pub pyramid: bool,
-    /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
-    pub bounce: Option<SenderSky>,
-    /// Frames averaged (1: a single frame), and the degrees the camera turns about the model
-    /// each of them (0: still); the error is taken at the last frame, in the view of the truth.
-    pub accumulate: usize,
+    pub knobs: Knobs,
+    /// The degrees the camera turns about the model each of the frames averaged (0: still); the
+    /// error is taken at the last frame, in the view of the truth.
     pub orbit: f32,
-    /// The sampling pass at half resolution, upsampled.
-    pub half_resolution: bool,
 }
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
@@ -53,22 +43,16 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
         };
         for mode in Mode::sampled() {
             let directional = mode.declaration().directional_occlusion;
-            let bounce = directional.then_some(base.sender_sky);
             for &(samples, steps) in &counts {
-                // The pyramid's and the other bounces' rows: one frame at the default resolution.
-                let at = |blur, pyramid, bounce| Config {
-                    mode,
-                    samples,
-                    steps,
-                    blur,
-                    pyramid,
-                    bounce,
-                    half_resolution: base.half_resolution,
-                    ..Config::off(variant)
+                let counted = match decl.sampler {
+                    Sampler::March => Knobs { slices: samples, steps, ..Knobs::for_variant(variant) },
+                    Sampler::Points => Knobs { samples, ..Knobs::for_variant(variant) },
                 };
+                // The pyramid's and the other bounces' rows: one frame at the default resolution.
+                let at = |knobs: Knobs| Config::new(mode, Knobs { accumulate: 1, ..knobs });
                 for (blur, half_resolution) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {
-                        let config = Config { accumulate, half_resolution, ..at(blur, false, bounce) };
+                        let config = Config::new(mode, Knobs { blur, half_resolution, accumulate, ..counted });
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
@@ -76,17 +60,16 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                     }
                 }
                 if decl.marched_lengths && directional {
-                    configs.push(at(true, true, bounce));
+                    configs.push(at(Knobs { depth_pyramid: true, ..counted }));
                 }
                 if variant == Variant::default()
                     && directional
                     && (samples, steps) == (base.sampling.slices, base.sampling.steps)
                 {
-                    for other in SenderSky::ALL.map(Some).into_iter().chain([None]) {
-                        if other != bounce {
-                            configs.push(at(true, false, other));
-                        }
+                    for sender_sky in SenderSky::ALL.into_iter().filter(|&s| s != base.sender_sky) {
+                        configs.push(at(Knobs { sender_sky, ..counted }));
                     }
+                    configs.push(at(Knobs { indirect_strength: 0.0, ..counted }));
                 }
             }
         }
@@ -101,84 +84,70 @@ pub fn planned_configurations(options: &ReportOptions) -> usize {
 }
 
 impl Config {
-    /// The configuration a preset's knobs give in `mode`, and its radius scale. A bounce's
-    /// strength is 1 or none (0), as tune writes it.
-    pub fn of_knobs(mode: Mode, k: &crate::preset::Knobs) -> (Self, f32) {
-        let marches = k.variant.decl().sampler == Sampler::March;
-        let directional = mode.declaration().directional_occlusion;
-        let config = Config {
-            mode,
-            variant: k.variant,
-            samples: if marches { k.slices } else { k.samples },
-            steps: if marches { k.steps } else { 0 },
-            blur: k.blur,
-            pyramid: k.depth_pyramid && marches,
-            bounce: (directional && k.indirect_strength > 0.0).then_some(k.sender_sky),
-            accumulate: k.accumulate,
-            orbit: 0.0,
-            half_resolution: k.half_resolution,
-        };
-        (config, k.radius_scale)
+    /// `knobs` in `mode`, in their canonical form, still.
+    pub fn new(mode: Mode, knobs: Knobs) -> Self {
+        Self { mode, knobs: knobs.canonical(mode), orbit: 0.0 }
+    }
+
+    /// The configuration a preset's knobs give in `mode`, and its radius scale.
+    pub fn of_knobs(mode: Mode, knobs: &Knobs) -> (Self, f32) {
+        (Self::new(mode, Knobs { radius_scale: 1.0, ..*knobs }), knobs.radius_scale)
     }
 
     /// Off under `variant`'s composite: no sampling pass, one still frame.
     pub(crate) fn off(variant: Variant) -> Self {
-        Config {
-            mode: Mode::Off,
-            variant,
-            samples: 0,
-            steps: 0,
-            blur: false,
-            pyramid: false,
-            bounce: None,
-            accumulate: 1,
-            orbit: 0.0,
-            half_resolution: false,
+        let knobs = Knobs { blur: false, half_resolution: false, accumulate: 1, ..Knobs::for_variant(variant) };
+        Self::new(Mode::Off, knobs)
+    }
+
+    fn marches(&self) -> bool {
+        self.knobs.variant.decl().sampler == Sampler::March
+    }
+
+    /// The row's count: samples of the points and classic variants, slices of the march, 0 for
+    /// Off (which samples nothing).
+    pub fn samples(&self) -> usize {
+        match (self.mode, self.marches()) {
+            (Mode::Off, _) => 0,
+            (_, true) => self.knobs.slices,
+            (_, false) => self.knobs.samples,
         }
+    }
+
+    /// Steps a side of the march's slices (0 otherwise).
+    pub fn steps(&self) -> usize {
+        if self.mode != Mode::Off && self.marches() {
+            self.knobs.steps
+        } else {
+            0
+        }
+    }
+
+    /// The march's far steps read the depth pyramid.
+    pub fn pyramid(&self) -> bool {
+        self.knobs.depth_pyramid && self.marches()
+    }
+
+    /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
+    pub fn bounce(&self) -> Option<SenderSky> {
+        let directional = self.mode.declaration().directional_occlusion;
+        (directional && self.knobs.indirect_strength > 0.0).then_some(self.knobs.sender_sky)
     }
 
     /// The renderer's settings for this configuration at `radius`. Every configuration renders
     /// the same lighting (the classic variant keeps its own composite, not its own ambient), so
     /// all meet one truth.
     pub fn settings(&self, radius: f32) -> Settings {
-        let base = Settings::default();
-        let marches = self.variant.decl().sampler == Sampler::March;
-        let defaults = base.sampling;
-        let (slices, steps) = if marches { (self.samples, self.steps) } else { (defaults.slices, defaults.steps) };
-        // No bounce (`none`) is the bounce's strength at 0.
-        let no_bounce = self.bounce.is_none() && self.mode.declaration().directional_occlusion;
-        Settings {
-            mode: self.mode,
-            sampling: Sampling {
-                variant: self.variant,
-                samples: if marches { defaults.samples } else { self.samples.max(1) },
-                slices,
-                steps,
-                depth_pyramid: self.pyramid,
-                radius: Some(radius),
-                ..defaults
-            },
-            blur: self.blur,
-            sender_sky: self.bounce.unwrap_or(base.sender_sky),
-            indirect_strength: if no_bounce { 0.0 } else { base.indirect_strength },
-            accumulate: self.accumulate,
-            half_resolution: self.half_resolution,
-            ..base
-        }
+        let base = Settings { mode: self.mode, ..Settings::default() };
+        let mut s = self.knobs.settings(base);
+        s.ambient = base.ambient;
+        s.sampling.radius = Some(radius);
+        s
     }
 
-    /// The configuration whose error maps the report writes: the default SSAO+SSDO.
+    /// The configuration whose error maps the report writes: the default SSAO+SSDO, still.
     pub fn is_the_default_both(&self) -> bool {
-        let base = Settings::default();
-        self.variant == Variant::default()
-            && (self.samples, self.steps) == (base.sampling.slices, base.sampling.steps)
-            && !self.pyramid
-            && self.blur
-            && self.bounce == Some(base.sender_sky)
-            && self.mode == Mode::Both
-            && self.accumulate == base.accumulate
-            && self.orbit == 0.0
-            && self.half_resolution == base.half_resolution
+        *self == Config::new(Mode::Both, Knobs::default())
     }
 }
 
@@ -230,31 +199,27 @@ mod tests {
         o.orbit = 1.0;
         let orbiting = configurations(&o, true);
         assert_eq!(orbiting.len(), single + 2 * 3 * 3 * 3);
-        assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.accumulate > 1));
-        assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce.is_none() && !c.pyramid));
+        assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.knobs.accumulate > 1));
+        assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce().is_none() && !c.pyramid()));
+        // No two configurations of one radius are the same setting.
+        let distinct: Vec<String> = orbiting.iter().map(|c| format!("{c:?}")).collect();
+        assert_eq!(distinct.iter().collect::<std::collections::HashSet<_>>().len(), orbiting.len());
     }
 
     #[test]
     fn no_bounce_is_a_bounce_of_strength_zero_and_counts_reach_the_variant_they_belong_to() {
-        let none = Config {
-            mode: Mode::Ssdo,
-            variant: Variant::March,
-            samples: 4,
-            steps: 16,
-            blur: true,
-            pyramid: false,
-            bounce: None,
-            accumulate: 4,
-            orbit: 0.0,
-            half_resolution: true,
-        };
+        let knobs = Knobs { slices: 4, accumulate: 4, indirect_strength: 0.0, ..Knobs::default() };
+        let none = Config::new(Mode::Ssdo, knobs);
+        assert_eq!((none.samples(), none.steps(), none.bounce()), (4, 16, None));
         let s = none.settings(0.5);
         assert_eq!((s.accumulate, s.half_resolution), (4, true));
         assert_eq!(
             (s.indirect_strength, s.sampling.slices, s.sampling.steps, s.sampling.radius),
             (0.0, 4, 16, Some(0.5))
         );
-        let points = Config { variant: Variant::Points, samples: 32, steps: 0, bounce: Some(SenderSky::March), ..none };
+        let knobs = Knobs { samples: 32, sender_sky: SenderSky::March, ..Knobs::for_variant(Variant::Points) };
+        let points = Config::new(Mode::Ssdo, knobs);
+        assert_eq!((points.samples(), points.steps(), points.bounce()), (32, 0, Some(SenderSky::March)));
         let s = points.settings(0.5);
         assert_eq!((s.sampling.samples, s.indirect_strength), (32, 1.0));
         assert_eq!((s.sampling.slices, s.sampling.steps), (SLICES.default, STEPS.default));

@@ -185,7 +185,7 @@ pub struct Point {
     /// The search's setting (`None` for Off and for the `also` presets).
     pub candidate: Option<Candidate>,
     /// The setting's knobs (`None` for Off), and the preset's name for an `also` preset.
-    pub knobs: Option<crate::preset::Knobs>,
+    pub knobs: Option<crate::knobs::Knobs>,
     pub name: Option<String>,
     pub ms: f64,
     /// Frames timed for `ms`.
@@ -446,9 +446,10 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
             if index.len() >= options.max_settings {
                 break 'search;
             }
-            let mut point = measure(candidate.config(), candidate.radius_scale(), 1)?;
-            (point.candidate, point.knobs) = (Some(candidate), Some(candidate.knobs()));
-            progress(&format!("{}: {:.2} ms, HDR RMSE {:.4}", candidate.knobs().label(), point.ms, point.hdr_rmse));
+            let (config, scale) = candidate.config();
+            let mut point = measure(config, scale, 1)?;
+            (point.candidate, point.knobs) = (Some(candidate), Some(candidate.knobs));
+            progress(&format!("{}: {:.2} ms, HDR RMSE {:.4}", candidate.knobs.label(), point.ms, point.hdr_rmse));
             index.insert(candidate, points.len());
             points.push(point);
         }

@@ -129,13 +129,13 @@ impl Tune {
         let header: Vec<&str> = measured
             .into_iter()
             .chain(["hdr_rmse_per_view", "mode"])
-            .chain(crate::preset::SETTINGS_KEYS)
+            .chain(crate::knobs::keys())
             .chain(["preset"])
             .collect();
         let rows = self.points.iter().enumerate().filter_map(|(i, p)| {
             let k = p.knobs?;
             let per_view: Vec<String> = p.hdr_per_view.iter().map(|e| format!("{e:.6}")).collect();
-            Some([
+            let measured = [
                 p.front.to_string(),
                 (Some(i) == self.pick).to_string(),
                 format!("{:.4}", p.ms),
@@ -146,19 +146,9 @@ impl Tune {
                 format!("{:.6}", p.flip),
                 per_view.join(" "),
                 options.mode.to_string(),
-                k.variant.to_string(),
-                k.samples.to_string(),
-                k.slices.to_string(),
-                k.steps.to_string(),
-                k.depth_pyramid.to_string(),
-                k.radius_scale.to_string(),
-                k.blur.to_string(),
-                k.half_resolution.to_string(),
-                k.accumulate.to_string(),
-                k.sender_sky.to_string(),
-                k.indirect_strength.to_string(),
-                p.name.clone().unwrap_or_default(),
-            ])
+            ];
+            let knobs = crate::knobs::KNOBS.iter().map(|knob| knob.text(&k));
+            Some(measured.into_iter().chain(knobs).chain([p.name.clone().unwrap_or_default()]).collect::<Vec<_>>())
         });
         output::csv_text(&header, rows)
     }
@@ -245,13 +235,14 @@ impl Tune {
 #[cfg(test)]
 mod tests {
     use super::super::{Candidate, Point, Tune, TuneOptions, Verdict};
+    use crate::knobs::Knobs;
     use crate::render::{Mode, Variant};
 
     fn point(ms: f64, hdr_rmse: f64, slices: usize) -> Point {
-        let candidate = Candidate { slices, ..Candidate::default_of(Mode::Ssdo, Variant::March) };
+        let candidate = Candidate::new(Mode::Ssdo, Knobs { slices, ..Knobs::for_variant(Variant::March) });
         Point {
             candidate: Some(candidate),
-            knobs: Some(candidate.knobs()),
+            knobs: Some(candidate.knobs),
             name: None,
             ms,
             frames_timed: 18,

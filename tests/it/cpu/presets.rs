@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use clap::Parser;
-use ssdo::preset::{Knobs, Measured, Preset, Quality};
+use ssdo::knobs::Knobs;
+use ssdo::preset::{Measured, Preset, Quality};
 use ssdo::render::{Mode, SenderSky, Settings, Variant};
 use ssdo::spec::RenderArgs;
 
@@ -37,6 +38,7 @@ fn preset() -> Preset {
             steps: 24,
             depth_pyramid: false,
             radius_scale: std::f32::consts::SQRT_2,
+            thickness_scale: 0.3,
             blur: false,
             half_resolution: true,
             accumulate: 8,
