@@ -77,3 +77,13 @@ impl Error {
         }
     }
 }
+
+/// `value` if it is finite and within [lo, hi]; otherwise an error naming the flag and the range.
+pub fn in_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
+    if value.is_finite() && (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        let num = crate::text::num;
+        Err(Error::Setting(format!("--{name} {}: must be a finite number from {} to {}", num(value), num(lo), num(hi))))
+    }
+}

@@ -7,10 +7,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::knobs::Knobs;
+use crate::knobs::{Knobs, KNOBS};
 use crate::preset::Preset;
 use crate::render::sampling::DEFAULT_BIAS;
-use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View, ACCUMULATE, SAMPLES, SLICES, STEPS};
+use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View};
 use crate::scene::camera::{DISTANCE_RADII, REACH_RADII};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
@@ -212,14 +212,7 @@ pub fn non_negative(name: &str, value: f32) -> Result<f32> {
     in_range(name, value, 0.0, MAX_LENGTH)
 }
 
-/// `value` if it is finite and within [lo, hi]; otherwise an error naming the flag and the range.
-pub fn in_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
-    if value.is_finite() && (lo..=hi).contains(&value) {
-        Ok(value)
-    } else {
-        Err(Error::Setting(format!("--{name} {}: must be a finite number from {} to {}", num(value), num(lo), num(hi))))
-    }
-}
+pub use crate::error::in_range;
 
 /// A point as the command line takes it: X,Y,Z, each number as short as round-trips exactly.
 pub fn point(p: glam::Vec3) -> String {
@@ -359,37 +352,27 @@ impl RenderArgs {
     /// against its range.
     pub fn settings_with(&self, mode: Mode, preset: Option<&Preset>) -> Result<Settings> {
         let k = self.knobs(preset);
+        KNOBS.iter().try_for_each(|knob| knob.check_flag(&k))?;
         let base = Settings::for_variant(k.variant);
         let length = |name: &str, v: Option<f32>| v.map(|r| non_negative(name, r)).transpose();
-        let sampling = Sampling {
-            variant: k.variant,
-            samples: SAMPLES.check(k.samples)?,
-            slices: SLICES.check(k.slices)?,
-            steps: STEPS.check(k.steps)?,
-            radius: length("radius", self.radius)?,
-            radius_scale: k.radius_scale,
-            reach: length("reach", self.reach)?,
-            thickness: length("thickness", self.thickness)?,
-            thickness_scale: k.thickness_scale,
-            bias: non_negative("bias", self.bias)?,
-            depth_pyramid: k.depth_pyramid,
-        };
-        Ok(Settings {
+        let mut s = Settings {
             mode,
-            sampling,
+            sampling: Sampling { bias: non_negative("bias", self.bias)?, ..base.sampling },
             ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
             ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
             sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
-            indirect_strength: in_range("indirect-strength", k.indirect_strength, 0.0, MAX_GAIN)?,
-            sender_sky: k.sender_sky,
-            blur: k.blur,
-            half_resolution: k.half_resolution,
-            accumulate: ACCUMULATE.check(k.accumulate)?,
             exposure: in_range("exposure", self.exposure, 0.0, MAX_GAIN)?,
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
             sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,
             view: self.view,
-        })
+            ..base
+        };
+        k.apply(&mut s);
+        // Lengths given as flags win over the knobs' multiples of the scene's.
+        s.sampling.radius = length("radius", self.radius)?;
+        s.sampling.reach = length("reach", self.reach)?;
+        s.sampling.thickness = length("thickness", self.thickness)?;
+        Ok(s)
     }
 
     /// The settings of these flags (over their preset or quality level, if any).
