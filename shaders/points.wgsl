@@ -77,6 +77,70 @@ fn tangent_frame(n: vec3<f32>, pixel: vec2<i32>) -> mat3x3<f32> {
     return mat3x3<f32>(t, cross(n, t), n);
 }
 
+// What a pixel's samples sum: the occlusion and its weight, the sky and the bounce.
+struct Sums {
+    occluded: f32,
+    weight: f32,
+    direct: vec3<f32>,
+    indirect: vec3<f32>,
+}
+
+// One sample about the receiver `p` (normal `n`): its point `q`, the surface `s` seen at its
+// pixel `texel` (none where the sky is), its direction and cosine at the receiver, and the range
+// check's weight.
+struct Sample {
+    q: vec3<f32>,
+    s: vec3<f32>,
+    texel: vec2<i32>,
+    has_surface: bool,
+    dir: vec3<f32>,
+    cos_r: f32,
+    range: f32,
+}
+
+// The classic chapter's estimator: a sample behind the depth buffer occludes (by the range
+// check's weight); one in front sees the sky, one behind a surface takes its albedo's bounce.
+fn add_classic(sums: ptr<function, Sums>, p: vec3<f32>, n: vec3<f32>, x: Sample) {
+    let behind_ao = select(0.0, 1.0, x.has_surface && x.s.z >= x.q.z + occ.bias_length);
+    (*sums).occluded += behind_ao * x.range;
+    if !HAS_DO {
+        return;
+    }
+    if x.has_surface && x.s.z >= x.q.z {
+        if INDIRECT {
+            let n_s = load_normal(x.texel);
+            let albedo_s = textureLoad(g_albedo, x.texel, 0).rgb;
+            (*sums).indirect += x.range * max(dot(n_s, safe_normalize(p - x.s, n)), 0.0) * albedo_s * frame.pre_exposure;
+        }
+    } else {
+        let world = (frame.view_to_world * vec4<f32>(x.dir, 0.0)).xyz;
+        (*sums).direct += x.range * textureSampleLevel(sky_map, sky_sampler, world, 0.0).rgb * x.cos_r;
+    }
+}
+
+// The paper's estimator: cosine-weighted occlusion; the sky through what is not occluded; the
+// bounce of an occluding sender as a small patch of the radius's area, facing the receiver.
+fn add_paper(sums: ptr<function, Sums>, p: vec3<f32>, n: vec3<f32>, x: Sample) {
+    let o = select(0.0, x.range, x.has_surface && x.s.z > x.q.z + occ.bias_length);
+    (*sums).occluded += o * x.cos_r;
+    (*sums).weight += x.cos_r;
+    if !HAS_DO {
+        return;
+    }
+    let world = (frame.view_to_world * vec4<f32>(x.dir, 0.0)).xyz;
+    (*sums).direct += (1.0 - o) * x.cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
+    if INDIRECT && o > 0.0 {
+        let n_s = load_normal(x.texel);
+        let to_receiver = p - x.s;
+        let d2 = max(dot(to_receiver, to_receiver), 1e-30);
+        let w = to_receiver * inverseSqrt(d2);
+        let cos_s = max(dot(n_s, w), 0.0);
+        let cos_rs = max(dot(n, -w), 0.0);
+        let solid = min(occ.radius * occ.radius * cos_s / d2, 2.0);
+        (*sums).indirect += o * sender_radiance(textureLoad(bounce_map, x.texel, 0).xy) * cos_rs * solid;
+    }
+}
+
 // The samples at pixel centre `position`, rotated by the tile entry of `tile` (the pass's own
 // pixel: the same pixel at full resolution).
 fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
@@ -96,23 +160,19 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
         n_g = depth_normal(pixel, p, n);
     }
     let radius = occ.radius;
-    let bias = occ.bias_length;
     let count = min(occ.sample_count, MAX_SAMPLES);
     let tbn = tangent_frame(n, tile);
-    let size = vec2<i32>(frame.viewport.xy);
 
-    var occluded = 0.0;
-    var weight = 0.0;
-    var direct = vec3<f32>(0.0);
-    var indirect = vec3<f32>(0.0);
+    var sums: Sums;
     var valid = 0u;
     for (var i = 0u; i < count; i += 1u) {
         var offset = tbn * occ.kernel[i].xyz;
         if NORMAL_MAPPED {
             offset -= 2.0 * min(dot(offset, n_g), 0.0) * n_g;
         }
-        let q = p + offset * radius;
-        let clip = frame.view_to_clip * vec4<f32>(q, 1.0);
+        var x: Sample;
+        x.q = p + offset * radius;
+        let clip = frame.view_to_clip * vec4<f32>(x.q, 1.0);
         if clip.w <= 0.0 {
             continue;
         }
@@ -121,63 +181,32 @@ fn evaluate(position: vec2<f32>, tile: vec2<i32>) -> Occlusion {
         if any(texel_f < vec2<f32>(0.0)) || any(texel_f >= frame.viewport.xy) {
             continue;
         }
-        let texel = vec2<i32>(texel_f);
+        x.texel = vec2<i32>(texel_f);
         valid += 1u;
-        let sample_depth = load_depth(texel);
-        // The surface seen at the sample's pixel (none where the sky is).
-        let has_surface = sample_depth > 0.0;
-        let s = view_position(texel_f + 0.5, max(sample_depth, 1e-30));
-        let dir = safe_normalize(offset, n);
-        let cos_r = max(dot(n, dir), 0.0);
+        let sample_depth = load_depth(x.texel);
+        x.has_surface = sample_depth > 0.0;
+        x.s = view_position(texel_f + 0.5, max(sample_depth, 1e-30));
+        x.dir = safe_normalize(offset, n);
+        x.cos_r = max(dot(n, x.dir), 0.0);
         // Range check: a surface far in front of the receiver does not occlude it. The divisor
         // never reaches 0, also with a radius of 0 (where every sample is at the receiver).
-        let range = smoothstep(0.0, 1.0, radius / max(abs(p.z - s.z), max(radius * 1e-4, 1e-30)));
-
+        x.range = smoothstep(0.0, 1.0, radius / max(abs(p.z - x.s.z), max(radius * 1e-4, 1e-30)));
         if CLASSIC {
-            let behind_ao = select(0.0, 1.0, has_surface && s.z >= q.z + bias);
-            occluded += behind_ao * range;
-            if HAS_DO {
-                if has_surface && s.z >= q.z {
-                    if INDIRECT {
-                        let n_s = load_normal(texel);
-                        let albedo_s = textureLoad(g_albedo, texel, 0).rgb;
-                        indirect += range * max(dot(n_s, safe_normalize(p - s, n)), 0.0) * albedo_s * frame.pre_exposure;
-                    }
-                } else {
-                    let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
-                    direct += range * textureSampleLevel(sky_map, sky_sampler, world, 0.0).rgb * cos_r;
-                }
-            }
+            add_classic(&sums, p, n, x);
         } else {
-            let o = select(0.0, range, has_surface && s.z > q.z + bias);
-            occluded += o * cos_r;
-            weight += cos_r;
-            if HAS_DO {
-                let world = (frame.view_to_world * vec4<f32>(dir, 0.0)).xyz;
-                direct += (1.0 - o) * cos_r * textureSampleLevel(sky_map, sky_sampler, world, occ.sky_mip).rgb;
-                if INDIRECT && o > 0.0 {
-                    let n_s = load_normal(texel);
-                    let to_receiver = p - s;
-                    let d2 = max(dot(to_receiver, to_receiver), 1e-30);
-                    let w = to_receiver * inverseSqrt(d2);
-                    let cos_s = max(dot(n_s, w), 0.0);
-                    let cos_rs = max(dot(n, -w), 0.0);
-                    let solid = min(radius * radius * cos_s / d2, 2.0);
-                    indirect += o * sender_radiance(textureLoad(bounce_map, texel, 0).xy) * cos_rs * solid;
-                }
-            }
+            add_paper(&sums, p, n, x);
         }
     }
 
     if CLASSIC {
         let inv_n = 1.0 / f32(max(count, 1u));
-        out.ao = 1.0 - occluded * inv_n;
-        out.direct = direct * inv_n * frame.sky_scale;
-        out.indirect = indirect * inv_n;
-    } else if weight > 0.0 {
-        out.ao = 1.0 - occluded / weight;
-        out.direct = direct / weight * frame.sky_scale;
-        out.indirect = indirect / f32(valid);
+        out.ao = 1.0 - sums.occluded * inv_n;
+        out.direct = sums.direct * inv_n * frame.sky_scale;
+        out.indirect = sums.indirect * inv_n;
+    } else if sums.weight > 0.0 {
+        out.ao = 1.0 - sums.occluded / sums.weight;
+        out.direct = sums.direct / sums.weight * frame.sky_scale;
+        out.indirect = sums.indirect / f32(valid);
     }
     return out;
 }
