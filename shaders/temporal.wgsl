@@ -88,6 +88,91 @@ fn neighbourhood(texel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
     return array<vec4<f32>, 2>(lo, hi);
 }
 
+// What the history holds of a pixel's surface: its average, the frames that average holds (0:
+// nothing), and how far (in pixels) the surface moved on screen since the last frame.
+struct Past {
+    value: vec4<f32>,
+    held: f32,
+    moved: f32,
+}
+
+// The camera has not moved: texel `texel` holds the same surface exactly when it holds the same
+// depth (the scene is static).
+fn past_in_place(texel: vec2<i32>, depth: f32) -> Past {
+    var past = Past(vec4<f32>(0.0), 0.0, 0.0);
+    let s = textureLoad(history_surface, texel, 0);
+    let value = textureLoad(history, texel, 0);
+    if bitcast<f32>(s.x) == depth && finite4(value) {
+        past.value = value;
+        past.held = f32(s.y >> 24u);
+    }
+    return past;
+}
+
+// The camera moved: the surface at `world` (view point `p`, pixel centre `position`, world normal
+// `n`, `n_then` its normal in the last frame's view) seen where the last frame's camera put it,
+// from the history texels there that hold it. Catmull-Rom weights over the 4x4 texels around the
+// point, from the taps that hold this surface (renormalised; below half the weight, the history
+// is dropped): a history resampled every frame on a grid two pixels wide loses its detail under
+// bilinear weights (turning 1° a frame, SSAO's AO near contacts came out 5-13% further from the
+// truth). The frames held are the bilinear average of the 2x2 around the point.
+fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: vec3<f32>, n: vec3<f32>, n_then: vec3<f32>) -> Past {
+    var past = Past(vec4<f32>(0.0), 0.0, 0.0);
+    let size = frame.viewport.xy;
+    let ndc = clip.xy / clip.w;
+    let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
+    past.moved = length(was - position);
+    // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF) or t + 0.5.
+    let at = select(was - 0.5, (was - 0.5) * 0.5, HALF);
+    let base = floor(at);
+    let frac = at - base;
+    let texels = vec2<i32>(textureDimensions(history_surface));
+    let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
+    let c0 = frac * (-0.5 + frac * (1.0 - 0.5 * frac));
+    let c1 = 1.0 + frac * frac * (-2.5 + 1.5 * frac);
+    let c2 = frac * (0.5 + frac * (2.0 - 1.5 * frac));
+    let c3 = frac * frac * (-0.5 + 0.5 * frac);
+    var weight = 0.0;
+    var held_weight = 0.0;
+    for (var i = 0u; i < 16u; i += 1u) {
+        let corner = vec2<u32>(i & 3u, i >> 2u);
+        let tap = vec2<i32>(base) + vec2<i32>(corner) - 1;
+        if any(tap < vec2<i32>(0)) || any(tap >= texels) {
+            continue;
+        }
+        let s = textureLoad(history_surface, tap, 0);
+        let frames = f32(s.y >> 24u);
+        if frames <= 0.0 {
+            continue;
+        }
+        // The texel's own surface point, from its pixel and depth through the previous camera.
+        let uv = (vec2<f32>(surface_pixel(tap)) + 0.5) / size;
+        let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
+        let q = h.xyz / h.w;
+        let value = textureLoad(history, tap, 0);
+        let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
+        if !same || !finite4(value) {
+            continue;
+        }
+        let cx = select(select(c0.x, c1.x, corner.x == 1u), select(c2.x, c3.x, corner.x == 3u), corner.x >= 2u);
+        let cy = select(select(c0.y, c1.y, corner.y == 1u), select(c2.y, c3.y, corner.y == 3u), corner.y >= 2u);
+        past.value += (cx * cy) * value;
+        weight += cx * cy;
+        if all(corner >= vec2<u32>(1u)) && all(corner <= vec2<u32>(2u)) {
+            let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(2u));
+            past.held += bilinear.x * bilinear.y * frames;
+            held_weight += bilinear.x * bilinear.y;
+        }
+    }
+    if weight > 0.5 && held_weight > 1e-3 {
+        past.value /= weight;
+        past.held /= held_weight;
+    } else {
+        past.held = 0.0;
+    }
+    return past;
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> TemporalOut {
     // This texel of the pass's targets, and the full-resolution pixel (centre `position`) whose
@@ -112,98 +197,33 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     // The normal in world space (the plane test) and as the last frame's view saw it.
     let n = normalize((frame.view_to_world * vec4<f32>(view_normal, 0.0)).xyz);
     let n_then = (frame.view_to_previous_view * vec4<f32>(view_normal, 0.0)).xyz;
-    let size = frame.viewport.xy;
 
-    var past = vec4<f32>(0.0);
-    var held = 0.0;
-    var moved = 0.0;
+    var past = Past(vec4<f32>(0.0), 0.0, 0.0);
     if !CAMERA_MOVED && params.history_frames > 0u {
-        // The camera has not moved: the texel holds the same surface exactly when it holds the
-        // same depth (the scene is static).
-        let s = textureLoad(history_surface, texel, 0);
-        let value = textureLoad(history, texel, 0);
-        if bitcast<f32>(s.x) == depth && finite4(value) {
-            past = value;
-            held = f32(s.y >> 24u);
-        }
+        past = past_in_place(texel, depth);
     }
     let clip = frame.previous_world_to_clip * vec4<f32>(world, 1.0);
     if CAMERA_MOVED && params.history_frames > 0u && clip.w > 0.0 {
-        let ndc = clip.xy / clip.w;
-        let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
-        moved = length(was - position);
-        // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF) or
-        // t + 0.5.
-        let at = select(was - 0.5, (was - 0.5) * 0.5, HALF);
-        let base = floor(at);
-        let frac = at - base;
-        let texels = vec2<i32>(textureDimensions(history_surface));
-        let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
-        // Catmull-Rom weights over the 4x4 texels around the point, from the taps that hold
-        // this surface (renormalised; below half the weight, the history is dropped): a history
-        // resampled every frame on a grid two pixels wide loses its detail under bilinear
-        // weights (turning 1° a frame, SSAO's AO near contacts came out 5-13% further from the
-        // truth). The frames held are the bilinear average of the 2x2 around the point.
-        let c0 = frac * (-0.5 + frac * (1.0 - 0.5 * frac));
-        let c1 = 1.0 + frac * frac * (-2.5 + 1.5 * frac);
-        let c2 = frac * (0.5 + frac * (2.0 - 1.5 * frac));
-        let c3 = frac * frac * (-0.5 + 0.5 * frac);
-        var weight = 0.0;
-        var held_weight = 0.0;
-        for (var i = 0u; i < 16u; i += 1u) {
-            let corner = vec2<u32>(i & 3u, i >> 2u);
-            let tap = vec2<i32>(base) + vec2<i32>(corner) - 1;
-            if any(tap < vec2<i32>(0)) || any(tap >= texels) {
-                continue;
-            }
-            let s = textureLoad(history_surface, tap, 0);
-            let frames = f32(s.y >> 24u);
-            if frames <= 0.0 {
-                continue;
-            }
-            // The texel's own surface point, from its pixel and depth through the previous camera.
-            let uv = (vec2<f32>(surface_pixel(tap)) + 0.5) / size;
-            let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
-            let q = h.xyz / h.w;
-            let value = textureLoad(history, tap, 0);
-            let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
-            if !same || !finite4(value) {
-                continue;
-            }
-            let cx = select(select(c0.x, c1.x, corner.x == 1u), select(c2.x, c3.x, corner.x == 3u), corner.x >= 2u);
-            let cy = select(select(c0.y, c1.y, corner.y == 1u), select(c2.y, c3.y, corner.y == 3u), corner.y >= 2u);
-            past += (cx * cy) * value;
-            weight += cx * cy;
-            if all(corner >= vec2<u32>(1u)) && all(corner <= vec2<u32>(2u)) {
-                let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(2u));
-                held += bilinear.x * bilinear.y * frames;
-                held_weight += bilinear.x * bilinear.y;
-            }
-        }
-        if weight > 0.5 && held_weight > 1e-3 {
-            past /= weight;
-            held /= held_weight;
-        } else {
-            held = 0.0;
-        }
+        past = past_reprojected(clip, position, p, world, n, n_then);
     }
 
-    let still = moved < STILL_PIXELS;
+    let still = past.moved < STILL_PIXELS;
     let most = max(f32(select(params.motion_accumulate, params.accumulate, still)), 1.0);
-    var frames = min(held + 1.0, most);
+    var frames = min(past.held + 1.0, most);
     var result = now;
-    if held > 0.0 {
-        if still && held >= most {
+    if past.held > 0.0 {
+        if still && past.held >= most {
             // A still pixel that holds its `accumulate` frames keeps their mean as it is: the
             // converged image is the exact mean of those frames, as a headless capture makes it.
-            result = past;
+            result = past.value;
             frames = most;
         } else {
+            var kept = past.value;
             if CAMERA_MOVED && !still {
                 let range = neighbourhood(texel, now);
-                past = clamp(past, range[0], range[1]);
+                kept = clamp(kept, range[0], range[1]);
             }
-            result = mix(past, now, 1.0 / frames);
+            result = mix(kept, now, 1.0 / frames);
         }
     }
     out.shown = result;
