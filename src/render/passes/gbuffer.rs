@@ -26,7 +26,7 @@ use crate::render::modes::{Plan, Step};
 use crate::render::resources::scene::{upload_texture, Draw, Features, SceneGpu, SpecularMap};
 use crate::render::targets::{shininess_bits, ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
 use crate::render::uniforms::MaterialParams;
-use crate::scene::model::TextureImage;
+use crate::scene::model::{Material, TextureImage};
 use crate::scene::{Model, Vertex};
 use crate::{shaders, Result};
 
@@ -211,86 +211,18 @@ impl GBufferPass {
                 usage: wgpu::BufferUsages::VERTEX,
             })
         });
-        let mut bytes = vertices.size() + indices.size() + tangents.as_ref().map_or(0, wgpu::Buffer::size);
-        let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
-        // A texture that several materials share is uploaded once (by its pixels' identity).
-        let mut uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView> =
-            std::collections::HashMap::new();
-        // The diffuse maps with a specular map packed in, by the two maps' identities.
-        let mut packed: std::collections::HashMap<(usize, usize), TextureImage> = std::collections::HashMap::new();
-        let (white_srgb, _) =
-            upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
-        let (white_linear, _) =
-            upload_texture(gpu, "material_default_specular", &white, wgpu::TextureFormat::Rgba8Unorm);
-        let draws = model
+        let mut maps = MaterialMaps::new(gpu);
+        maps.bytes = vertices.size() + indices.size() + tangents.as_ref().map_or(0, wgpu::Buffer::size);
+        let draws: Vec<Draw> = model
             .parts
             .iter()
             .map(|part| {
                 let m = &model.materials[part.material];
-                let params = MaterialParams {
-                    albedo: m.diffuse,
-                    specular: m.specular.iter().sum::<f32>() / 3.0,
-                    shininess_bits: shininess_bits(m.shininess),
-                    normal_scale: m.normal_map.as_ref().map_or(1.0, |n| n.scale),
-                    alpha_cutoff: m.cutout.as_ref().map_or(0.0, |c| c.cutoff),
-                    alpha_factor: m.cutout.as_ref().map_or(1.0, |c| c.factor),
-                };
-                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(&format!("material_{}_params", m.name)),
-                    contents: bytemuck::bytes_of(&params),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                bytes += uniform.size();
-                let mut map =
-                    |image: &Option<TextureImage>, kind: &str, format, fallback: &wgpu::TextureView| match image {
-                        Some(image) => {
-                            let key = (std::sync::Arc::as_ptr(&image.rgba) as usize, format);
-                            if let Some(view) = uploaded.get(&key) {
-                                return view.clone();
-                            }
-                            let (view, size) =
-                                upload_texture(gpu, &format!("material_{}_{kind}", m.name), image, format);
-                            bytes += size;
-                            uploaded.insert(key, view.clone());
-                            view
-                        }
-                        None => fallback.clone(),
-                    };
-                let (diffuse, specular) = match (&m.diffuse_map, &m.specular_map, SpecularMap::of(m)) {
-                    (Some(d), Some(s), SpecularMap::DiffuseAlpha) => {
-                        let key = (std::sync::Arc::as_ptr(&d.rgba) as usize, std::sync::Arc::as_ptr(&s.rgba) as usize);
-                        let both = packed.entry(key).or_insert_with(|| pack_specular(d, s)).clone();
-                        let view =
-                            map(&Some(both), "diffuse_specular", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
-                        (view, white_linear.clone())
-                    }
-                    _ => (
-                        map(&m.diffuse_map, "diffuse", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb),
-                        map(&m.specular_map, "specular", wgpu::TextureFormat::Rgba8Unorm, &white_linear),
-                    ),
-                };
-                let normals = m.normal_map.as_ref().map(|n| n.image.clone());
-                let normals = map(&normals, "normals", wgpu::TextureFormat::Rgba8Unorm, &white_linear);
-                // sRGB like the colour map it often is (alpha is linear in either), so the two
-                // share one upload.
-                let mask = m.cutout.as_ref().and_then(|c| c.mask.clone());
-                let coverage = map(&mask, "coverage", wgpu::TextureFormat::Rgba8UnormSrgb, &white_srgb);
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some(&format!("material_{}_bind_group", m.name)),
-                    layout: &self.material_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&diffuse) },
-                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&specular) },
-                        wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
-                        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&normals) },
-                        wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&coverage) },
-                    ],
-                });
+                let bind_group = self.material_bind_group(gpu, m, &mut maps);
                 let features = Features::of(m, tangents.is_some());
                 Draw { first_index: part.first_index, index_count: part.index_count, bind_group, features }
             })
-            .collect::<Vec<_>>();
+            .collect();
         for draw in &draws {
             if !self.pipelines.contains_key(&draw.features) {
                 let sides = Sides::new(device, &self.pipeline_layout, &self.module, draw.features);
@@ -299,7 +231,105 @@ impl GBufferPass {
         }
         let textured = draws.iter().any(|d| d.features.textured);
         let normal_mapped = draws.iter().any(|d| d.features.normal_mapped);
-        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, bytes }
+        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, bytes: maps.bytes }
+    }
+
+    /// Material `m`'s bind group: its parameters, and its maps uploaded through `maps` (or the
+    /// white stand-ins).
+    fn material_bind_group(&self, gpu: &Gpu, m: &Material, maps: &mut MaterialMaps) -> wgpu::BindGroup {
+        let params = MaterialParams {
+            albedo: m.diffuse,
+            specular: m.specular.iter().sum::<f32>() / 3.0,
+            shininess_bits: shininess_bits(m.shininess),
+            normal_scale: m.normal_map.as_ref().map_or(1.0, |n| n.scale),
+            alpha_cutoff: m.cutout.as_ref().map_or(0.0, |c| c.cutoff),
+            alpha_factor: m.cutout.as_ref().map_or(1.0, |c| c.factor),
+        };
+        let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&format!("material_{}_params", m.name)),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        maps.bytes += uniform.size();
+        let (srgb, linear) = (wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm);
+        let (diffuse, specular) = match (&m.diffuse_map, &m.specular_map, SpecularMap::of(m)) {
+            (Some(d), Some(s), SpecularMap::DiffuseAlpha) => {
+                let key = (std::sync::Arc::as_ptr(&d.rgba) as usize, std::sync::Arc::as_ptr(&s.rgba) as usize);
+                let both = maps.packed.entry(key).or_insert_with(|| pack_specular(d, s)).clone();
+                (
+                    maps.view(gpu, &m.name, Some(&both), "diffuse_specular", srgb),
+                    maps.view(gpu, &m.name, None, "", linear),
+                )
+            }
+            _ => (
+                maps.view(gpu, &m.name, m.diffuse_map.as_ref(), "diffuse", srgb),
+                maps.view(gpu, &m.name, m.specular_map.as_ref(), "specular", linear),
+            ),
+        };
+        let normals = maps.view(gpu, &m.name, m.normal_map.as_ref().map(|n| &n.image), "normals", linear);
+        // sRGB like the colour map it often is (alpha is linear in either), so the two share one
+        // upload.
+        let mask = m.cutout.as_ref().and_then(|c| c.mask.as_ref());
+        let coverage = maps.view(gpu, &m.name, mask, "coverage", srgb);
+        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("material_{}_bind_group", m.name)),
+            layout: &self.material_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&diffuse) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&specular) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&normals) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&coverage) },
+            ],
+        })
+    }
+}
+
+/// The materials' maps as a scene's upload makes them: each image uploaded once (by its pixels'
+/// identity and format), the diffuse maps with a specular map packed in (by the two maps'
+/// identities), the white stand-ins of a missing map, and the bytes uploaded so far.
+struct MaterialMaps {
+    uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView>,
+    packed: std::collections::HashMap<(usize, usize), TextureImage>,
+    white_srgb: wgpu::TextureView,
+    white_linear: wgpu::TextureView,
+    bytes: u64,
+}
+
+impl MaterialMaps {
+    fn new(gpu: &Gpu) -> Self {
+        let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
+        let (white_srgb, _) =
+            upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
+        let (white_linear, _) =
+            upload_texture(gpu, "material_default_specular", &white, wgpu::TextureFormat::Rgba8Unorm);
+        let (uploaded, packed) = Default::default();
+        Self { uploaded, packed, white_srgb, white_linear, bytes: 0 }
+    }
+
+    /// The view of `image` in `format` (material `name`'s `kind` of map), uploaded unless it was;
+    /// the white stand-in of that format without one.
+    fn view(
+        &mut self,
+        gpu: &Gpu,
+        name: &str,
+        image: Option<&TextureImage>,
+        kind: &str,
+        format: wgpu::TextureFormat,
+    ) -> wgpu::TextureView {
+        let Some(image) = image else {
+            return if format == wgpu::TextureFormat::Rgba8UnormSrgb { &self.white_srgb } else { &self.white_linear }
+                .clone();
+        };
+        let key = (std::sync::Arc::as_ptr(&image.rgba) as usize, format);
+        if let Some(view) = self.uploaded.get(&key) {
+            return view.clone();
+        }
+        let (view, size) = upload_texture(gpu, &format!("material_{name}_{kind}"), image, format);
+        self.bytes += size;
+        self.uploaded.insert(key, view.clone());
+        view
     }
 }
 
