@@ -1,8 +1,6 @@
 //! The report's outputs: the CSV, the Markdown table (sorted by time, the Pareto front marked)
 //! and the files written together.
 
-use std::fmt::Write as _;
-
 use super::options::ReportOptions;
 use super::row::Row;
 use super::Report;
@@ -43,6 +41,40 @@ impl Row {
         } else {
             self.accumulate.to_string()
         }
+    }
+
+    /// The row in the Markdown table.
+    fn markdown(&self) -> String {
+        let off = self.mode == Mode::Off;
+        let marks = match (self.pareto, self.preset.is_some()) {
+            (true, true) => "★ P",
+            (false, true) => "P",
+            (true, false) => "★",
+            (false, false) => "",
+        };
+        let blur = match (off, self.blur) {
+            (true, _) => "—",
+            (false, true) => "on",
+            (false, false) => "off",
+        };
+        format!(
+            "| {marks} | {} | {} | {} | {blur} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |\n",
+            self.mode.name(),
+            self.variant,
+            if off { "—".to_string() } else { self.label() },
+            Row::bounce_label(self.mode, self.bounce),
+            if off { "—".to_string() } else { format!("{:.3}", self.radius) },
+            self.frames_label(),
+            self.ms,
+            self.hdr_rmse,
+            self.hdr_rmse_near,
+            self.hdr_psnr,
+            self.flip,
+            cell(self.do_rmse, 4),
+            cell(self.do_rmse_near, 4),
+            cell(self.bounce_ratio, 2),
+            cell(self.ao_rmse, 4),
+        )
     }
 
     pub fn label(&self) -> String {
@@ -156,39 +188,7 @@ impl Report {
         );
         out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
-            let off = row.mode == Mode::Off;
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |",
-                match (row.pareto, row.preset.is_some()) {
-                    (true, true) => "★ P",
-                    (false, true) => "P",
-                    (true, false) => "★",
-                    (false, false) => "",
-                },
-                row.mode.name(),
-                row.variant,
-                if off { "—".to_string() } else { row.label() },
-                if off {
-                    "—"
-                } else if row.blur {
-                    "on"
-                } else {
-                    "off"
-                },
-                Row::bounce_label(row.mode, row.bounce),
-                if off { "—".to_string() } else { format!("{:.3}", row.radius) },
-                row.frames_label(),
-                row.ms,
-                row.hdr_rmse,
-                row.hdr_rmse_near,
-                row.hdr_psnr,
-                row.flip,
-                cell(row.do_rmse, 4),
-                cell(row.do_rmse_near, 4),
-                cell(row.bounce_ratio, 2),
-                cell(row.ao_rmse, 4),
-            );
+            out.push_str(&row.markdown());
         }
         out
     }
