@@ -108,17 +108,8 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         }
         if args.stats {
             let stats = ssdo::headless::stats::frame_stats(&gpu, &mut renderer, &camera)?;
-            if args.json {
-                let buffers: serde_json::Map<String, serde_json::Value> =
-                    stats.iter().map(|s| (s.name.to_string(), s.json())).collect();
-                stats_json.insert(mode.name().to_string(), serde_json::Value::Object(buffers));
-            } else {
-                for s in &stats {
-                    output::print_line(&format!(
-                        "{mode:>5} {:<12} min {:>12.5e} max {:>12.5e} mean {:>12.5e} non_finite {}",
-                        s.name, s.min, s.max, s.mean, s.non_finite
-                    ))?;
-                }
+            if let Some(buffers) = say_stats(mode, &stats, args.json)? {
+                stats_json.insert(mode.name().to_string(), buffers);
             }
         }
         let started = Instant::now();
@@ -157,6 +148,24 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
         say(format!("wrote {}", path.display()))?;
     }
     Ok(())
+}
+
+/// `--stats` of `mode`'s buffers: printed a line each, or (`json`) as the JSON object returned.
+fn say_stats(
+    mode: Mode,
+    stats: &[ssdo::headless::stats::BufferStats],
+    json: bool,
+) -> Result<Option<serde_json::Value>> {
+    if json {
+        return Ok(Some(serde_json::Value::Object(stats.iter().map(|s| (s.name.to_string(), s.json())).collect())));
+    }
+    for s in stats {
+        output::print_line(&format!(
+            "{mode:>5} {:<12} min {:>12.5e} max {:>12.5e} mean {:>12.5e} non_finite {}",
+            s.name, s.min, s.max, s.mean, s.non_finite
+        ))?;
+    }
+    Ok(None)
 }
 
 /// The truth of the capture's view, with a progress bar over its rows.
