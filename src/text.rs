@@ -68,3 +68,8 @@ mod tests {
         assert_eq!(num(0.25), "0.25");
     }
 }
+
+/// Now, in UTC to the minute ("2026-12-06 05:40 UTC"), as reports and presets date themselves.
+pub fn utc_minute() -> String {
+    jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string()
+}

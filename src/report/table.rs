@@ -143,7 +143,7 @@ impl Report {
     }
 
     pub fn markdown(&self, options: &ReportOptions) -> String {
-        let date = jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string();
+        let date = crate::text::utc_minute();
         let r = &self.reference;
         let surfaces = r.valid.iter().filter(|v| **v).count();
         let background = r.valid.len() - surfaces - r.mismatched - r.covered;

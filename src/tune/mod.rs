@@ -25,7 +25,7 @@ use crate::headless::capture::{capture, output_texture, CAPTURE_FORMAT};
 use crate::headless::readback::read_depth;
 use crate::render::{Mode, Renderer, SceneFeatures, Settings, Variant};
 use crate::report::measure::{Bench, Truth, TruthSource};
-use crate::report::Config;
+use crate::report::{Config, ReportOptions};
 use crate::scene::OrbitCamera;
 use crate::Result;
 pub use options::{Budget, TuneOptions};
@@ -125,7 +125,34 @@ struct Measurer<'a> {
     frames: usize,
 }
 
-impl Measurer<'_> {
+impl<'a> Measurer<'a> {
+    /// The views' truths traced, and a bench for each (`cameras`, rendering into `view`).
+    fn new(
+        gpu: &'a Gpu,
+        mut renderer: Renderer,
+        (cameras, view, options): (&'a [OrbitCamera], &'a wgpu::TextureView, &'a ReportOptions),
+        source: &TruthSource,
+        progress: &(dyn Fn(&str) + Sync),
+    ) -> Result<Self> {
+        let default_radius = renderer.radius();
+        let truths = cameras
+            .iter()
+            .map(|camera| {
+                capture(gpu, &mut renderer, camera)?;
+                let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
+                source.trace(camera, &depth, default_radius, &|| progress("reference row"))
+            })
+            .collect::<Result<_>>()?;
+        let ambient = renderer.settings.ambient;
+        let benches = cameras
+            .iter()
+            .enumerate()
+            // A frame costs the same from every view: the report's view is timed.
+            .map(|(i, camera)| Bench { gpu, camera, view, options, ambient, diagnostics: false, timed: i == 0 })
+            .collect();
+        Ok(Self { gpu, renderer, benches, truths, default_radius, frames: options.frames })
+    }
+
     /// Times `config` at `scale` default radii on the report's view, `repeats` medians of the
     /// frames, and measures its error on every view.
     fn measure(&mut self, config: Config, scale: f32, repeats: usize) -> Result<Point> {
@@ -247,30 +274,10 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
 
     // One truth a view, as the report's.
     let source = TruthSource::new(&scene, &sky, &sky_name, &report_options, &base);
-    let mut truths = Vec::new();
-    for camera in &cameras {
-        capture(gpu, &mut renderer, camera)?;
-        let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
-        truths.push(source.trace(camera, &depth, default_radius, &|| progress("reference row"))?);
-    }
-    let noise = truths.iter().map(|t| t.noise.hdr / cameras.len() as f64).sum();
     let target = output_texture(gpu, options.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-    let benches = cameras
-        .iter()
-        .enumerate()
-        // A frame costs the same from every view: the report's view is timed.
-        .map(|(i, camera)| Bench {
-            gpu,
-            camera,
-            view: &view,
-            options: &report_options,
-            ambient: base.ambient,
-            diagnostics: false,
-            timed: i == 0,
-        })
-        .collect();
-    let mut m = Measurer { gpu, renderer, benches, truths, default_radius, frames: options.frames };
+    let mut m = Measurer::new(gpu, renderer, (&cameras, &view, &report_options), &source, progress)?;
+    let noise = m.truths.iter().map(|t| t.noise.hdr / cameras.len() as f64).sum();
 
     // Off is the budget's unit (`--budget-off`): timed four times as long as a setting.
     let off = m.measure(Config::off(Variant::default()), 1.0, 4)?;
@@ -279,11 +286,11 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
         Budget::Ms(ms) => ms,
         Budget::OffTimes(k) => k * off.ms,
     });
-    let mut points: Vec<Point> = Vec::new();
+    let mut points = Vec::new();
     for preset in &options.also {
         let (config, scale) = Config::of_knobs(options.mode, &preset.knobs);
-        let mut point = m.measure(config, scale, 1)?;
-        (point.knobs, point.name) = (Some(preset.knobs), Some(preset.name.clone()));
+        let point =
+            Point { knobs: Some(preset.knobs), name: Some(preset.name.clone()), ..m.measure(config, scale, 1)? };
         progress(&format!("{}: {:.2} ms, HDR RMSE {:.4}", preset.name, point.ms, point.hdr_rmse));
         points.push(point);
     }
@@ -305,6 +312,6 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
         noise_hdr: noise,
         seconds: started.elapsed().as_secs_f64(),
         retimed,
-        date: jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string(),
+        date: crate::text::utc_minute(),
     })
 }
