@@ -51,6 +51,11 @@ pub fn markdown_cell(text: &str) -> String {
     bounded_name(text).replace('|', "\\|")
 }
 
+/// Now, in UTC to the minute ("2026-12-06 05:40 UTC"), as reports and presets date themselves.
+pub fn utc_minute() -> String {
+    jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,9 +72,4 @@ mod tests {
         assert_eq!(num(1e-45), "1e-45");
         assert_eq!(num(0.25), "0.25");
     }
-}
-
-/// Now, in UTC to the minute ("2026-12-06 05:40 UTC"), as reports and presets date themselves.
-pub fn utc_minute() -> String {
-    jiff::Timestamp::now().to_zoned(jiff::tz::TimeZone::UTC).strftime("%Y-%m-%d %H:%M UTC").to_string()
 }
