@@ -5,7 +5,9 @@ pub mod bounds;
 pub mod builtin;
 pub mod camera;
 pub mod files;
+mod finish;
 mod gltf_data;
+mod gltf_mesh;
 pub mod gltf_model;
 pub mod lights;
 pub mod load;
@@ -16,6 +18,7 @@ pub mod panorama;
 pub mod room;
 mod sky_files;
 pub mod skybox;
+mod tangents;
 pub mod texture;
 mod triangle;
 

@@ -1,9 +1,9 @@
-//! Models: triangles grouped by material, as the G-buffer pass draws them, and the end every
-//! loader shares ([`finish`]). The loaders are [`super::obj_model`] (Wavefront OBJ + MTL) and
-//! [`super::gltf_model`] (glTF 2.0); both build their triangles with `triangle::push_triangle`.
+//! Models: triangles grouped by material, as the G-buffer pass draws them. The loaders are
+//! [`super::obj_model`] (Wavefront OBJ + MTL) and [`super::gltf_model`] (glTF 2.0); both build
+//! their triangles with `triangle::push_triangle` and end in `finish::finish`; the tangents of
+//! normal-mapped models are `tangents.rs`'s.
 
 use std::hash::{BuildHasher, RandomState};
-use std::path::Path;
 
 use glam::Vec3;
 
@@ -11,7 +11,6 @@ use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
 use super::triangle::wound_against;
 pub use super::triangle::Vertex;
-use crate::budget::{self, Share};
 use crate::{Error, Result};
 
 /// Surface description: Blinn-Phong with optional diffuse and specular maps, a tangent-space
@@ -256,29 +255,10 @@ impl Model {
     }
 
     /// Whether there is a tangent for every vertex: normal maps are drawn (and traced) only then;
-    /// a model built in code with a normal map and no [`Model::generate_tangents`] draws its
+    /// a model built in code with a normal map and no `Model::generate_tangents` draws its
     /// vertex normals.
     pub fn has_tangents(&self) -> bool {
         !self.vertices.is_empty() && self.tangents.len() == self.vertices.len()
-    }
-
-    /// Fills [`Model::tangents`] where a material has a normal map: `given` (one per vertex, in
-    /// the vertices' order; a w of 0 where the file gave none) where it holds one, MikkTSpace's
-    /// (as glTF asks where a mesh has none) elsewhere. A model without normal maps keeps none.
-    pub fn generate_tangents(&mut self, given: Option<Vec<[f32; 4]>>) {
-        if !self.is_normal_mapped() {
-            self.tangents.clear();
-            return;
-        }
-        let given = given.filter(|g| g.len() == self.vertices.len());
-        let mut tangents = given.unwrap_or_else(|| vec![[0.0; 4]; self.vertices.len()]);
-        if tangents.iter().any(|t| t[3] == 0.0) {
-            let mut mikk = Mikk { model: self, tangents: &mut tangents };
-            // It fails only without faces; a triangle it cannot frame keeps w = 0 (the G-buffer
-            // then reads the vertex normal there).
-            let _ = bevy_mikktspace::generate_tangents(&mut mikk);
-        }
-        self.tangents = tangents;
     }
 
     /// Shares each vertex among the triangles that use it: every loader's triangle brings three
@@ -409,104 +389,3 @@ impl Model {
         self.bounds = Bounds { min: self.bounds.min * factor, max: self.bounds.max * factor };
     }
 }
-
-/// The model's triangles as MikkTSpace sees them. Texture v is turned back to point up the image
-/// (the vertices keep it pointing down, as the rows are stored), so the bitangent it gives points
-/// up, as normal maps are drawn. Only tangents the file did not give (w = 0) are written.
-struct Mikk<'a> {
-    model: &'a Model,
-    tangents: &'a mut Vec<[f32; 4]>,
-}
-
-impl Mikk<'_> {
-    fn vertex(&self, face: usize, vert: usize) -> usize {
-        self.model.indices[3 * face + vert] as usize
-    }
-}
-
-impl bevy_mikktspace::Geometry for Mikk<'_> {
-    fn num_faces(&self) -> usize {
-        self.model.triangle_count()
-    }
-
-    fn num_vertices_of_face(&self, _face: usize) -> usize {
-        3
-    }
-
-    fn position(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.model.vertices[self.vertex(face, vert)].position
-    }
-
-    fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.model.vertices[self.vertex(face, vert)].normal
-    }
-
-    fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        let [u, v] = self.model.vertices[self.vertex(face, vert)].uv;
-        [u, 1.0 - v]
-    }
-
-    fn set_tangent(&mut self, space: Option<bevy_mikktspace::TangentSpace>, face: usize, vert: usize) {
-        let Some(space) = space else { return };
-        let tangent = space.tangent_encoded();
-        let i = self.vertex(face, vert);
-        if self.tangents[i][3] == 0.0 && tangent.iter().all(|x| x.is_finite()) {
-            // MikkTSpace's sign is +1 or -1; a zero w would read as "none given".
-            let w = if tangent[3] < 0.0 { -1.0 } else { 1.0 };
-            self.tangents[i] = [tangent[0], tangent[1], tangent[2], w];
-        }
-    }
-}
-
-/// The end of every loader: the model named after its file from triangles grouped by material
-/// (an error when there are none), brought into f32's range, with the loader's warnings logged
-/// and kept on it.
-pub(super) fn finish(
-    path: &Path,
-    materials: Vec<Material>,
-    groups: Vec<Vec<Vertex>>,
-    given_tangents: Option<Vec<[f32; 4]>>,
-    mut warnings: Vec<String>,
-) -> Result<Model> {
-    if groups.iter().all(Vec::is_empty) {
-        // What the loader noted (nodes left out, faces dropped) is often why.
-        let notes = if warnings.is_empty() { String::new() } else { format!(" (also: {})", warnings.join("; ")) };
-        return Err(Error::input(path, format!("{NO_TRIANGLES}{notes}")));
-    }
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
-    let mut model = Model::from_groups(&name, materials, groups)
-        .map_err(|_| Error::input(path, "no triangles with finite vertices"))?;
-    warnings.extend(model.fit_to_f32().map_err(|problem| Error::input(path, problem))?);
-    if model.is_normal_mapped() {
-        // Sized before they are made: the file's triangles were, without them.
-        let triangles = model.triangle_count() as u64;
-        let per_triangle = budget::BYTES_PER_TRIANGLE + budget::TANGENT_BYTES_PER_TRIANGLE;
-        budget::check(Share::Geometry, triangles.saturating_mul(per_triangle), || {
-            format!("{triangles} triangles with tangents for their normal maps")
-        })
-        .map_err(|problem| Error::input(path, problem))?;
-    }
-    model.generate_tangents(given_tangents);
-    model.weld();
-    warnings.extend(model.cut_away());
-    log_capped(log::Level::Warn, path, &warnings);
-    model.warnings = warnings;
-    Ok(model)
-}
-
-/// The most lines of one kind of message a load logs; the rest are counted in one line (a model of
-/// a hundred thousand materials said a hundred thousand lines).
-const LOGGED_LINES: usize = 20;
-
-/// Logs `lines` about the model file `path` at `level`, the first [`LOGGED_LINES`] of them, then
-/// how many more there are (all of them stay on the model).
-pub(super) fn log_capped(level: log::Level, path: &Path, lines: &[String]) {
-    for line in lines.iter().take(LOGGED_LINES) {
-        log::log!(level, "{}: {line}", path.display());
-    }
-    if lines.len() > LOGGED_LINES {
-        log::log!(level, "{}: and {} more such lines", path.display(), lines.len() - LOGGED_LINES);
-    }
-}
-
-pub(super) const NO_TRIANGLES: &str = "no triangles to draw (no faces, or only points and lines)";

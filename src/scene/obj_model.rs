@@ -14,7 +14,8 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::files::{check_file, other_model_kind, read_bounded, ModelFolder};
-use super::model::{finish, Cutout, Material, Model, NormalMap, Vertex, NO_TRIANGLES};
+use super::finish::{finish, NO_TRIANGLES};
+use super::model::{Cutout, Material, Model, NormalMap, Vertex};
 use super::obj_text::{count_obj, decode_text, sanitize_mtl, sanitize_obj};
 use super::texture::{load_texture, room_for_maps, texture_option, try_load_texture, TextureCache, TextureImage};
 use super::triangle::{push_triangle, Triangle};
@@ -166,7 +167,7 @@ pub fn load_obj_with_budget(path: &Path, texture_room: u64) -> Result<Model> {
     let mut read = Vec::new();
     let mut materials: Vec<Material> =
         tobj_materials.iter().map(|m| convert_material(m, &folder, &mut cache, (&mut warnings, &mut read))).collect();
-    super::model::log_capped(log::Level::Info, path, &read);
+    super::finish::log_capped(log::Level::Info, path, &read);
     let default_material = materials.len();
     materials.push(Material::plain("default", [0.8; 3]));
     let groups = build_groups(&models, default_material, &mut warnings);

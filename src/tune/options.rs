@@ -3,10 +3,13 @@
 
 use std::path::PathBuf;
 
-use super::{MAX_SETTINGS, MAX_VIEWS};
 use crate::render::Mode;
 use crate::report::{RadiusChoice, ReportOptions};
 use crate::{Error, Result};
+
+/// The most views and the most measured settings a run takes.
+pub const MAX_VIEWS: usize = 8;
+pub const MAX_SETTINGS: usize = 400;
 
 /// The budget: milliseconds, or a multiple of the Off frame's time measured in the same run.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,7 +1,46 @@
 //! Tune's search over the measured settings: the Pareto front of time against error, the pick
 //! for a budget and a target, and the focus whose neighbours are measured next.
 
-use super::{Candidate, Point, Verdict, EQUAL_ERROR};
+use super::space::Candidate;
+
+/// Errors within this share of each other count as equal when picking: the cheaper is taken. The
+/// truth's noise and the views' spread make smaller differences meaningless, and on cornell the
+/// last 1% of error within a budget costs up to half the frame again.
+pub const EQUAL_ERROR: f64 = 0.01;
+/// One measured setting: its time (on the report's view) and its errors, averaged over the views.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// The search's setting (`None` for Off and for the `also` presets).
+    pub candidate: Option<Candidate>,
+    /// The setting's knobs (`None` for Off), and the preset's name for an `also` preset.
+    pub knobs: Option<crate::knobs::Knobs>,
+    pub name: Option<String>,
+    pub ms: f64,
+    /// Frames timed for `ms`.
+    pub frames_timed: usize,
+    pub hdr_rmse: f64,
+    pub do_rmse: Option<f64>,
+    pub flip: f64,
+    /// HDR RMSE of each view.
+    pub hdr_per_view: Vec<f64>,
+    /// On the Pareto front of time against HDR error.
+    pub front: bool,
+}
+
+/// Why the pick is what it is, when it is not plainly "the most accurate within the budget".
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// The most accurate setting within the budget.
+    Best,
+    /// The cheapest that reaches the target error.
+    Target,
+    /// No setting measured reaches the target within the budget: the most accurate is picked.
+    TargetMissed,
+    /// Even the most accurate setting measured fits: the budget does not bind.
+    NotBinding,
+    /// No setting measured fits the budget; nothing is picked.
+    BelowCheapest,
+}
 
 /// Marks the points no other point beats on both time and HDR error.
 pub(super) fn mark_front(points: &mut [Point]) {
