@@ -67,7 +67,7 @@ pub fn read_surfaces(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>
     Ok(bytemuck::cast_slice::<u8, u32>(&bytes)
         .iter()
         .map(|&bits| {
-            let (n, shininess) = crate::render::targets::unpack_surface(bits);
+            let (n, shininess) = crate::render::surface_pack::unpack_surface(bits);
             [n.x, n.y, n.z, shininess]
         })
         .collect())

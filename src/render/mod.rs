@@ -16,6 +16,7 @@ pub mod passes;
 pub mod resources;
 pub mod sampling;
 pub mod settings;
+pub mod surface_pack;
 pub mod targets;
 pub mod timer;
 pub mod uniforms;

@@ -72,7 +72,7 @@ pub struct GpuLight {
 pub struct MaterialParams {
     pub albedo: [f32; 3],
     pub specular: f32,
-    /// The Blinn-Phong exponent as the G-buffer packs it (`targets::shininess_bits`).
+    /// The Blinn-Phong exponent as the G-buffer packs it (`surface_pack::shininess_bits`).
     pub shininess_bits: u32,
     /// Multiplies the normal map's x and y.
     pub normal_scale: f32,

@@ -15,7 +15,7 @@ use ssdo::gpu::Gpu;
 use ssdo::headless::capture::{capture_converged, render_frames};
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, read_texture};
 use ssdo::render::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY};
-use ssdo::render::targets::unpack_surface;
+use ssdo::render::surface_pack::unpack_surface;
 use ssdo::render::{Mode, Renderer, Sampling, Settings, Step, Variant};
 use ssdo::scene::{self, builtin, OrbitCamera, Scene, Skybox};
 
