@@ -12,6 +12,7 @@ use ssdo::render::{Mode, Renderer};
 use ssdo::{compare, output, Error, Result};
 
 mod cli;
+mod help;
 mod progress;
 
 use cli::*;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use super::loader::Loaded;
-use super::ui::Action;
+use super::panel_state::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
 use crate::headless::capture::capture_converged;
 use crate::render::{Mode, Settings};

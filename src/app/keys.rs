@@ -7,8 +7,8 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 
 use super::controls::mode_for_key;
+use super::panel_state::Action;
 use super::truth_ui::Display;
-use super::ui::Action;
 
 impl super::Viewer {
     pub(super) fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {

@@ -9,6 +9,7 @@ mod events;
 mod frame;
 mod keys;
 mod loader;
+mod panel_state;
 mod split;
 pub mod truth;
 mod truth_ui;
@@ -33,7 +34,7 @@ use crate::spec::SceneArgs;
 use crate::{Error, Result};
 use controls::CameraControls;
 use loader::Loader;
-use ui::{PanelState, PANEL_WIDTH};
+use panel_state::{PanelState, PANEL_WIDTH};
 
 /// What the viewer starts with.
 pub struct ViewerOptions {

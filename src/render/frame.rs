@@ -3,7 +3,7 @@
 use glam::{Mat3, Vec3, Vec4Swizzles};
 
 use super::uniforms::{mat, FrameUniforms, GpuLight, UNIFORM_LIGHTS};
-use crate::scene::skybox::irradiance_quadratic;
+use crate::scene::irradiance::irradiance_quadratic;
 use crate::scene::{LightRig, OrbitCamera, PointLight};
 
 /// What the frame uniforms are computed from, besides the camera and the scene.

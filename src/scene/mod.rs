@@ -9,6 +9,7 @@ mod finish;
 mod gltf_data;
 mod gltf_mesh;
 pub mod gltf_model;
+pub mod irradiance;
 pub mod lights;
 pub mod load;
 pub mod model;
