@@ -15,7 +15,7 @@
 // frame's 3x3 neighbourhood: screen-space occlusion depends on what the view shows, so a moving
 // view keeps less of the past.
 //
-// After a half-resolution sampling pass (HALF) it runs where the samples are: each texel is the
+// After a half-resolution sampling pass (HALF_RES) it runs where the samples are: each texel is the
 // sample of the full-resolution pixel (2x, 2y), its surface that pixel's, and the histories are
 // half size too; the composite upsamples the average as it reads it. A full-screen pass here
 // would upsample every frame's samples first, at four times the pixels.
@@ -48,11 +48,11 @@ const STILL_PIXELS: f32 = 0.01;
 // taken still costs its work) keeps the pass to a fifth of its moving cost.
 override CAMERA_MOVED: bool = true;
 // The pass runs at half size, over half-size samples, into half-size histories.
-override HALF: bool = false;
+override HALF_RES: bool = false;
 
 // The full-resolution pixel whose surface texel `texel` of this pass's targets holds.
 fn surface_pixel(texel: vec2<i32>) -> vec2<i32> {
-    if HALF {
+    if HALF_RES {
         return min(2 * texel, vec2<i32>(frame.viewport.xy) - 1);
     }
     return texel;
@@ -122,8 +122,8 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: v
     let ndc = clip.xy / clip.w;
     let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
     past.moved = length(was - position);
-    // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF) or t + 0.5.
-    let at = select(was - 0.5, (was - 0.5) * 0.5, HALF);
+    // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF_RES) or t + 0.5.
+    let at = select(was - 0.5, (was - 0.5) * 0.5, HALF_RES);
     let base = floor(at);
     let frac = at - base;
     let texels = vec2<i32>(textureDimensions(history_surface));

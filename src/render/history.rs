@@ -21,7 +21,7 @@ pub struct HistorySpec {
     pub format: wgpu::TextureFormat,
     /// It has half the screen's width and height (rounded up, as `targets::half_size`): it
     /// follows samples taken there.
-    pub half: bool,
+    pub half_resolution: bool,
     /// A digest of the inputs whose change makes the history meaningless (the settings it
     /// accumulates under, the model, the sky, the lights): another key drops it.
     pub key: u64,
@@ -30,7 +30,7 @@ pub struct HistorySpec {
 impl HistorySpec {
     /// Its texture's size for a screen of `screen`.
     pub fn size(&self, screen: (u32, u32)) -> (u32, u32) {
-        if self.half {
+        if self.half_resolution {
             half_size(screen)
         } else {
             screen

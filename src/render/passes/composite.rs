@@ -38,7 +38,7 @@ struct Key {
     white_albedo: bool,
     display: bool,
     /// The sampling chain's last stage is at half size.
-    half_input: bool,
+    half_resolution: bool,
     /// ... and is the temporal pass's average, whose surfaces its surface history holds.
     guide: bool,
 }
@@ -54,7 +54,7 @@ impl Key {
             classic: variant.decl().composite == Composite::ClassicAmbient,
             white_albedo,
             display: plan.display,
-            half_input: plan.half_resolution,
+            half_resolution: plan.half_resolution,
             guide: guided(plan),
         }
     }
@@ -125,7 +125,7 @@ impl Pass for CompositePass {
                 ("DISPLAY", f(key.display)),
                 ("OUTPUT_SRGB", f(output.is_srgb())),
                 ("DIRECT_INPUT", f(key.display && key.additive)),
-                ("HALF_INPUT", f(key.half_input)),
+                ("HALF_RES", f(key.half_resolution)),
                 ("GUIDE_INPUT", f(key.guide)),
             ]
             .into_iter()

@@ -42,7 +42,7 @@ struct Key {
     light_reads: LightReads,
     sender_sky: SenderSky,
     /// The sampling pass (whose sky the last frame's senders read) runs at half size.
-    half: bool,
+    half_resolution: bool,
     /// The camera moved since the last frame (only with the sky from the last frame).
     reproject: bool,
 }
@@ -55,7 +55,7 @@ impl Key {
             lights: plan.lighting_writes_direct(),
             light_reads: plan.light_reads(),
             sender_sky: plan.sender_sky.without_march(),
-            half: plan.half_resolution,
+            half_resolution: plan.half_resolution,
             reproject: false,
         }
     }
@@ -65,7 +65,7 @@ impl Key {
         let constants = [
             ("LIGHTS", flag(self.lights)),
             ("SENDER_SKY", self.sender_sky.shader_code()),
-            ("LAST_SKY_HALF", flag(self.half)),
+            ("HALF_RES", flag(self.half_resolution)),
             ("REPROJECT", flag(self.reproject)),
         ];
         PipelineSpec {

@@ -36,7 +36,7 @@ pub const LAST_SKY: TargetId = TargetId::new("history_sender_sky", DO_FORMAT, Pl
 /// the samples' size, meaning one thing in every DO mode (the key is the format's alone).
 pub fn last_sky_history(facts: &PlanFacts) -> Vec<HistorySpec> {
     let wanted = facts.sender_sky() == SenderSky::LastFrame;
-    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, half: facts.half_resolution(), key: 0 };
+    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, half_resolution: facts.half_resolution(), key: 0 };
     wanted.then_some(spec).into_iter().collect()
 }
 

@@ -38,7 +38,7 @@ pub const ENTRY: Entry = Entry::new(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     outputs: Outputs,
-    half: bool,
+    half_resolution: bool,
 }
 
 pub struct TemporalPass {
@@ -84,10 +84,10 @@ impl TemporalPass {
     pub fn histories(facts: &PlanFacts) -> Vec<HistorySpec> {
         let format = Stage::Raw.target(facts.decl.directional_occlusion).format;
         let key = facts.decl.mode as u64;
-        let half = facts.half_resolution();
+        let half_resolution = facts.half_resolution();
         vec![
-            HistorySpec { name: OCCLUSION_HISTORY.name, format, half, key },
-            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, half, key },
+            HistorySpec { name: OCCLUSION_HISTORY.name, format, half_resolution, key },
+            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, half_resolution, key },
         ]
     }
 }
@@ -106,7 +106,7 @@ impl Pass for TemporalPass {
         self.groups = inputs.iter().map(|io| self.state.parity_groups(device, io, &p.inputs)).collect();
         self.still.layout_for(device, &io);
         for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
-            let key = Key { outputs: Outputs::of(plan), half: plan.half_resolution };
+            let key = Key { outputs: Outputs::of(plan), half_resolution: plan.half_resolution };
             state.ensure_fullscreen(device, key, |key| PipelineSpec {
                 entry: "fs_main",
                 targets: vec![
@@ -114,7 +114,7 @@ impl Pass for TemporalPass {
                     Some(key.outputs.format().into()),
                     Some(SURFACE_HISTORY_FORMAT.into()),
                 ],
-                constants: vec![("CAMERA_MOVED", flag(moved)), ("HALF", flag(key.half))],
+                constants: vec![("CAMERA_MOVED", flag(moved)), ("HALF_RES", flag(key.half_resolution))],
             });
         }
     }
