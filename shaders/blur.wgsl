@@ -20,16 +20,8 @@
 @group(1) @binding(4) var input: texture_2d<f32>;
 
 override BILATERAL: bool = true;
-// On the half-resolution samples.
-override HALF_RES: bool = false;
-
-// The full-resolution pixel (its G-buffer) of the input's pixel `t`.
-fn surface_pixel(t: vec2<i32>) -> vec2<i32> {
-    if HALF_RES {
-        return min(2 * t, vec2<i32>(frame.viewport.xy) - 1);
-    }
-    return t;
-}
+// On the half-resolution samples (HALF_RES).
+#include "common/half_res.wgsl"
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;
 

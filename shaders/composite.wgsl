@@ -55,8 +55,8 @@ override DISPLAY: bool = false;
 override OUTPUT_SRGB: bool = true;
 // DISPLAY after a lighting pass: read its direct light from `direct_map`.
 override DIRECT_INPUT: bool = false;
-// `current` holds half-size samples: upsampled here as they are read.
-override HALF_RES: bool = false;
+// `current` holds half-size samples: upsampled here as they are read (HALF_RES).
+#include "common/half_res.wgsl"
 // ... the temporal pass's average: the samples' surfaces are read from `surface_guide`, one load
 // a tap instead of the G-buffer's depth and normal.
 override GUIDE_INPUT: bool = false;

@@ -25,9 +25,9 @@
 // What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march, 3 march at
 // quarter resolution, 4 the last frame's march.
 override SENDER_SKY: u32 = 2u;
-// SENDER_SKY 4: the last frame's sampling pass ran at half width and height (so its sky is
-// half size).
-override HALF_RES: bool = true;
+// SENDER_SKY 4: the last frame's sampling pass ran at half width and height (HALF_RES), so its
+// sky is half size.
+#include "common/half_res.wgsl"
 // SENDER_SKY 4: the camera moved since the last frame, so a surface is looked for where the last
 // camera saw it. Without it each pixel reads its own texel.
 override REPROJECT: bool = false;

@@ -47,16 +47,8 @@ const STILL_PIXELS: f32 = 0.01;
 // pixel is still and reads its own texel alone, which on a CPU rasteriser (where a branch not
 // taken still costs its work) keeps the pass to a fifth of its moving cost.
 override CAMERA_MOVED: bool = true;
-// The pass runs at half size, over half-size samples, into half-size histories.
-override HALF_RES: bool = false;
-
-// The full-resolution pixel whose surface texel `texel` of this pass's targets holds.
-fn surface_pixel(texel: vec2<i32>) -> vec2<i32> {
-    if HALF_RES {
-        return min(2 * texel, vec2<i32>(frame.viewport.xy) - 1);
-    }
-    return texel;
-}
+// The pass runs at half size, over half-size samples, into half-size histories (HALF_RES).
+#include "common/half_res.wgsl"
 
 struct TemporalOut {
     // what the composite reads this frame

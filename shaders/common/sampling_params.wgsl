@@ -38,14 +38,14 @@ struct SamplingParams {
     schedule: vec4<f32>,
 }
 
-// The sampling passes run at half width and height (an upsample follows): their pixel (x, y)
-// samples the full-resolution pixel (2x, 2y), with the rotation tile of its own pixel.
-override HALF_RES: bool = false;
+// At half resolution a sampling pass's pixel (x, y) samples the full-resolution pixel (2x, 2y),
+// with the rotation tile of its own pixel.
+#include "common/half_res.wgsl"
 
 // The full-resolution pixel centre a sampling pass's fragment at `frag` samples.
 fn sampled_position(frag: vec2<f32>) -> vec2<f32> {
     if HALF_RES {
-        return vec2<f32>(2 * vec2<i32>(frag)) + 0.5;
+        return vec2<f32>(surface_pixel(vec2<i32>(frag))) + 0.5;
     }
     return frag;
 }
