@@ -29,19 +29,10 @@
 #include "common/sampling_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: SamplingParams;
-// The senders: radiance and facing, packed (pack_sender in common/surface_pack.wgsl).
-@group(1) @binding(4) var bounce_map: texture_2d<u32>;
+#include "common/occlusion_inputs.wgsl"
 // The closest depth per 2^(k+1)-pixel block at level k, as f32 bits (shaders/depth_pyramid.wgsl),
 // read by the far steps when the plan built it (USE_PYRAMID); a 1x1 stand-in otherwise.
 @group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
-#include "common/sky.wgsl"
-
-// What the mode computes: AO, DO, or both (the composite and the tone mapper have the same two).
-override HAS_AO: bool = true;
-override HAS_DO: bool = true;
-// The scene has point lights, so there is a bounce buffer to read.
-override INDIRECT: bool = true;
 // The far steps read the depth pyramid (the plan built one) rather than the depth buffer.
 override USE_PYRAMID: bool = false;
 

@@ -32,18 +32,10 @@
 #include "common/sampling_params.wgsl"
 #include "common/fullscreen.wgsl"
 
-@group(1) @binding(3) var<uniform> occ: SamplingParams;
-// The senders' radiance (and facing), packed (pack_sender in common/surface_pack.wgsl).
-@group(1) @binding(4) var bounce_map: texture_2d<u32>;
-// The sky's mip chain, read at one whole level per pass (the sampler's mip filter is nearest):
+// The sky's mip chain is read at one whole level per pass (the sampler's mip filter is nearest):
 // the level already matches a sample's solid angle, and bilinear costs half of trilinear.
-#include "common/sky.wgsl"
+#include "common/occlusion_inputs.wgsl"
 
-// What the mode computes: AO, DO, or both (the composite and the tone mapper have the same two).
-override HAS_AO: bool = true;
-override HAS_DO: bool = true;
-// The scene has point lights, so there is a bounce buffer to read.
-override INDIRECT: bool = true;
 override CLASSIC: bool = false;
 
 struct Occlusion {
