@@ -165,6 +165,26 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: v
     return past;
 }
 
+// How far (degrees) a moving view's kept frames may have looked at a surface from: screen-space
+// occlusion depends on the viewpoint (what the screen shows beside a surface, and its horizon),
+// so a history of frames seen from elsewhere is an error of its own, not an average. At 1° a frame
+// the motion cap binds (8 frames); at 10° a frame nothing is kept, so history never makes an
+// image worse than none.
+const MAX_HISTORY_TURN: f32 = 12.0;
+
+// The frames a surface at view point `p` may keep: MAX_HISTORY_TURN over the angle between the
+// directions to this frame's and the last frame's eye (at least one: this frame).
+fn frames_within_turn(p: vec3<f32>) -> f32 {
+    // The last eye in this view: the inverse of the rigid view-to-last-view transform applied to
+    // the origin, -Rᵀt.
+    let m = frame.view_to_previous_view;
+    let eye_then = -(transpose(mat3x3<f32>(m[0].xyz, m[1].xyz, m[2].xyz)) * m[3].xyz);
+    let now = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
+    let then = safe_normalize(eye_then - p, now);
+    let turn = degrees(acos(clamp(dot(now, then), -1.0, 1.0)));
+    return max(floor(MAX_HISTORY_TURN / max(turn, 1e-3)), 1.0);
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> TemporalOut {
     // This texel of the pass's targets, and the full-resolution pixel (centre `position`) whose
@@ -200,7 +220,10 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     }
 
     let still = past.moved < STILL_PIXELS;
-    let most = max(f32(select(params.motion_accumulate, params.accumulate, still)), 1.0);
+    var most = max(f32(select(params.motion_accumulate, params.accumulate, still)), 1.0);
+    if CAMERA_MOVED && !still {
+        most = min(most, frames_within_turn(p));
+    }
     var frames = min(past.held + 1.0, most);
     var result = now;
     if past.held > 0.0 {
