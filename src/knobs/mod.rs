@@ -3,9 +3,10 @@
 //! a scene length, a gain, a named choice) and range, the rungs tune steps it along, which way it
 //! moves a frame's cost, and the variants and modes it means anything in. A preset's JSON (read
 //! and written), its range checks, its flags, tune's search space (its neighbours and which of
-//! two is dearer) and tune's CSV columns are all read from the table, so a new knob is its
-//! declaration here, its field in [`Knobs`] and [`crate::render::Settings`], and its way to the
-//! shader.
+//! two is dearer), tune's CSV columns, the render flags' checks and the counts' help are all read
+//! from the table, so a new knob is its row and its field in [`Knobs`] (`table.rs`), its two lines
+//! in [`Knobs::from_settings`] and [`Knobs::apply`], its field in [`crate::render::Settings`], and
+//! its way to the shader.
 //!
 //! Lengths are kept as multiples of the scene's lengths (the radius as a multiple of the scene's
 //! default radius, the thickness of its default thickness): a preset travels between models, and
