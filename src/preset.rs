@@ -1,5 +1,5 @@
-//! Presets: the settings that trade error for time (the variant, its counts, the radius, blur, half
-//! resolution, accumulation and the bounce's senders), with what `ssdo tune` measured of them, as
+//! Presets: the knobs (`crate::knobs`: the settings that trade error for time, the radius and the
+//! thickness as multiples of the scene's), with what `ssdo tune` measured of them, as
 //! a small JSON file every front end loads (`--preset FILE`), and the built-in quality levels
 //! (`--quality`), which are tune's picks on the default scene.
 //!
