@@ -101,14 +101,14 @@ fn past_in_place(texel: vec2<i32>, depth: f32) -> Past {
     return past;
 }
 
-// The camera moved: the surface at `world` (view point `p`, pixel centre `position`, world normal
-// `n`, `n_then` its normal in the last frame's view) seen where the last frame's camera put it,
+// The camera moved: the surface at view point `p` (pixel centre `position`, `clip` where the last
+// frame's camera put it, `n_then` its normal in the last frame's view) seen there again,
 // from the history texels there that hold it. Catmull-Rom weights over the 4x4 texels around the
 // point, from the taps that hold this surface (renormalised; below half the weight, the history
 // is dropped): a history resampled every frame on a grid two pixels wide loses its detail under
 // bilinear weights (turning 1° a frame, SSAO's AO near contacts came out 5-13% further from the
 // truth). The frames held are the bilinear average of the 2x2 around the point.
-fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: vec3<f32>, n: vec3<f32>, n_then: vec3<f32>) -> Past {
+fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: vec3<f32>) -> Past {
     var past = Past(vec4<f32>(0.0), 0.0, 0.0);
     let size = frame.viewport.xy;
     let ndc = clip.xy / clip.w;
@@ -120,6 +120,10 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: v
     let frac = at - base;
     let texels = vec2<i32>(textureDimensions(history_surface));
     let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
+    // This pixel's surface (point and unit normal) in the previous view, where the taps are.
+    let pp = frame.previous_projection;
+    let p_then = (frame.view_to_previous_view * vec4<f32>(p, 1.0)).xyz;
+    let plane_normal = safe_normalize(n_then, n_then);
     let c0 = frac * (-0.5 + frac * (1.0 - 0.5 * frac));
     let c1 = 1.0 + frac * frac * (-2.5 + 1.5 * frac);
     let c2 = frac * (0.5 + frac * (2.0 - 1.5 * frac));
@@ -137,12 +141,13 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, world: v
         if frames <= 0.0 {
             continue;
         }
-        // The texel's own surface point, from its pixel and depth through the previous camera.
+        // The texel's own surface point in the previous view, from its pixel and depth through
+        // the previous projection (a rigid turn from world space keeps the plane's distances).
         let uv = (vec2<f32>(surface_pixel(tap)) + 0.5) / size;
-        let h = frame.previous_clip_to_world * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, bitcast<f32>(s.x), 1.0);
-        let q = h.xyz / h.w;
+        let z = -pp.w / (bitcast<f32>(s.x) + pp.z);
+        let q = vec3<f32>((uv.x * 2.0 - 1.0) * -z * pp.x, (1.0 - uv.y * 2.0) * -z * pp.y, z);
         let value = textureLoad(history, tap, 0);
-        let same = abs(dot(n, q - world)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
+        let same = abs(dot(plane_normal, q - p_then)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
         if !same || !finite4(value) {
             continue;
         }
@@ -206,8 +211,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
     let normal_bits = textureLoad(g_normal, pixel, 0).r;
     let view_normal = unpack_normal(normal_bits);
-    // The normal in world space (the plane test) and as the last frame's view saw it.
-    let n = normalize((frame.view_to_world * vec4<f32>(view_normal, 0.0)).xyz);
+    // The normal as the last frame's view saw it (the taps' surfaces are compared there).
     let n_then = (frame.view_to_previous_view * vec4<f32>(view_normal, 0.0)).xyz;
 
     var past = Past(vec4<f32>(0.0), 0.0, 0.0);
@@ -216,7 +220,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     }
     let clip = frame.previous_world_to_clip * vec4<f32>(world, 1.0);
     if CAMERA_MOVED && params.history_frames > 0u && clip.w > 0.0 {
-        past = past_reprojected(clip, position, p, world, n, n_then);
+        past = past_reprojected(clip, position, p, n_then);
     }
 
     let still = past.moved < STILL_PIXELS;

@@ -37,13 +37,14 @@ struct Frame {
     // The sky's irradiance E(n)/π for a view-space unit normal (x, y, z), as the rgb weights of
     // x², y², xy, xz, yz, x, y, z and 1: its 9 spherical-harmonic coefficients
     // (Skybox::irradiance_sh) turned into this frame's view space (irradiance_quadratic in
-    // src/scene/skybox.rs), scaled by the sky scale and strength and pre-exposed.
+    // src/scene/irradiance.rs), scaled by the sky scale and strength and pre-exposed.
     sky_irradiance: array<vec4<f32>, 9>,
     // World space to the previous frame's clip space (this frame's own on a first frame or
     // after a reset): where a static surface was on screen a frame ago, for reprojection.
     previous_world_to_clip: mat4x4<f32>,
-    // Its inverse: a pixel of the previous frame and its depth back to world space.
-    previous_clip_to_world: mat4x4<f32>,
+    // The previous frame's projection: 1 / its x and y scales, and a, b of its reverse-Z depth
+    // (depth = -a - b / z): a pixel of the previous frame and its depth to that frame's view space.
+    previous_projection: vec4<f32>,
     // This frame's view space to the previous frame's: a direction (a normal) as the previous
     // frame's view saw it.
     view_to_previous_view: mat4x4<f32>,

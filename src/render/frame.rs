@@ -162,6 +162,7 @@ impl FrameData {
         let world_to_clip = view_to_clip * world_to_view;
         let this_camera = (world_to_clip, world_to_view);
         let (previous, previous_world_to_view) = self.previous_camera.replace(this_camera).unwrap_or(this_camera);
+        let previous_view_to_clip = previous * previous_world_to_view.inverse();
         self.camera_moved = previous != world_to_clip;
         let gpu_lights: Vec<GpuLight> = lights
             .iter()
@@ -203,7 +204,12 @@ impl FrameData {
             sky_irradiance: irradiance_quadratic(&inputs.sky_sh, Mat3::from_mat4(world_to_view.inverse()))
                 .map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
             previous_world_to_clip: mat(previous),
-            previous_clip_to_world: mat(previous.inverse()),
+            previous_projection: [
+                1.0 / previous_view_to_clip.x_axis.x,
+                1.0 / previous_view_to_clip.y_axis.y,
+                previous_view_to_clip.z_axis.z,
+                previous_view_to_clip.w_axis.z,
+            ],
             view_to_previous_view: mat(previous_world_to_view * world_to_view.inverse()),
             first_lights,
         };

@@ -34,7 +34,10 @@ pub struct FrameUniforms {
     pub _pad1: [f32; 2],
     pub sky_irradiance: [[f32; 4]; 9],
     pub previous_world_to_clip: [[f32; 4]; 4],
-    pub previous_clip_to_world: [[f32; 4]; 4],
+    /// The previous frame's projection: 1 / its [0][0] and [1][1] terms, and a, b of its depth
+    /// (depth = -a - b / z), to take a pixel of the previous frame and its depth to that frame's
+    /// view space.
+    pub previous_projection: [f32; 4],
     pub view_to_previous_view: [[f32; 4]; 4],
     /// The first [`UNIFORM_LIGHTS`] lights (the rest zero), which the light loops read where the
     /// scene has no more.

@@ -105,7 +105,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             _pad1,
             sky_irradiance,
             previous_world_to_clip,
-            previous_clip_to_world,
+            previous_projection,
             view_to_previous_view,
             first_lights,
         }
