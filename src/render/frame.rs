@@ -162,7 +162,6 @@ impl FrameData {
         let world_to_clip = view_to_clip * world_to_view;
         let this_camera = (world_to_clip, world_to_view);
         let (previous, previous_world_to_view) = self.previous_camera.replace(this_camera).unwrap_or(this_camera);
-        let previous_view_to_clip = previous * previous_world_to_view.inverse();
         self.camera_moved = previous != world_to_clip;
         let gpu_lights: Vec<GpuLight> = lights
             .iter()
@@ -204,12 +203,7 @@ impl FrameData {
             sky_irradiance: irradiance_quadratic(&inputs.sky_sh, Mat3::from_mat4(world_to_view.inverse()))
                 .map(|c| (c * inputs.pre_exposure).extend(0.0).into()),
             previous_world_to_clip: mat(previous),
-            previous_projection: [
-                1.0 / previous_view_to_clip.x_axis.x,
-                1.0 / previous_view_to_clip.y_axis.y,
-                previous_view_to_clip.z_axis.z,
-                previous_view_to_clip.w_axis.z,
-            ],
+            previous_projection: projection_terms(previous * previous_world_to_view.inverse()),
             view_to_previous_view: mat(previous_world_to_view * world_to_view.inverse()),
             first_lights,
         };
@@ -229,6 +223,13 @@ impl FrameData {
         }
         self.frame_index = self.frame_index.wrapping_add(1);
     }
+}
+
+/// What a pass needs of a projection to take a pixel and its depth to view space: 1 / its x and y
+/// scales, and a, b of its reverse-Z depth (depth = -a - b / z).
+fn projection_terms(view_to_clip: glam::Mat4) -> [f32; 4] {
+    let m = view_to_clip;
+    [1.0 / m.x_axis.x, 1.0 / m.y_axis.y, m.z_axis.z, m.w_axis.z]
 }
 
 /// The pre-exposure for a frame whose brightest radiance is at most `peak`: 1 up to 4096, then
