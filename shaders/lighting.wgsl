@@ -81,11 +81,13 @@ fn direct(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> LightingOu
 fn last_frame_sky(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32, n: vec3<f32>) -> vec4<f32> {
     var was = pixel;
     if REPROJECT {
-        let world = frame.view_to_world * vec4<f32>(view_position_of(c, position, depth), 1.0);
-        let clip = frame.previous_world_to_clip * world;
-        let ndc = clip.xy / max(clip.w, 1e-30);
+        // This point in the last frame's view, and through its projection (one transform and
+        // four floats a pixel, not two transforms).
+        let then = (frame.view_to_previous_view * vec4<f32>(view_position_of(c, position, depth), 1.0)).xyz;
+        let w = max(-then.z, 1e-30);
+        let ndc = then.xy / (frame.previous_projection.xy * w);
         let at = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * c.viewport.xy;
-        if clip.w <= 0.0 || any(at < vec2<f32>(0.0)) || any(at >= c.viewport.xy) {
+        if then.z >= 0.0 || any(at < vec2<f32>(0.0)) || any(at >= c.viewport.xy) {
             return vec4<f32>(sky_irradiance(c, n), 1.0);
         }
         was = vec2<i32>(at);
