@@ -208,7 +208,8 @@ fn frame_members_read_per_pixel(name: &str) -> std::collections::BTreeSet<String
 /// varyings (common/frame_varyings.wgsl): on a CPU rasteriser a uniform read costs a load for
 /// every eight pixels. Their pixels may read the lights (an array no varying could carry, but for
 /// a loop built for one light, which takes it from the varyings: tests/it/gpu/render.rs) and,
-/// in the lighting pass's reprojection of the last frame's sky, the two matrices it takes there.
+/// in the lighting pass's reprojection of the last frame's sky, the last view and projection it
+/// takes there.
 #[test]
 fn the_lit_passes_read_no_frame_constant_per_pixel() {
     let lights = ["first_lights", "light_count"];
@@ -216,7 +217,7 @@ fn the_lit_passes_read_no_frame_constant_per_pixel() {
     assert!(composite.iter().all(|m| lights.contains(&m.as_str())), "composite reads {composite:?}");
     assert!(composite.contains("first_lights"), "the walk found no read at all: {composite:?}");
     let lighting = frame_members_read_per_pixel("lighting.wgsl");
-    let reprojection = ["view_to_world", "previous_world_to_clip"];
+    let reprojection = ["view_to_previous_view", "previous_projection"];
     assert!(
         lighting.iter().all(|m| lights.contains(&m.as_str()) || reprojection.contains(&m.as_str())),
         "lighting reads {lighting:?}"
