@@ -55,19 +55,20 @@ impl Knob {
         }
     }
 
-    /// The value of `json` for this knob, or what was expected instead.
+    /// The value of `json` for this knob, or the problem naming its key (`settings.KEY: …`).
     pub(super) fn read(&self, json: &Json) -> std::result::Result<Value, String> {
+        let expected = |what: &str| format!("settings.{}: expected {what}", self.key);
         match self.kind {
-            Kind::Count(_) => json.as_u64().map(|n| Value::Count(n as usize)).ok_or_else(|| "a whole number".into()),
-            Kind::Switch => json.as_bool().map(Value::Switch).ok_or_else(|| "true or false".into()),
+            Kind::Count(_) => json.as_u64().map(|n| Value::Count(n as usize)).ok_or_else(|| expected("a whole number")),
+            Kind::Switch => json.as_bool().map(Value::Switch).ok_or_else(|| expected("true or false")),
             Kind::Multiple { .. } | Kind::Gain { .. } => json
                 .as_f64()
                 .filter(|x| x.is_finite())
                 .map(|x| Value::Number(x as f32))
-                .ok_or_else(|| "a number".into()),
+                .ok_or_else(|| expected("a number")),
             Kind::Choice { parse, .. } => {
-                let text = json.as_str().ok_or_else(|| "a name".to_string())?;
-                parse(text).map(Value::Choice).map_err(|e| format!("!{e}"))
+                let text = json.as_str().ok_or_else(|| expected("a name"))?;
+                parse(text).map(Value::Choice).map_err(|e| format!("settings.{}: {e}", self.key))
             }
         }
     }

@@ -101,20 +101,14 @@ impl Knobs {
         if let Some(key) = object.keys().find(|k| KNOBS.iter().all(|knob| knob.key != k.as_str())) {
             return Err(format!("settings: unknown key '{key}' (known: {})", keys().join(", ")));
         }
-        let read = |knob: &Knob, json: &Json| {
-            knob.read(json).map_err(|expected| match expected.strip_prefix('!') {
-                Some(error) => format!("settings.{}: {error}", knob.key),
-                None => format!("settings.{}: expected {expected}", knob.key),
-            })
-        };
         let variant = match object.get("variant") {
-            Some(json) => choice(read(&KNOBS[0], json)?),
+            Some(json) => choice(KNOBS[0].read(json)?),
             None => Variant::default(),
         };
         let mut k = Knobs::for_variant(variant);
         for knob in &KNOBS[1..] {
             if let Some(json) = object.get(knob.key) {
-                (knob.set)(&mut k, read(knob, json)?);
+                (knob.set)(&mut k, knob.read(json)?);
             }
         }
         k.check()?;
