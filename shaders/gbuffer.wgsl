@@ -15,6 +15,10 @@
 // (Taking the side from the plane of the view-space position's derivatives
 // instead, which needs no rule on the winding, cost the pass about 5% on a CPU rasteriser, for
 // three more varyings and their derivatives: docs/performance.md.)
+// In a scene with a thin material (src/scene/thickness.rs) a plan whose march reads thickness
+// draws with `fs_thickness`, which also writes the thickness layer (R32Uint): the fragment's
+// depth bits with the material's thickness code in the low 6 (63 the default slab, 0 a sheet).
+// The march reads it in place of the depth, so a sample's depth and thickness come in one load.
 // Cut-out materials discard the texels whose coverage is below their cutoff: this pass is the
 // only one that writes depth (the depth pyramid is built from its depth), so every screen-space
 // pass sees the holes.
@@ -36,6 +40,8 @@ struct MaterialParams {
     alpha_cutoff: f32,
     // multiplies the mask's coverage
     alpha_factor: f32,
+    // the thickness layer's code of this material (0-63)
+    thickness_code: u32,
 }
 
 @group(1) @binding(0) var<uniform> material: MaterialParams;
@@ -114,8 +120,8 @@ struct GBufferOut {
     @location(1) normal: u32,
 }
 
-@fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+// The G-buffer of the fragment `in` (seen from the front where `front`).
+fn surface(in: VertexOut, front: bool) -> GBufferOut {
     // Every implicit-derivative sample first, in uniform control flow.
     var albedo = material.albedo;
     var specular = material.specular;
@@ -146,4 +152,25 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
     out.albedo = vec4<f32>(albedo, specular);
     out.normal = pack_normal(n) | material.shininess_bits;
     return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
+    return surface(in, front);
+}
+
+struct ThicknessOut {
+    @location(0) albedo: vec4<f32>,
+    @location(1) normal: u32,
+    @location(2) depth_and_code: u32,
+}
+
+// The low bits of the thickness layer that hold the code.
+const THICKNESS_CODE_MASK: u32 = 63u;
+
+@fragment
+fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessOut {
+    let g = surface(in, front);
+    let depth = (bitcast<u32>(in.clip.z) & ~THICKNESS_CODE_MASK) | material.thickness_code;
+    return ThicknessOut(g.albedo, g.normal, depth);
 }

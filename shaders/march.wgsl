@@ -10,7 +10,8 @@
 // |n_p| ∫ f cos(θ − γ) |sin θ| dθ, which each slice evaluates over 32 sectors of θ, in closed form.
 //
 // Each slice is marched both ways across the screen. Every depth sample is a surface of a given
-// thickness (its front at the depth buffer, its back `thickness` further along its view ray); the
+// thickness (its front at the depth buffer, its back `thickness` further along its view ray: the
+// scene's one thickness, or, with the thickness layer, its material's where that is thinner); the
 // sectors between the angles of its front and back are occluded, and the sectors it occludes
 // first take their bounce from it (its diffuse radiance from the lighting pass, if it faces the
 // receiver). Sectors never occluded see the sky, read from the cube map at the mip level of a
@@ -35,6 +36,10 @@
 @group(1) @binding(5) var depth_pyramid: texture_2d<u32>;
 // The far steps read the depth pyramid (the plan built one) rather than the depth buffer.
 override USE_PYRAMID: bool = false;
+// The depth with each surface's thickness code in its low 6 bits (gbuffer.wgsl `fs_thickness`),
+// read in place of the depth where the plan has it (THICKNESS_LAYER); a 1x1 stand-in otherwise.
+@group(1) @binding(6) var thickness_layer: texture_2d<u32>;
+override THICKNESS_LAYER: bool = false;
 
 #include "common/sectors.wgsl"
 
@@ -129,19 +134,40 @@ fn step_distance(r: Receiver, i: u32) -> f32 {
     return r.radius * exp2(x * r.log2_span);
 }
 
+// A depth sample: its depth and how thick the surface there is taken to be.
+struct DepthSample {
+    depth: f32,
+    thickness: f32,
+}
+
+// The thickness a thickness code stands for (src/scene/thickness.rs `thickness_ratio`): the
+// receiver's (the scene's, or the one given) where the material's is not thinner.
+fn coded_thickness(r: Receiver, code: u32) -> f32 {
+    if code >= 63u {
+        return r.thickness;
+    }
+    let ratio = select(exp2((f32(code) - 62.0) * 0.25), 0.0, code == 0u);
+    return min(r.thickness, ratio * occ.default_thickness);
+}
+
 // The depth step `i` reads at `texel`, `spacing` pixels past the last step. A far step stands for
 // the pixels since the last one: it reads the closest depth of a block about that wide, so what
-// lies between steps is not skipped.
-fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> f32 {
+// lies between steps is not skipped (and takes the receiver's thickness: a block has no one
+// material).
+fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSample {
     let level = i32(floor(log2(max(spacing, 1.0)))) - 1;
     if !USE_PYRAMID || i < r.near_steps || level < 0 {
-        return load_depth(texel);
+        if THICKNESS_LAYER {
+            let bits = textureLoad(thickness_layer, texel, 0).r;
+            return DepthSample(bitcast<f32>(bits), coded_thickness(r, bits & 63u));
+        }
+        return DepthSample(load_depth(texel), r.thickness);
     }
     let top = i32(textureNumLevels(depth_pyramid)) - 1;
     let k = min(level, top);
     let last = vec2<i32>(textureDimensions(depth_pyramid, k)) - vec2<i32>(1);
     let block = min(texel >> vec2<u32>(u32(k + 1)), last);
-    return bitcast<f32>(textureLoad(depth_pyramid, block, k).r);
+    return DepthSample(bitcast<f32>(textureLoad(depth_pyramid, block, k).r), r.thickness);
 }
 
 // The bounce the sender at `texel` (at `front` from the receiver) sends into the sectors
@@ -175,14 +201,14 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
             break;
         }
         let texel = vec2<i32>(sample_f);
-        let sample_depth = step_depth(r, i, texel, spacing);
-        if sample_depth <= 0.0 {
+        let sample = step_depth(r, i, texel, spacing);
+        if sample.depth <= 0.0 {
             connected = false;
             continue;
         }
-        let p = view_position(vec2<f32>(texel) + 0.5, sample_depth);
+        let p = view_position(vec2<f32>(texel) + 0.5, sample.depth);
         let front = p - r.p;
-        let back = front - safe_normalize(-p, r.v) * r.thickness;
+        let back = front - safe_normalize(-p, r.v) * sample.thickness;
         let a_front = slice_angle(front, r.v, s.t);
         let a_back = slice_angle(back, r.v, s.t);
         var a_min = min(a_front, a_back);
@@ -198,7 +224,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
         let above = dot(front, r.n_g) > 0.0;
         // (Squared: the bound is never negative, the distances growing step by step.)
         let gap = p - previous;
-        let bound = r.thickness + 2.0 * (distance - previous_distance);
+        let bound = sample.thickness + 2.0 * (distance - previous_distance);
         if connected && above && dot(gap, gap) < bound * bound {
             a_min = min(a_min, previous_angle);
             a_max = max(a_max, previous_angle);

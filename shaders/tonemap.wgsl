@@ -14,11 +14,16 @@
 @group(1) @binding(3) var g_depth: texture_2d<f32>;  // depth32float as unfilterable float (GL-safe)
 @group(1) @binding(4) var ao_map: texture_2d<f32>;
 @group(1) @binding(5) var do_map: texture_2d<f32>;
+// The thickness layer (gbuffer.wgsl `fs_thickness`) where the plan has it; a stand-in otherwise.
+@group(1) @binding(6) var thickness_layer: texture_2d<u32>;
 
 // True when the output format does the sRGB encoding itself.
 override OUTPUT_SRGB: bool = true;
-// 0 final image, 1 albedo, 2 view-space normals, 3 depth, 4 AO, 5 DO (tone mapped).
+// 0 final image, 1 albedo, 2 view-space normals, 3 depth, 4 AO, 5 DO (tone mapped), 6 the
+// march's thickness.
 override VIEW: u32 = 0u;
+// The plan has the thickness layer (a thin material in the scene, and the march reads it).
+override THICKNESS_LAYER: bool = false;
 override HAS_AO: bool = false;
 // DO in the DO target's rgb; AO, when the mode has it, then travels in its alpha.
 override HAS_DO: bool = false;
@@ -61,6 +66,21 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
                 light = textureLoad(do_map, pixel, 0).rgb;
             }
             return tone_map(light * frame.display_scale);
+        }
+        case 6u: {
+            // The thickness a depth sample is taken to have against the scene's default
+            // (src/scene/thickness.rs `thickness_ratio`): white the default slab (everywhere
+            // without the thickness layer), red a sheet, pink to white thin solids by the square
+            // root of their share; the sky black.
+            if textureLoad(g_depth, pixel, 0).r <= 0.0 {
+                return vec3<f32>(0.0);
+            }
+            var ratio = 1.0;
+            if THICKNESS_LAYER {
+                let code = textureLoad(thickness_layer, pixel, 0).r & 63u;
+                ratio = select(select(exp2((f32(code) - 62.0) * 0.25), 0.0, code == 0u), 1.0, code >= 63u);
+            }
+            return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(ratio));
         }
         default: {
             return tone_map(textureLoad(hdr, pixel, 0).rgb * frame.display_scale);

@@ -49,8 +49,9 @@ pub(crate) enum Command {
 /// image size and the lights.
 #[derive(Args)]
 pub(crate) struct TruthScene {
-    /// Scene: cornell (the default scene), crevices (thin features, deep slots), open (redblue
-    /// sky) or stairs (stairs under an overhang, a scene nobody tuned on)
+    /// Scene: cornell (the default scene), crevices (thin features, deep slots), fence (a
+    /// checker-cut fence), open (redblue sky) or stairs (stairs under an overhang, a scene nobody
+    /// tuned on)
     #[arg(long, default_value = "cornell")]
     pub(crate) scene: String,
     /// A model (OBJ or glTF) instead of a named scene

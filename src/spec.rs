@@ -199,7 +199,7 @@ pub struct RenderArgs {
     /// Multiplier on the sky's radiance
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub sky_scale: f32,
-    /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting
+    /// What to show: final, albedo, normals, depth, ao, do-direct, do-indirect, lighting, thickness
     #[arg(long, default_value = "final")]
     pub view: View,
 }

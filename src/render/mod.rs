@@ -27,6 +27,7 @@ use glam::Vec3;
 
 use crate::budget::{self, Share};
 use crate::gpu::Gpu;
+use crate::scene::thickness::FULL_THICKNESS;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
 pub use accumulation::BLURRED_FRAMES;
@@ -96,7 +97,9 @@ impl Renderer {
         let device = &gpu.device;
         // As the G-buffer's upload decides (`GBufferPass::upload`).
         let normal_mapped = scene.model.is_normal_mapped() && scene.model.has_tangents();
-        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped };
+        let thickness = scene.model.thickness_codes();
+        let thin_materials = thickness.iter().any(|&c| c < FULL_THICKNESS);
+        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped, thin_materials };
         Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
@@ -105,7 +108,7 @@ impl Renderer {
         let mut history = History::default();
         history.ensure(device, size, &plan.history);
         let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
-        let scene_gpu = passes.upload_scene(gpu, &scene.model);
+        let scene_gpu = passes.upload_scene(gpu, &scene.model, &thickness);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
         let mut renderer = Self {
             settings,
@@ -171,7 +174,8 @@ impl Renderer {
 
     /// What the current scene brings to the plan.
     fn features(&self) -> SceneFeatures {
-        SceneFeatures { lights: self.lights.len(), normal_mapped: self.scene.normal_mapped }
+        let (normal_mapped, thin_materials) = (self.scene.normal_mapped, self.scene.thin_materials);
+        SceneFeatures { lights: self.lights.len(), normal_mapped, thin_materials }
     }
 
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
@@ -187,6 +191,8 @@ impl Renderer {
             sender_sky: settings.sender_sky.for_variant(settings.sampling.variant),
             accumulate: settings.accumulates(),
             half_resolution: settings.half_resolution,
+            material_thickness: settings.sampling.material_thickness()
+                && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
         };
         Plan::new(settings.mode, features, options)
     }
@@ -246,7 +252,7 @@ impl Renderer {
 
     /// Replaces the model and lights.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
-        self.scene = self.passes.upload_scene(gpu, &scene.model);
+        self.scene = self.passes.upload_scene(gpu, &scene.model, &scene.model.thickness_codes());
         self.rig = scene.rig;
         self.scene_radius = scene.default_radius();
         self.set_lights(gpu, scene.lights.clone());

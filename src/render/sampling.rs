@@ -58,6 +58,9 @@ pub struct Lengths {
     pub thickness: f32,
     /// The depth bias as a length (`Sampling::bias` is its fraction of the radius).
     pub bias_length: f32,
+    /// The scene's default thickness at scale 1, what a material's thickness code is a share of
+    /// (`scene/thickness.rs`).
+    pub default_thickness: f32,
 }
 
 impl Default for Sampling {
@@ -119,6 +122,13 @@ impl Sampling {
         self.variant.decl().marched_lengths && self.depth_pyramid
     }
 
+    /// Whether each depth sample may take its material's thickness: the march (whose lengths
+    /// these are) with no thickness given: a given one, as a length or as a preset's multiple of
+    /// the default, is every sample's (so `resolved` states the same frame).
+    pub fn material_thickness(&self) -> bool {
+        self.variant.decl().marched_lengths && self.thickness.is_none() && self.thickness_scale == 1.0
+    }
+
     /// The same sampling with the radius and thickness scales made explicit lengths for a scene
     /// whose default radius is `default_radius` (what the reproduce line states).
     pub fn resolved(&self, default_radius: f32) -> Self {
@@ -136,6 +146,7 @@ impl Sampling {
             reach: self.reach.unwrap_or(REACH_RADII * default_radius).max(radius),
             thickness: self.thickness.unwrap_or(THICKNESS_RADII * default_radius * self.thickness_scale),
             bias_length: self.bias * radius,
+            default_thickness: THICKNESS_RADII * default_radius,
         }
     }
 

@@ -21,10 +21,13 @@ pub enum View {
     DoIndirect,
     /// The final image with every albedo white: light and occlusion without surface colour.
     LightingOnly,
+    /// The thickness the march takes each surface to have, against the scene's default: white
+    /// the default slab, red a sheet (a cut-out), between them a thin solid.
+    Thickness,
 }
 
 impl View {
-    pub const ALL: [View; 8] = [
+    pub const ALL: [View; 9] = [
         View::Final,
         View::Albedo,
         View::Normals,
@@ -33,6 +36,7 @@ impl View {
         View::DoDirect,
         View::DoIndirect,
         View::LightingOnly,
+        View::Thickness,
     ];
 
     /// Name on the command line.
@@ -46,6 +50,7 @@ impl View {
             View::DoDirect => "do-direct",
             View::DoIndirect => "do-indirect",
             View::LightingOnly => "lighting",
+            View::Thickness => "thickness",
         }
     }
 
@@ -59,6 +64,7 @@ impl View {
             View::DoDirect => "DO direct (sky)",
             View::DoIndirect => "DO indirect (bounce)",
             View::LightingOnly => "lighting only",
+            View::Thickness => "thickness",
         }
     }
 }

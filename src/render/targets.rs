@@ -105,6 +105,12 @@ pub const DO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const ALBEDO: TargetId = TargetId::new("gbuffer_albedo", ALBEDO_FORMAT, Place::Screen);
 pub const NORMAL: TargetId = TargetId::new("gbuffer_normal", NORMAL_FORMAT, Place::Screen);
 pub const DEPTH: TargetId = TargetId::new("gbuffer_depth", DEPTH_FORMAT, Place::Screen);
+/// The thickness layer: each pixel's depth bits with, in their low 6 bits, its material's
+/// thickness code (`scene/thickness.rs`; the depth moves by at most 2^-17 of itself). Written by
+/// the G-buffer pass where the plan has it (a thin material in the scene), read by the marches
+/// in place of the depth, and by the thickness view.
+pub const THICKNESS: TargetId = TargetId::new("gbuffer_thickness", THICKNESS_FORMAT, Place::Screen);
+pub const THICKNESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 /// Linear HDR radiance before tone mapping: written by the lighting pass, the composite, the
 /// skybox and the light cubes, read by the tone map.
 pub const HDR: TargetId = TargetId::new("hdr_color", HDR_FORMAT, Place::Screen);

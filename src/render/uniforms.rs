@@ -83,6 +83,9 @@ pub struct MaterialParams {
     pub alpha_cutoff: f32,
     /// Multiplies the mask's coverage.
     pub alpha_factor: f32,
+    /// The material's thickness code for the thickness layer (`scene/thickness.rs`).
+    pub thickness_code: u32,
+    pub _pad: [u32; 3],
 }
 
 /// Sampling parameters of the occlusion pass; `SamplingParams` in
@@ -101,7 +104,8 @@ pub struct SamplingParams {
     pub sky_strength: f32,
     pub indirect_strength: f32,
     pub sender_sky_strength: f32,
-    pub _pad0: f32,
+    /// The scene's default thickness at scale 1 (a thickness code's unit).
+    pub default_thickness: f32,
     pub slices: u32,
     pub steps: u32,
     pub reach: f32,

@@ -1,5 +1,6 @@
-//! Named scenes for the report: the default scene, two that stress the screen-space methods, and
-//! a held-out one (`stairs`) that no estimator or default was tuned on.
+//! Named scenes for the report: the default scene, three that stress the screen-space methods
+//! (deep crevices, thin fins, a checker-cut fence), and a held-out one (`stairs`) that no estimator
+//! or default was tuned on.
 
 use std::path::PathBuf;
 
@@ -9,13 +10,14 @@ use crate::scene::builtin::{self, MeshBuilder};
 use crate::scene::{self, Material, Model};
 use crate::{Error, Result};
 
-pub const NAMES: [&str; 4] = ["cornell", "crevices", "open", "stairs"];
+pub const NAMES: [&str; 5] = ["cornell", "crevices", "fence", "open", "stairs"];
 
 /// A scene by name, with the sky folder it is meant to be seen under.
 pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
     match name {
         "cornell" => Ok((scene::load_model(None)?, None)),
         "crevices" => Ok((crevices()?, None)),
+        "fence" => Ok((fence()?, None)),
         "open" => Ok((open()?, Some(PathBuf::from("skyboxes/redblue")))),
         "stairs" => Ok((stairs()?, None)),
         other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
@@ -43,6 +45,33 @@ pub fn crevices() -> Result<Model> {
         b.cuboid(fins, v(x, 0.0, z), v(x + 0.03, 1.4, z + 0.03), false);
     }
     b.build("crevices")
+}
+
+/// A thin cut-out: a fence of one quad whose checker mask cuts half of it away, standing on a
+/// floor beside a low block, with a post of its own. The floor behind it sees the sky through
+/// the holes; a slab as thick as the scene's default closes them.
+pub fn fence() -> Result<Model> {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", builtin::WHITE));
+    let (cells, texels) = ((10u32, 4u32), 8u32);
+    let (w, h) = (cells.0 * texels, cells.1 * texels);
+    let rgba = (0..w * h)
+        .flat_map(|i| {
+            let open = ((i % w) / texels + (i / w) / texels) % 2 == 1;
+            [150, 110, 70, if open { 0 } else { 255 }]
+        })
+        .collect();
+    let mask = crate::scene::texture::TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba) };
+    let mut slats = Material::plain("fence", [0.6, 0.45, 0.3]);
+    slats.cutout = Some(scene::model::Cutout { mask: Some(mask), factor: 1.0, cutoff: 0.5 });
+    let fence = b.material(slats);
+    let block = b.material(Material::plain("block", [0.3, 0.6, 0.8]));
+    b.quad(floor, [v(-2.5, 0.0, 2.5), v(2.5, 0.0, 2.5), v(2.5, 0.0, -2.5), v(-2.5, 0.0, -2.5)]);
+    b.quad(fence, [v(-1.5, 0.0, 0.0), v(1.5, 0.0, 0.0), v(1.5, 1.2, 0.0), v(-1.5, 1.2, 0.0)]);
+    b.cuboid(block, v(-1.2, 0.0, -1.4), v(-0.2, 0.5, -0.8), false);
+    b.cuboid(block, v(1.5, 0.0, -0.08), v(1.66, 1.3, 0.08), false);
+    b.build("fence")
 }
 
 /// An open scene: spheres and a low box on a wide floor, nothing overhead — sky light dominates.

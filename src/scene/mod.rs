@@ -21,6 +21,7 @@ mod sky_files;
 pub mod skybox;
 mod tangents;
 pub mod texture;
+pub mod thickness;
 mod triangle;
 
 pub use bounds::Bounds;
@@ -56,6 +57,6 @@ impl Scene {
 
     /// Default AO/DO sampling radius: a tenth of the scene radius.
     pub fn default_radius(&self) -> f32 {
-        0.1 * self.model.bounds.radius()
+        self.model.default_radius()
     }
 }

@@ -39,6 +39,7 @@ mod gpu {
     mod stability;
     mod surface_maps;
     mod temporal;
+    mod thickness;
     mod tune;
     mod view_truth;
     mod winding;

@@ -172,9 +172,15 @@ pub trait Pass {
     /// recorded otherwise is a bug, and says so.
     fn record(&self, rec: Recording<'_>);
 
-    /// Uploads a model's geometry and materials: the pass that draws the scene does, the others
-    /// keep this default.
-    fn upload_scene(&mut self, _gpu: &crate::gpu::Gpu, _model: &crate::scene::Model) -> Option<SceneGpu> {
+    /// Uploads a model's geometry and materials, with each material's thickness code
+    /// (`Model::thickness_codes`): the pass that draws the scene does, the others keep this
+    /// default.
+    fn upload_scene(
+        &mut self,
+        _gpu: &crate::gpu::Gpu,
+        _model: &crate::scene::Model,
+        _thickness: &[u32],
+    ) -> Option<SceneGpu> {
         None
     }
 }

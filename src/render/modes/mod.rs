@@ -52,12 +52,15 @@ pub struct SceneFeatures {
     /// A material has a normal map: the G-buffer's normals are not the surfaces' own, and the
     /// sampling passes take the geometry's from the depth (see `shaders/march.wgsl`).
     pub normal_mapped: bool,
+    /// A material is thinner than the scene's default thickness (`scene/thickness.rs`): the
+    /// march can take each depth sample's thickness from the G-buffer's thickness layer.
+    pub thin_materials: bool,
 }
 
 impl SceneFeatures {
-    /// A scene with `lights` point lights and no normal maps.
+    /// A scene with `lights` point lights, no normal maps and no thin materials.
     pub fn lit(lights: usize) -> Self {
-        Self { lights, normal_mapped: false }
+        Self { lights, normal_mapped: false, thin_materials: false }
     }
 }
 
@@ -80,6 +83,10 @@ pub struct PlanOptions {
     /// The sampling output is averaged over frames (`Settings::accumulates`): a temporal pass
     /// and its history.
     pub accumulate: bool,
+    /// Each depth sample may take its material's thickness (the march variant, no `--thickness`
+    /// given, and a mode that samples or the thickness view): the G-buffer writes the thickness
+    /// layer where the scene has a thin material.
+    pub material_thickness: bool,
 }
 
 impl Default for PlanOptions {
@@ -87,7 +94,8 @@ impl Default for PlanOptions {
     /// no pyramid, and the bounce lit by the sky and the lights.
     fn default() -> Self {
         let (blur, pyramid, display, indirect, half_resolution, accumulate) = (true, false, true, true, true, true);
-        Self { blur, pyramid, display, indirect, sender_sky: SenderSky::default(), half_resolution, accumulate }
+        let sender_sky = SenderSky::default();
+        Self { blur, pyramid, display, indirect, sender_sky, half_resolution, accumulate, material_thickness: true }
     }
 }
 
@@ -192,6 +200,9 @@ pub struct Plan {
     pub pyramid: bool,
     /// The senders' sky comes from their own march, which a step runs.
     pub sender_march: bool,
+    /// The G-buffer writes the thickness layer (depth with each surface's thickness code), which
+    /// the marches and the thickness view read: a thin material, and the options allow it.
+    pub thickness_layer: bool,
     pub steps: Vec<Step>,
     /// The targets kept across frames (see `history.rs`): the temporal pass's, where it runs.
     pub history: Vec<HistorySpec>,

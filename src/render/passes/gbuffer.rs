@@ -26,8 +26,10 @@ use crate::render::modes::{Plan, Step};
 use crate::render::resources::scene::{upload_texture, Draw, Features, SceneGpu, SpecularMap};
 use crate::render::surface_pack::shininess_bits;
 use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
+use crate::render::targets::{THICKNESS, THICKNESS_FORMAT};
 use crate::render::uniforms::MaterialParams;
 use crate::scene::model::{Material, TextureImage};
+use crate::scene::thickness::FULL_THICKNESS;
 use crate::scene::{Model, Vertex};
 use crate::{shaders, Result};
 
@@ -67,7 +69,7 @@ impl Sides {
         features: Features,
     ) -> Self {
         let pipeline = |culled| GBufferPass::pipeline(device, layout, module, features, culled);
-        if features == Features::default() {
+        if (Features { thickness_layer: false, ..features }) == Features::default() {
             Self { first: pipeline(None), second: None }
         } else {
             Self { first: pipeline(Some(wgpu::Face::Back)), second: Some(pipeline(Some(wgpu::Face::Front))) }
@@ -91,8 +93,9 @@ pub struct GBufferPass {
     pipelines: std::collections::HashMap<Features, Sides>,
     pipeline_layout: wgpu::PipelineLayout,
     module: wgpu::ShaderModule,
-    /// The displayed sky behind the geometry (display plans).
-    sky: wgpu::RenderPipeline,
+    /// The displayed sky behind the geometry (display plans), without the thickness layer and
+    /// with it.
+    sky: [wgpu::RenderPipeline; 2],
 }
 
 impl GBufferPass {
@@ -118,17 +121,24 @@ impl GBufferPass {
         });
         let plain = Sides::new(device, &pipeline_layout, &module, Features::default());
         let pipelines = [(Features::default(), plain)].into_iter().collect();
-        // The albedo alone; the normal is left as cleared.
-        let normal_kept =
-            wgpu::ColorTargetState { format: NORMAL_FORMAT, blend: None, write_mask: wgpu::ColorWrites::empty() };
-        let targets = [Some(ALBEDO_FORMAT.into()), Some(normal_kept)];
-        let sky = super::skybox::behind_geometry(cx, "gbuffer_sky_pipeline", "fs_display", &targets)?;
+        // The albedo alone; the normal (and the thickness layer) are left as cleared.
+        let kept = |format| wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::empty() };
+        let targets = [Some(ALBEDO_FORMAT.into()), Some(kept(NORMAL_FORMAT)), Some(kept(THICKNESS_FORMAT))];
+        let sky = [
+            super::skybox::behind_geometry(cx, "gbuffer_sky_pipeline", "fs_display", &targets[..2])?,
+            super::skybox::behind_geometry(cx, "gbuffer_sky_thickness_pipeline", "fs_display", &targets)?,
+        ];
         Ok(Self { material_layout, sampler, pipelines, pipeline_layout, module, sky })
     }
 
-    /// The model and its materials (its own bind groups); the G-buffer, depth last.
-    pub fn io(_plan: &Plan) -> PassIo {
-        PassIo { reads: vec![], attached: vec![], writes: vec![ALBEDO, NORMAL, DEPTH] }
+    /// The model and its materials (its own bind groups); the G-buffer, depth last, and the
+    /// thickness layer where the plan has it.
+    pub fn io(plan: &Plan) -> PassIo {
+        let mut writes = vec![ALBEDO, NORMAL, DEPTH];
+        if plan.thickness_layer {
+            writes.push(THICKNESS);
+        }
+        PassIo { reads: vec![], attached: vec![], writes }
     }
 
     /// The pipeline of a material with `features`, culling the faces whose `culled` side is
@@ -147,6 +157,14 @@ impl GBufferPass {
             ("NORMAL_MAPPED", flag(features.normal_mapped)),
             ("CUT_OUT", flag(features.cut_out)),
         ];
+        let (entry, targets) = if features.thickness_layer {
+            (
+                "fs_thickness",
+                &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into()), Some(THICKNESS_FORMAT.into())][..],
+            )
+        } else {
+            ("fs_main", &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into())][..])
+        };
         let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
         let vertex = wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -181,9 +199,9 @@ impl GBufferPass {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module,
-                entry_point: Some("fs_main"),
+                entry_point: Some(entry),
                 compilation_options: options,
-                targets: &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+                targets,
             }),
             multiview_mask: None,
             cache: None,
@@ -192,7 +210,7 @@ impl GBufferPass {
 
     /// Uploads `model` and builds its material bind groups (and the pipelines its materials need
     /// that do not exist yet).
-    fn upload(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
+    fn upload(&mut self, gpu: &Gpu, model: &Model, thickness: &[u32]) -> SceneGpu {
         let device = &gpu.device;
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene_vertices"),
@@ -219,25 +237,38 @@ impl GBufferPass {
             .iter()
             .map(|part| {
                 let m = &model.materials[part.material];
-                let bind_group = self.material_bind_group(gpu, m, &mut maps);
+                let code = thickness.get(part.material).copied().unwrap_or(FULL_THICKNESS);
+                let bind_group = self.material_bind_group(gpu, m, code, &mut maps);
                 let features = Features::of(m, tangents.is_some());
                 Draw { first_index: part.first_index, index_count: part.index_count, bind_group, features }
             })
             .collect();
+        // A scene with a thin material draws with the thickness layer where the plan has it, and
+        // without it where not: both sets of its pipelines.
+        let thin_materials = thickness.iter().any(|&c| c < FULL_THICKNESS);
         for draw in &draws {
-            if !self.pipelines.contains_key(&draw.features) {
-                let sides = Sides::new(device, &self.pipeline_layout, &self.module, draw.features);
-                self.pipelines.insert(draw.features, sides);
+            for thickness_layer in [false, thin_materials] {
+                let features = Features { thickness_layer, ..draw.features };
+                if !self.pipelines.contains_key(&features) {
+                    let sides = Sides::new(device, &self.pipeline_layout, &self.module, features);
+                    self.pipelines.insert(features, sides);
+                }
             }
         }
         let textured = draws.iter().any(|d| d.features.textured);
         let normal_mapped = draws.iter().any(|d| d.features.normal_mapped);
-        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, bytes: maps.bytes }
+        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, thin_materials, bytes: maps.bytes }
     }
 
     /// Material `m`'s bind group: its parameters, and its maps uploaded through `maps` (or the
     /// white stand-ins).
-    fn material_bind_group(&self, gpu: &Gpu, m: &Material, maps: &mut MaterialMaps) -> wgpu::BindGroup {
+    fn material_bind_group(
+        &self,
+        gpu: &Gpu,
+        m: &Material,
+        thickness_code: u32,
+        maps: &mut MaterialMaps,
+    ) -> wgpu::BindGroup {
         let params = MaterialParams {
             albedo: m.diffuse,
             specular: m.specular.iter().sum::<f32>() / 3.0,
@@ -245,6 +276,8 @@ impl GBufferPass {
             normal_scale: m.normal_map.as_ref().map_or(1.0, |n| n.scale),
             alpha_cutoff: m.cutout.as_ref().map_or(0.0, |c| c.cutoff),
             alpha_factor: m.cutout.as_ref().map_or(1.0, |c| c.factor),
+            thickness_code,
+            ..Default::default()
         };
         let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("material_{}_params", m.name)),
@@ -335,18 +368,20 @@ impl MaterialMaps {
 }
 
 impl Pass for GBufferPass {
-    fn upload_scene(&mut self, gpu: &Gpu, model: &Model) -> Option<SceneGpu> {
-        Some(self.upload(gpu, model))
+    fn upload_scene(&mut self, gpu: &Gpu, model: &Model, thickness: &[u32]) -> Option<SceneGpu> {
+        Some(self.upload(gpu, model, thickness))
     }
 
     fn record(&self, rec: Recording<'_>) {
         let Recording { encoder, timestamps, targets, frame, scene, plan, sky, .. } = rec;
+        let attachment = crate::render::graph::io::color_attachment;
+        let layer = plan.thickness_layer.then(|| attachment(&targets.expect(THICKNESS).view, true));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer_pass"),
-            color_attachments: &[
-                crate::render::graph::io::color_attachment(&targets.albedo().view, true),
-                crate::render::graph::io::color_attachment(&targets.normal().view, true),
-            ],
+            color_attachments: &[attachment(&targets.albedo().view, true), attachment(&targets.normal().view, true)]
+                .into_iter()
+                .chain(layer)
+                .collect::<Vec<_>>(),
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth().view,
                 depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
@@ -366,14 +401,15 @@ impl Pass for GBufferPass {
         // every face), then the faces of those that read maps seen from behind.
         for second in [false, true] {
             for draw in &scene.draws {
-                let Some(pipeline) = self.pipelines[&draw.features].round(second) else { continue };
+                let features = Features { thickness_layer: plan.thickness_layer, ..draw.features };
+                let Some(pipeline) = self.pipelines[&features].round(second) else { continue };
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(1, &draw.bind_group, &[]);
                 pass.draw_indexed(draw.first_index..draw.first_index + draw.index_count, 0, 0..1);
             }
         }
         if plan.display {
-            pass.set_pipeline(&self.sky);
+            pass.set_pipeline(&self.sky[usize::from(plan.thickness_layer)]);
             pass.set_bind_group(1, None, &[]);
             pass.set_bind_group(2, &sky.bind_group, &[]);
             pass.draw(0..3, 0..1);

@@ -103,6 +103,7 @@ impl Plan {
             lighting: has(Step::LIGHTING),
             pyramid: has(Step::DEPTH_PYRAMID),
             sender_march: has(Step::SENDER_SKY),
+            thickness_layer: features.thin_materials && o.material_thickness,
             steps,
             history,
         }
@@ -176,9 +177,9 @@ impl PassSet {
         pass.unwrap_or_else(|| panic!("no pass for step {}", step.name())).record(rec);
     }
 
-    /// Uploads `model` through the pass that draws it.
-    pub fn upload_scene(&mut self, gpu: &Gpu, model: &Model) -> SceneGpu {
-        let uploaded = self.passes.iter_mut().find_map(|(_, p)| p.upload_scene(gpu, model));
+    /// Uploads `model` through the pass that draws it, with its materials' thickness codes.
+    pub fn upload_scene(&mut self, gpu: &Gpu, model: &Model, thickness: &[u32]) -> SceneGpu {
+        let uploaded = self.passes.iter_mut().find_map(|(_, p)| p.upload_scene(gpu, model, thickness));
         uploaded.expect("the G-buffer pass draws the scene")
     }
 }

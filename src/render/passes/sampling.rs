@@ -13,7 +13,7 @@ use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{Plan, PlanFacts, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL};
+use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL, THICKNESS};
 use crate::render::variant::{Estimator, Sampler};
 use crate::{shaders, Result};
 
@@ -98,6 +98,8 @@ struct Key {
     normal_mapped: bool,
     /// The march writes the sky each pixel sees for the next frame's senders.
     last_sky: bool,
+    /// The march reads each sample's thickness from the thickness layer.
+    thickness_layer: bool,
 }
 
 impl Key {
@@ -113,6 +115,7 @@ impl Key {
         ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
+            list.push(("THICKNESS_LAYER", f(self.thickness_layer)));
         } else {
             list.push(("CLASSIC", f(self.classic)));
         }
@@ -133,7 +136,8 @@ impl SamplingPass {
     }
 
     /// The sampling passes' reads (this one's and the sender-sky march's): the G-buffer, the
-    /// parameters, the bounce source where `bounce` says it is read, and the depth pyramid.
+    /// parameters, the bounce source where `bounce` says it is read, the depth pyramid and the
+    /// thickness layer.
     pub fn reads(plan: &Plan, bounce: bool) -> Vec<Read> {
         vec![
             Read::Target(ALBEDO),
@@ -142,6 +146,7 @@ impl SamplingPass {
             Read::Sampling,
             Read::target_if(bounce, BOUNCE),
             Read::target_if(plan.pyramid, PYRAMID),
+            Read::target_if(plan.thickness_layer, THICKNESS),
         ]
     }
 
@@ -171,6 +176,7 @@ impl Pass for SamplingPass {
             half_resolution: plan.half_resolution,
             normal_mapped: plan.features.normal_mapped,
             last_sky: plan.sender_sky == SenderSky::LastFrame,
+            thickness_layer: plan.thickness_layer,
         };
 
         let march_module = &self.march_module;

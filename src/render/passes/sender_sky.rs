@@ -46,8 +46,9 @@ pub fn target(plan: &Plan) -> TargetId {
 
 pub struct SenderSkyPass {
     /// Keyed by whether the far steps read the depth pyramid, whether the G-buffer's normals
-    /// are mapped, and whether it runs at quarter resolution.
-    state: PassState<(bool, bool, bool)>,
+    /// are mapped, whether it runs at quarter resolution and whether it reads the thickness
+    /// layer.
+    state: PassState<(bool, bool, bool, bool)>,
     /// The last frame's march left the senders' sky: this frame skips the pass.
     skipped: bool,
 }
@@ -66,21 +67,21 @@ impl SenderSkyPass {
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let quarter = p.plan.sender_sky == SenderSky::MarchQuarter;
-        let key = || (p.plan.pyramid, p.plan.features.normal_mapped, quarter);
-        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, |(pyramid, mapped, quarter)| {
-            PipelineSpec {
-                entry: "fs_sender",
-                targets: vec![Some(DO_FORMAT.into())],
-                constants: vec![
-                    ("HAS_AO", 0.0),
-                    ("HAS_DO", 1.0),
-                    ("INDIRECT", 0.0),
-                    ("USE_PYRAMID", flag(pyramid)),
-                    ("NORMAL_MAPPED", flag(mapped)),
-                    ("SENDER_SHIFT", if quarter { 2.0 } else { 1.0 }),
-                ],
-            }
-        });
+        let key = || (p.plan.pyramid, p.plan.features.normal_mapped, quarter, p.plan.thickness_layer);
+        let spec = |(pyramid, mapped, quarter, thickness)| PipelineSpec {
+            entry: "fs_sender",
+            targets: vec![Some(DO_FORMAT.into())],
+            constants: vec![
+                ("HAS_AO", 0.0),
+                ("HAS_DO", 1.0),
+                ("INDIRECT", 0.0),
+                ("USE_PYRAMID", flag(pyramid)),
+                ("NORMAL_MAPPED", flag(mapped)),
+                ("SENDER_SHIFT", if quarter { 2.0 } else { 1.0 }),
+                ("THICKNESS_LAYER", flag(thickness)),
+            ],
+        };
+        self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, spec);
     }
 
     fn begin_frame(&mut self, frame: &FrameState<'_>) {

@@ -52,7 +52,17 @@ fn all_plans() -> Vec<Plan> {
                 for sender_sky in SenderSky::ALL {
                     let [blur, pyramid, display, indirect, accumulate, half_resolution] =
                         [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-                    let o = PlanOptions { blur, pyramid, display, indirect, sender_sky, half_resolution, accumulate };
+                    let material_thickness = true;
+                    let o = PlanOptions {
+                        blur,
+                        pyramid,
+                        display,
+                        indirect,
+                        sender_sky,
+                        half_resolution,
+                        accumulate,
+                        material_thickness,
+                    };
                     plans.push(Plan::new(mode, SceneFeatures::lit(lights), o));
                 }
             }

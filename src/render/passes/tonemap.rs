@@ -9,7 +9,7 @@ use crate::render::graph::Entry;
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{Plan, Step};
 use crate::render::settings::View;
-use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT};
+use crate::render::targets::{ALBEDO, DEPTH, HDR, NORMAL, OUTPUT, THICKNESS};
 use crate::Result;
 
 impl Step {
@@ -26,6 +26,7 @@ struct Key {
     view: u32,
     ao: bool,
     directional: bool,
+    thickness_layer: bool,
 }
 
 impl Key {
@@ -37,8 +38,10 @@ impl Key {
             View::Depth => 3,
             View::Ao => 4,
             View::DoDirect | View::DoIndirect => 5,
+            View::Thickness => 6,
         };
-        Self { view: code, ao: plan.decl.ambient_occlusion, directional: plan.decl.directional_occlusion }
+        let (ao, directional) = (plan.decl.ambient_occlusion, plan.decl.directional_occlusion);
+        Self { view: code, ao, directional, thickness_layer: plan.thickness_layer }
     }
 }
 
@@ -53,10 +56,11 @@ impl TonemapPass {
     }
 
     /// HDR, and for the debug views the G-buffer and what the composite reads of the sampling
-    /// chain; the output.
+    /// chain, and the thickness layer; the output.
     pub fn io(plan: &Plan) -> PassIo {
         let mut reads = vec![Read::Target(HDR), Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH)];
         reads.extend(occlusion_reads(plan));
+        reads.push(Read::target_if(plan.thickness_layer, THICKNESS));
         PassIo { reads, attached: vec![], writes: vec![OUTPUT] }
     }
 }
@@ -87,6 +91,7 @@ impl Pass for TonemapPass {
                     ("VIEW", key.view as f64),
                     ("HAS_AO", flag(key.ao)),
                     ("HAS_DO", flag(key.directional)),
+                    ("THICKNESS_LAYER", flag(key.thickness_layer)),
                 ],
             },
         );

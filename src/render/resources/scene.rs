@@ -25,6 +25,9 @@ pub struct Features {
     pub specular: SpecularMap,
     pub normal_mapped: bool,
     pub cut_out: bool,
+    /// The scene has the thickness layer's third target (the same for every material of a
+    /// scene that has it: the G-buffer pass's attachments are one set).
+    pub thickness_layer: bool,
 }
 
 /// Where a material's specular map is read from.
@@ -70,6 +73,7 @@ impl Features {
             specular: SpecularMap::of(m),
             normal_mapped: m.normal_map.is_some() && has_tangents,
             cut_out: m.cutout.is_some(),
+            thickness_layer: false,
         }
     }
 }
@@ -85,6 +89,8 @@ pub struct SceneGpu {
     pub textured: bool,
     /// A material reads a normal map: the G-buffer's normals are not the geometry's.
     pub normal_mapped: bool,
+    /// A material is thinner than the scene's default thickness (`scene/thickness.rs`).
+    pub thin_materials: bool,
     pub bytes: u64,
 }
 

@@ -118,7 +118,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
     same_layout!(
         &gbuffer,
         "MaterialParams",
-        MaterialParams { albedo, specular, shininess_bits, normal_scale, alpha_cutoff, alpha_factor }
+        MaterialParams { albedo, specular, shininess_bits, normal_scale, alpha_cutoff, alpha_factor, thickness_code }
     );
     same_layout!(
         &parse("points.wgsl"),
@@ -133,7 +133,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             sky_strength,
             indirect_strength,
             sender_sky_strength,
-            _pad0,
+            default_thickness,
             slices,
             steps,
             reach,

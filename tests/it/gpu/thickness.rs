@@ -1,0 +1,182 @@
+//! The march's thickness from the scene: a cut-out is a sheet and a thin solid its own thickness,
+//! measured against the CPU truth on the pixels it changes; a scene with no thin material and a
+//! given `--thickness` draw no thickness layer.
+
+use crate::common;
+
+use common::{gpu, looking, renderer, shoot, H, W};
+use glam::{Vec2, Vec3};
+use rand::{rngs::StdRng, SeedableRng};
+use ssdo::headless::readback::read_rgba16f;
+use ssdo::reference::{ReferenceScene, Surface, TraceSettings};
+use ssdo::render::{Mode, Sampling, Settings, Variant, View};
+use ssdo::scene::builtin::MeshBuilder;
+use ssdo::scene::{LightRig, Material, Model, OrbitCamera, Scene, Skybox};
+
+/// The SSDO mode's sky light alone under a white sky, from the default march with more slices
+/// (so one frame is near its converged value), at the scene's default lengths.
+fn sky_light(thickness: Option<f32>) -> Settings {
+    Settings {
+        mode: Mode::Ssdo,
+        sampling: Sampling { variant: Variant::March, slices: 8, steps: 16, thickness, ..Default::default() },
+        ambient: 0.0,
+        view: View::DoDirect,
+        ..Settings::default()
+    }
+}
+
+/// The eye ray through the centre of pixel `(x, y)` of a test-sized image.
+fn eye_ray(camera: &OrbitCamera, (x, y): (usize, usize)) -> (Vec3, Vec3) {
+    let to_world = (camera.view_to_clip(W as f32 / H as f32) * camera.world_to_view()).inverse();
+    let ndc = Vec2::new((x as f32 + 0.5) / W as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / H as f32 * 2.0);
+    let eye = camera.eye();
+    (eye, (to_world.project_point3(ndc.extend(0.5)) - eye).normalize())
+}
+
+/// The pixels whose surface, and every neighbour's, `keep` accepts (so no pixel measured lies on
+/// an edge the half-resolution march blurs across), every `stride`-th of them, with the
+/// surface the truth sees there.
+fn pixels(
+    truth: &ReferenceScene,
+    camera: &OrbitCamera,
+    stride: usize,
+    keep: impl Fn(&Surface) -> bool,
+) -> Vec<((usize, usize), Surface)> {
+    let hits: Vec<Option<Surface>> = (0..(W * H) as usize)
+        .map(|i| {
+            let (eye, dir) = eye_ray(camera, (i % W as usize, i / W as usize));
+            truth.trace(eye, dir, 1e4).filter(|s| keep(s))
+        })
+        .collect();
+    let inner = |x: usize, y: usize| {
+        (x > 0 && y > 0 && x + 1 < W as usize && y + 1 < H as usize)
+            && (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| hits[yy * W as usize + xx].is_some()))
+    };
+    (0..(W * H) as usize)
+        .filter(|&i| inner(i % W as usize, i / W as usize))
+        .step_by(stride)
+        .map(|i| ((i % W as usize, i / W as usize), hits[i].unwrap()))
+        .collect()
+}
+
+/// The truth's mean sky light (white sky, no lights) over `at`.
+fn truth_sky(truth: &ReferenceScene, at: &[((usize, usize), Surface)]) -> f32 {
+    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
+    let rig = LightRig { strength: 1.0, min_distance: 0.01, cube_half_size: 0.01 };
+    let sky = Skybox::constant(Vec3::ONE);
+    let mut rng = StdRng::seed_from_u64(5);
+    let sum: f32 = at.iter().map(|(_, s)| truth.estimate(s, &[], &rig, &sky, &settings, &mut rng).sky.x).sum();
+    sum / at.len() as f32
+}
+
+/// The march's mean sky light over `at`, from one frame.
+fn march_sky(
+    gpu: &ssdo::gpu::Gpu,
+    model: &Model,
+    camera: &OrbitCamera,
+    settings: Settings,
+    at: &[((usize, usize), Surface)],
+) -> f32 {
+    let scene = Scene::new(model.clone(), 0, 1);
+    let mut r = renderer(gpu, &scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+    shoot(gpu, &mut r, camera);
+    let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
+    at.iter().map(|&((x, y), _)| d[y * W as usize + x][0]).sum::<f32>() / at.len() as f32
+}
+
+/// Whether the renderer plans a thickness layer for `model` with `settings`.
+fn plans_layer(gpu: &ssdo::gpu::Gpu, model: &Model, settings: Settings) -> bool {
+    let scene = Scene::new(model.clone(), 0, 1);
+    let r = renderer(gpu, &scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+    r.plan().thickness_layer
+}
+
+#[test]
+fn the_floor_seen_through_a_checker_fence_gets_the_truths_sky() {
+    let Some(gpu) = gpu() else { return };
+    let model = ssdo::report::scenes::fence().unwrap();
+    let truth = ReferenceScene::new(&model);
+    // From the front and above: the floor behind the fence shows through its holes.
+    let camera = looking(Vec3::new(0.0, 0.45, -0.3), 0.0, 24.0, 3.2);
+    let behind = |s: &Surface| s.normal.y > 0.99 && s.position.y.abs() < 1e-3 && s.position.z < -0.05;
+    let seen_through = pixels(&truth, &camera, 1, behind)
+        .into_iter()
+        .filter(|&((x, y), _)| {
+            // Only the floor whose eye ray crossed the fence's plane below its top.
+            let (eye, dir) = eye_ray(&camera, (x, y));
+            let t = -eye.z / dir.z;
+            let crossing = eye + t * dir;
+            crossing.y > 0.05 && crossing.y < 1.15 && crossing.x.abs() < 1.45
+        })
+        .collect::<Vec<_>>();
+    assert!(seen_through.len() >= 40, "only {} floor pixels show through the fence", seen_through.len());
+    let at: Vec<_> = seen_through.into_iter().step_by(3).collect();
+    let want = truth_sky(&truth, &at);
+    let got = march_sky(gpu, &model, &camera, sky_light(None), &at);
+    let slab = Scene::new(model.clone(), 0, 1).default_radius() * ssdo::render::THICKNESS_RADII;
+    let closed = march_sky(gpu, &model, &camera, sky_light(Some(slab)), &at);
+    eprintln!(
+        "floor behind the fence ({} pixels): truth {want:.4}, the fence a sheet {got:.4}, a slab of {slab:.3} {closed:.4}",
+        at.len()
+    );
+    assert!((got - want).abs() <= 0.05 * want, "the floor behind the fence sees {got}, the truth {want}");
+    assert!((closed - want).abs() > 0.05 * want, "a slab closes the holes ({closed} against {want})");
+}
+
+/// Three thin fins (0.2 wide, 0.8 tall, 0.03 thick) in a row on a floor: a thin solid material.
+fn fins() -> Model {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let fins = b.material(Material::plain("fins", [0.8; 3]));
+    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    for k in 0..3 {
+        let x = -1.0 + 0.9 * k as f32;
+        b.cuboid(fins, v(x, 0.0, -0.015), v(x + 0.2, 0.8, 0.015), false);
+    }
+    b.build("fins").unwrap()
+}
+
+#[test]
+fn the_far_side_of_a_thin_fin_is_not_taken_for_a_slab() {
+    let Some(gpu) = gpu() else { return };
+    let model = fins();
+    let truth = ReferenceScene::new(&model);
+    // From the front: the floor behind the fins, within a slab's depth of them (the default
+    // thickness here is 0.28), sees the sky past their sides and over their tops.
+    let camera = looking(Vec3::new(0.0, 0.3, 0.0), 0.0, 25.0, 3.5);
+    let behind = |s: &Surface| {
+        let p = s.position;
+        s.normal.y > 0.99 && p.y.abs() < 1e-3 && p.z < 0.0 && p.z > -0.6 && p.x > -1.1 && p.x < 1.0
+    };
+    let at = pixels(&truth, &camera, 2, behind);
+    assert!(at.len() >= 40, "only {} floor pixels behind the fins", at.len());
+    let want = truth_sky(&truth, &at);
+    let got = march_sky(gpu, &model, &camera, sky_light(None), &at);
+    let slab = Scene::new(model.clone(), 0, 1).default_radius() * ssdo::render::THICKNESS_RADII;
+    let thick = march_sky(gpu, &model, &camera, sky_light(Some(slab)), &at);
+    eprintln!(
+        "floor behind thin fins ({} pixels): truth {want:.4}, the fins' own thickness {got:.4}, a slab of {slab:.3} {thick:.4}",
+        at.len()
+    );
+    assert!((got - want).abs() <= 0.03 * want, "behind the fins {got}, the truth {want}");
+    assert!((thick - want).abs() > 0.05 * want, "a slab darkens the floor behind ({thick} against {want})");
+}
+
+#[test]
+fn only_a_scene_with_a_thin_material_and_no_given_thickness_draws_the_thickness_layer() {
+    let Some(gpu) = gpu() else { return };
+    let thin = fins();
+    assert!(plans_layer(gpu, &thin, sky_light(None)), "thin fins take their own thickness");
+    assert!(!plans_layer(gpu, &thin, sky_light(Some(0.1))), "a given thickness is every sample's");
+    let points = Settings { sampling: Sampling::for_variant(Variant::Points), ..sky_light(None) };
+    assert!(!plans_layer(gpu, &thin, points), "the point estimator has no thickness");
+    let off = Settings { mode: Mode::Off, view: View::Final, ..sky_light(None) };
+    assert!(!plans_layer(gpu, &thin, off), "Off samples nothing");
+    let shown = Settings { mode: Mode::Off, view: View::Thickness, ..sky_light(None) };
+    assert!(plans_layer(gpu, &thin, shown), "the thickness view shows the layer in any mode");
+    let solid = ssdo::scene::builtin::plane(10.0, [0.5; 3]).unwrap();
+    assert!(!plans_layer(gpu, &solid, sky_light(None)), "an open floor is no thin material");
+    let cornell = ssdo::scene::load_model(None).unwrap();
+    assert!(!plans_layer(gpu, &cornell, sky_light(None)), "the default scene runs today's passes");
+}
