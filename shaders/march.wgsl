@@ -42,6 +42,7 @@ override USE_PYRAMID: bool = false;
 override THICKNESS_LAYER: bool = false;
 
 #include "common/sectors.wgsl"
+#include "common/thickness.wgsl"
 
 struct Occlusion {
     ao: f32,
@@ -134,20 +135,24 @@ fn step_distance(r: Receiver, i: u32) -> f32 {
     return r.radius * exp2(x * r.log2_span);
 }
 
-// A depth sample: its depth and how thick the surface there is taken to be.
+// A depth sample: its depth and its material's thickness code (src/scene/thickness.rs; 63, the
+// default slab, without the thickness layer).
 struct DepthSample {
     depth: f32,
-    thickness: f32,
+    code: u32,
 }
 
-// The thickness a thickness code stands for (src/scene/thickness.rs `thickness_ratio`): the
-// receiver's (the scene's, or the one given) where the material's is not thinner.
-fn coded_thickness(r: Receiver, code: u32) -> f32 {
-    if code >= 63u {
+// How deep along its view ray the depth sample at `p` (`texel`, a step standing for `spacing`
+// pixels) is taken to be: the scene's one thickness (or the one given), or where its material is
+// thinner (the thickness layer), the depth its own thickness spans over the step's footprint
+// (common/thickness.wgsl), never more than the scene's.
+fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, texel: vec2<i32>, spacing: f32) -> f32 {
+    if !THICKNESS_LAYER || sample.code >= DEFAULT_THICKNESS_CODE {
         return r.thickness;
     }
-    let ratio = select(exp2((f32(code) - 62.0) * 0.25), 0.0, code == 0u);
-    return min(r.thickness, ratio * occ.default_thickness);
+    let own = thickness_ratio(sample.code) * occ.default_thickness;
+    let extent = depth_extent(own, pixel_footprint(spacing, p.z), load_normal(texel), safe_normalize(-p, r.v));
+    return min(r.thickness, extent);
 }
 
 // The depth step `i` reads at `texel`, `spacing` pixels past the last step. A far step stands for
@@ -159,15 +164,15 @@ fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSampl
     if !USE_PYRAMID || i < r.near_steps || level < 0 {
         if THICKNESS_LAYER {
             let bits = textureLoad(thickness_layer, texel, 0).r;
-            return DepthSample(bitcast<f32>(bits), coded_thickness(r, bits & 63u));
+            return DepthSample(bitcast<f32>(bits), bits & THICKNESS_CODE_MASK);
         }
-        return DepthSample(load_depth(texel), r.thickness);
+        return DepthSample(load_depth(texel), DEFAULT_THICKNESS_CODE);
     }
     let top = i32(textureNumLevels(depth_pyramid)) - 1;
     let k = min(level, top);
     let last = vec2<i32>(textureDimensions(depth_pyramid, k)) - vec2<i32>(1);
     let block = min(texel >> vec2<u32>(u32(k + 1)), last);
-    return DepthSample(bitcast<f32>(textureLoad(depth_pyramid, block, k).r), r.thickness);
+    return DepthSample(bitcast<f32>(textureLoad(depth_pyramid, block, k).r), DEFAULT_THICKNESS_CODE);
 }
 
 // The bounce the sender at `texel` (at `front` from the receiver) sends into the sectors
@@ -208,7 +213,8 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
         }
         let p = view_position(vec2<f32>(texel) + 0.5, sample.depth);
         let front = p - r.p;
-        let back = front - safe_normalize(-p, r.v) * sample.thickness;
+        let thickness = sample_thickness(r, sample, p, texel, spacing);
+        let back = front - safe_normalize(-p, r.v) * thickness;
         let a_front = slice_angle(front, r.v, s.t);
         let a_back = slice_angle(back, r.v, s.t);
         var a_min = min(a_front, a_back);
@@ -224,7 +230,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
         let above = dot(front, r.n_g) > 0.0;
         // (Squared: the bound is never negative, the distances growing step by step.)
         let gap = p - previous;
-        let bound = sample.thickness + 2.0 * (distance - previous_distance);
+        let bound = thickness + 2.0 * (distance - previous_distance);
         if connected && above && dot(gap, gap) < bound * bound {
             a_min = min(a_min, previous_angle);
             a_max = max(a_max, previous_angle);

@@ -7,6 +7,7 @@
 #include "common/fullscreen.wgsl"
 #include "common/surface_pack.wgsl"
 #include "common/tone_curve.wgsl"
+#include "common/thickness.wgsl"
 
 @group(1) @binding(0) var hdr: texture_2d<f32>;
 @group(1) @binding(1) var g_albedo: texture_2d<f32>;
@@ -68,19 +69,26 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             return tone_map(light * frame.display_scale);
         }
         case 6u: {
-            // The thickness a depth sample is taken to have against the scene's default
-            // (src/scene/thickness.rs `thickness_ratio`): white the default slab (everywhere
-            // without the thickness layer), red a sheet, pink to white thin solids by the square
-            // root of their share; the sky black.
-            if textureLoad(g_depth, pixel, 0).r <= 0.0 {
+            // The thickness the march takes a depth sample here to have at its nearest step (one
+            // pixel's footprint), against the scene's default: white the default slab (everywhere
+            // without the thickness layer), red none (a cut-out seen face-on), pink between them
+            // by the square root of the share; the sky black.
+            let depth = textureLoad(g_depth, pixel, 0).r;
+            if depth <= 0.0 {
                 return vec3<f32>(0.0);
             }
-            var ratio = 1.0;
+            var share = 1.0;
             if THICKNESS_LAYER {
-                let code = textureLoad(thickness_layer, pixel, 0).r & 63u;
-                ratio = select(select(exp2((f32(code) - 62.0) * 0.25), 0.0, code == 0u), 1.0, code >= 63u);
+                let code = textureLoad(thickness_layer, pixel, 0).r & THICKNESS_CODE_MASK;
+                let uv = (vec2<f32>(pixel) + 0.5) / frame.viewport.xy;
+                let clip = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+                let p = clip.xyz / clip.w;
+                let n = unpack_normal(textureLoad(g_normal, pixel, 0).r);
+                let default_thickness = max(frame.default_thickness, 1e-30);
+                let extent = depth_extent(thickness_ratio(code) * default_thickness, pixel_footprint(1.0, p.z), n, normalize(-p));
+                share = min(extent / default_thickness, 1.0);
             }
-            return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(ratio));
+            return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(share));
         }
         default: {
             return tone_map(textureLoad(hdr, pixel, 0).rgb * frame.display_scale);

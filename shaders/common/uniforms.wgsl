@@ -29,7 +29,8 @@ struct Frame {
     ao_power: f32,
     light_count: u32,
     frame_index: u32,
-    _pad0: f32,
+    // the scene's default march thickness (a thickness code's unit; the thickness view's scale)
+    default_thickness: f32,
     // the pixel of the output where this image starts (the viewer's 3D view beside its panel);
     // passes that draw straight into the output subtract it
     output_origin: vec2<f32>,

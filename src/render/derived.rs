@@ -54,6 +54,7 @@ impl Renderer {
             ao_power: s.ao_power,
             sky_sh: self.sky_sh.map(|c| c * (s.sky_scale * s.sky_strength)),
             output_origin: origin,
+            default_thickness: self.lengths().default_thickness,
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.runs_sampling() {

@@ -22,6 +22,8 @@ pub struct FrameInputs {
     pub sky_sh: [Vec3; 9],
     /// Where the image starts in the output target (the viewer's panel is beside it).
     pub output_origin: (u32, u32),
+    /// The scene's default march thickness (`Lengths::default_thickness`).
+    pub default_thickness: f32,
 }
 
 pub struct FrameData {
@@ -197,7 +199,7 @@ impl FrameData {
             ao_power: inputs.ao_power,
             light_count: lights.len() as u32,
             frame_index: self.frame_index,
-            _pad0: 0.0,
+            default_thickness: inputs.default_thickness,
             output_origin: [inputs.output_origin.0 as f32, inputs.output_origin.1 as f32],
             _pad1: [0.0; 2],
             sky_irradiance: irradiance_quadratic(&inputs.sky_sh, Mat3::from_mat4(world_to_view.inverse()))

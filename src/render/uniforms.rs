@@ -29,7 +29,8 @@ pub struct FrameUniforms {
     pub ao_power: f32,
     pub light_count: u32,
     pub frame_index: u32,
-    pub _pad0: f32,
+    /// The scene's default march thickness (a thickness code's unit; the thickness view's scale).
+    pub default_thickness: f32,
     pub output_origin: [f32; 2],
     pub _pad1: [f32; 2],
     pub sky_irradiance: [[f32; 4]; 9],

@@ -100,7 +100,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             ao_power,
             light_count,
             frame_index,
-            _pad0,
+            default_thickness,
             output_origin,
             _pad1,
             sky_irradiance,

@@ -180,3 +180,29 @@ fn only_a_scene_with_a_thin_material_and_no_given_thickness_draws_the_thickness_
     let cornell = ssdo::scene::load_model(None).unwrap();
     assert!(!plans_layer(gpu, &cornell, sky_light(None)), "the default scene runs today's passes");
 }
+
+#[test]
+fn the_thickness_view_shows_a_cut_out_as_a_sheet_and_the_floor_as_the_default_slab() {
+    let Some(gpu) = gpu() else { return };
+    let model = ssdo::report::scenes::fence().unwrap();
+    let truth = ReferenceScene::new(&model);
+    let camera = looking(Vec3::new(0.0, 0.45, -0.3), 0.0, 24.0, 3.2);
+    let fence = pixels(&truth, &camera, 1, |s| s.position.z.abs() < 1e-3 && s.normal.z.abs() > 0.99);
+    let floor = pixels(&truth, &camera, 1, |s| s.normal.y > 0.99 && s.position.z > 0.3);
+    assert!(fence.len() >= 20 && floor.len() >= 20, "{} fence and {} floor pixels", fence.len(), floor.len());
+    let scene = Scene::new(model, 0, 1);
+    let settings = Settings { view: View::Thickness, ..sky_light(None) };
+    let mut r = renderer(gpu, &scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+    let image = shoot(gpu, &mut r, &camera);
+    let mean = |at: &[((usize, usize), Surface)]| {
+        let rgb = |(x, y): (usize, usize)| {
+            let p = image.get_pixel(x as u32, y as u32).0;
+            Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32)
+        };
+        at.iter().map(|&(pixel, _)| rgb(pixel)).sum::<Vec3>() / at.len() as f32
+    };
+    let (sheet, slab) = (mean(&fence), mean(&floor));
+    eprintln!("thickness view: fence {sheet}, floor {slab}");
+    assert!(slab.min_element() > 250.0, "the floor is the default slab (white): {slab}");
+    assert!(sheet.x > 150.0 && sheet.y < 0.5 * sheet.x, "the fence, a sheet seen face-on, is red: {sheet}");
+}
