@@ -17,14 +17,16 @@
 // three more varyings and their derivatives: docs/performance.md.)
 // In a scene with a thin material (src/scene/thickness.rs) a plan whose march reads thickness
 // draws with `fs_thickness`, which also writes the thickness layer (R32Uint): the fragment's
-// depth bits with the material's thickness code in the low 6 (63 the default slab, 0 a sheet).
-// The march reads it in place of the depth, so a sample's depth and thickness come in one load.
+// depth bits with the material's thickness class and the surface's tilt in the low 8
+// (common/thickness.wgsl). The march reads it in place of the depth, so a sample's depth and how
+// deep it spans come in one load.
 // Cut-out materials discard the texels whose coverage is below their cutoff: this pass is the
 // only one that writes depth (the depth pyramid is built from its depth), so every screen-space
 // pass sees the holes.
 
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
+#include "common/thickness.wgsl"
 
 // Mirrors `MaterialParams` in src/render/uniforms.rs.
 struct MaterialParams {
@@ -40,7 +42,7 @@ struct MaterialParams {
     alpha_cutoff: f32,
     // multiplies the mask's coverage
     alpha_factor: f32,
-    // the thickness layer's code of this material (0-63)
+    // the material's thickness class (src/scene/thickness.rs; 7 the scene's default)
     thickness_code: u32,
 }
 
@@ -61,6 +63,8 @@ override TEXTURED: bool = false;
 override SPECULAR_MAP: u32 = 0u;
 override NORMAL_MAPPED: bool = false;
 override CUT_OUT: bool = false;
+// The material is thinner than the scene's default (fs_thickness writes its tilt).
+override THIN: bool = false;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -165,12 +169,21 @@ struct ThicknessOut {
     @location(2) depth_and_code: u32,
 }
 
-// The low bits of the thickness layer that hold the code.
-const THICKNESS_CODE_MASK: u32 = 63u;
-
+// The G-buffer and the thickness layer: the depth's bits with the material's thickness class and
+// the surface's tilt from the view ray in the low 8 (common/thickness.wgsl). The tilt is the
+// vertex normal's, the surface's own, not a normal map's.
 @fragment
 fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessOut {
     let g = surface(in, front);
-    let depth = (bitcast<u32>(in.clip.z) & ~THICKNESS_CODE_MASK) | material.thickness_code;
+    // (A material of the default thickness has no tilt to compute: its pipeline's THIN is off.)
+    var code = DEFAULT_THICKNESS_CLASS;
+    if THIN {
+        let uv = in.clip.xy * frame.viewport.zw;
+        let view = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, in.clip.z, 1.0);
+        let to_eye = safe_normalize(-view.xyz / view.w, vec3<f32>(0.0, 0.0, 1.0));
+        let n = safe_normalize(in.normal, to_eye);
+        code = thickness_code_of(material.thickness_code, abs(dot(n, to_eye)));
+    }
+    let depth = (bitcast<u32>(in.clip.z) & ~THICKNESS_CODE_MASK) | code;
     return ThicknessOut(g.albedo, g.normal, depth);
 }

@@ -135,24 +135,23 @@ fn step_distance(r: Receiver, i: u32) -> f32 {
     return r.radius * exp2(x * r.log2_span);
 }
 
-// A depth sample: its depth and its material's thickness code (src/scene/thickness.rs; 63, the
-// default slab, without the thickness layer).
+// A depth sample: its depth and its thickness code (common/thickness.wgsl; the default class
+// without the thickness layer).
 struct DepthSample {
     depth: f32,
     code: u32,
 }
 
-// How deep along its view ray the depth sample at `p` (`texel`, a step standing for `spacing`
-// pixels) is taken to be: the scene's one thickness (or the one given), or where its material is
-// thinner (the thickness layer), the depth its own thickness spans over the step's footprint
-// (common/thickness.wgsl), never more than the scene's.
-fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, texel: vec2<i32>, spacing: f32) -> f32 {
-    if !THICKNESS_LAYER || sample.code >= DEFAULT_THICKNESS_CODE {
+// How deep along its view ray the depth sample at `p` (a step standing for `spacing` pixels) is
+// taken to be: the scene's one thickness (or the one given), or where the thickness layer says
+// its surface is thinner, the depth its own thickness and tilt span over the step's footprint
+// (common/thickness.wgsl), never more than the scene's. Arithmetic only: no branch, no load.
+fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, spacing: f32) -> f32 {
+    if !THICKNESS_LAYER {
         return r.thickness;
     }
-    let own = thickness_ratio(sample.code) * occ.default_thickness;
-    let extent = depth_extent(own, pixel_footprint(spacing, p.z), load_normal(texel), safe_normalize(-p, r.v));
-    return min(r.thickness, extent);
+    let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), occ.default_thickness);
+    return select(min(r.thickness, extent), r.thickness, (sample.code & 7u) >= DEFAULT_THICKNESS_CLASS);
 }
 
 // The depth step `i` reads at `texel`, `spacing` pixels past the last step. A far step stands for
@@ -166,13 +165,13 @@ fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSampl
             let bits = textureLoad(thickness_layer, texel, 0).r;
             return DepthSample(bitcast<f32>(bits), bits & THICKNESS_CODE_MASK);
         }
-        return DepthSample(load_depth(texel), DEFAULT_THICKNESS_CODE);
+        return DepthSample(load_depth(texel), DEFAULT_THICKNESS_CLASS);
     }
     let top = i32(textureNumLevels(depth_pyramid)) - 1;
     let k = min(level, top);
     let last = vec2<i32>(textureDimensions(depth_pyramid, k)) - vec2<i32>(1);
     let block = min(texel >> vec2<u32>(u32(k + 1)), last);
-    return DepthSample(bitcast<f32>(textureLoad(depth_pyramid, block, k).r), DEFAULT_THICKNESS_CODE);
+    return DepthSample(bitcast<f32>(textureLoad(depth_pyramid, block, k).r), DEFAULT_THICKNESS_CLASS);
 }
 
 // The bounce the sender at `texel` (at `front` from the receiver) sends into the sectors
@@ -213,7 +212,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
         }
         let p = view_position(vec2<f32>(texel) + 0.5, sample.depth);
         let front = p - r.p;
-        let thickness = sample_thickness(r, sample, p, texel, spacing);
+        let thickness = sample_thickness(r, sample, p, spacing);
         let back = front - safe_normalize(-p, r.v) * thickness;
         let a_front = slice_angle(front, r.v, s.t);
         let a_back = slice_angle(back, r.v, s.t);

@@ -82,11 +82,8 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
                 let code = textureLoad(thickness_layer, pixel, 0).r & THICKNESS_CODE_MASK;
                 let uv = (vec2<f32>(pixel) + 0.5) / frame.viewport.xy;
                 let clip = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-                let p = clip.xyz / clip.w;
-                let n = unpack_normal(textureLoad(g_normal, pixel, 0).r);
-                let default_thickness = max(frame.default_thickness, 1e-30);
-                let extent = depth_extent(thickness_ratio(code) * default_thickness, pixel_footprint(1.0, p.z), n, normalize(-p));
-                share = min(extent / default_thickness, 1.0);
+                let unit = max(frame.default_thickness, 1e-30);
+                share = min(depth_extent(code, pixel_footprint(1.0, clip.z / clip.w), unit) / unit, 1.0);
             }
             return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(share));
         }

@@ -1,28 +1,50 @@
-// The thickness layer's codes (src/scene/thickness.rs) and the depth a thin surface spans, shared
-// by the march, which takes it, and the thickness view, which shows it.
+// The thickness layer's codes (src/scene/thickness.rs) and the depth a surface spans, shared by
+// the G-buffer, which writes them, the march, which takes the depth, and the thickness view.
+//
+// The layer is the depth's f32 bits with its low 8 replaced: bits 0-2 the material's thickness
+// class (7 the scene's default slab, 0 a sheet, k in 1-6 the default times 2^(k − 7)), bits 3-7
+// the tilt of the surface from the view ray, as an index j of tan θ (0: face-on; else
+// 2^((j − 16) / 3), from 1/32 to 32). A surface of thickness t tilted by θ spans, over a step
+// w wide across the screen, (t + w/2 · sin θ) / cos θ = t · sec θ + w/2 · tan θ along the view ray
+// behind its sample: a sheet seen face-on next to nothing (its holes stay open), one seen
+// edge-on its footprint. The march reads it all in the one load that gives the depth.
 
-// The low bits of the thickness layer that hold a material's code (the rest are its depth's).
-const THICKNESS_CODE_MASK: u32 = 63u;
-// The code of the scene's default slab.
-const DEFAULT_THICKNESS_CODE: u32 = 63u;
+// The low bits of the layer that hold the class and the tilt.
+const THICKNESS_CODE_MASK: u32 = 255u;
+// The class of the scene's default slab.
+const DEFAULT_THICKNESS_CLASS: u32 = 7u;
 
-// The share of the scene's default thickness code `code` stands for: 0 a sheet (a cut-out),
-// 2^((code − 62) / 4) a thin solid, 1 the default (src/scene/thickness.rs `thickness_ratio`).
-fn thickness_ratio(code: u32) -> f32 {
-    if code >= DEFAULT_THICKNESS_CODE {
-        return 1.0;
+// The code of a surface of class `thickness_class` whose normal makes cosine `c` with the view
+// ray (its tilt index: the nearest step of tan θ on the scale above).
+fn thickness_code_of(thickness_class: u32, c: f32) -> u32 {
+    let cos_theta = clamp(c, 1e-4, 1.0);
+    let tan_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0)) / cos_theta;
+    var tilt = 0u;
+    if tan_theta >= exp2(-15.5 / 3.0) {
+        tilt = u32(clamp(round(16.0 + 3.0 * log2(tan_theta)), 1.0, 31.0));
     }
-    return select(exp2((f32(code) - 62.0) * 0.25), 0.0, code == 0u);
+    return thickness_class | (tilt << 3u);
 }
 
-// How deep along the view ray `v` (unit, towards the eye) a surface of thickness `thickness` with
-// normal `n` lies over a footprint `footprint` wide across the screen: a slab crossed at angle θ
-// to its normal is thickness / cos θ deep, and a surface tilted by θ recedes by tan θ per unit
-// across, half the footprint of it behind the sample at its middle. So a sheet seen face-on
-// spans next to nothing (its holes stay open) and one seen edge-on its footprint.
-fn depth_extent(thickness: f32, footprint: f32, n: vec3<f32>, v: vec3<f32>) -> f32 {
-    let c = max(abs(dot(n, v)), 0.05);
-    return (thickness + 0.5 * footprint * sqrt(1.0 - c * c)) / c;
+// The share of the scene's default thickness the class in `code` stands for.
+fn thickness_ratio(code: u32) -> f32 {
+    let thickness_class = code & 7u;
+    return select(exp2(f32(thickness_class) - 7.0), 0.0, thickness_class == 0u);
+}
+
+// tan θ of the tilt in `code`.
+fn code_tan(code: u32) -> f32 {
+    let tilt = (code >> 3u) & 31u;
+    return select(exp2((f32(tilt) - 16.0) / 3.0), 0.0, tilt == 0u);
+}
+
+// How deep along its view ray the surface of `code` spans over a footprint `footprint` wide
+// (view units), with `default_thickness` the scene's (a class's unit); the default itself for
+// the default class.
+fn depth_extent(code: u32, footprint: f32, default_thickness: f32) -> f32 {
+    let t = code_tan(code);
+    let own = thickness_ratio(code) * default_thickness * sqrt(1.0 + t * t) + 0.5 * footprint * t;
+    return select(own, default_thickness, (code & 7u) >= DEFAULT_THICKNESS_CLASS);
 }
 
 // The width in view units of `pixels` pixels at view depth `z` (< 0).

@@ -84,7 +84,7 @@ pub struct MaterialParams {
     pub alpha_cutoff: f32,
     /// Multiplies the mask's coverage.
     pub alpha_factor: f32,
-    /// The material's thickness code for the thickness layer (`scene/thickness.rs`).
+    /// The material's thickness class for the thickness layer (`scene/thickness.rs`).
     pub thickness_code: u32,
     pub _pad: [u32; 3],
 }

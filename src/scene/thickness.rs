@@ -95,27 +95,31 @@ impl Pieces {
 /// A material is thin where it is thinner than this share of the default thickness.
 pub const THIN_SHARE: f32 = 0.5;
 
-/// The thickness code of the default slab: the G-buffer's thickness layer keeps a code in the
-/// low 6 bits of each pixel's depth (`shaders/gbuffer.wgsl`): 63 the default thickness, 0 a
-/// sheet, and `c` in 1-62 the default times 2^((c − 62) / 4), down to 2e-5 of it.
-pub const FULL_THICKNESS: u32 = 63;
+/// The thickness class of the default slab. The G-buffer's thickness layer keeps, in the low
+/// [`CODE_BITS`] bits of each pixel's depth, the surface's class in bits 0-2 (7 the default
+/// thickness, 0 a sheet, `k` in 1-6 the default times 2^(k − 7), from a 64th to a half) and its
+/// tilt from the view ray in bits 3-7 (`shaders/common/thickness.wgsl`).
+pub const FULL_THICKNESS: u32 = 7;
 
-/// The code of a thickness `ratio` times the default (`None`: the default), rounded to the
-/// nearest step and never above the default.
+/// The low bits of the thickness layer's depth that hold the class and the tilt.
+pub const CODE_BITS: u32 = 8;
+
+/// The class of a thickness `ratio` times the default (`None`: the default), the nearest power
+/// of two, never above half the default nor below a 64th of it; 0 (a sheet) only for 0.
 pub fn thickness_code(ratio: Option<f32>) -> u32 {
     match ratio {
         None => FULL_THICKNESS,
         Some(r) if !(r > 0.0) => 0,
-        Some(r) => (62.0 + 4.0 * r.log2()).round().clamp(1.0, 62.0) as u32,
+        Some(r) => (7.0 + r.log2()).round().clamp(1.0, 6.0) as u32,
     }
 }
 
-/// The ratio to the default thickness a code stands for (the march's decoding).
+/// The ratio to the default thickness a class stands for (the march's decoding).
 pub fn thickness_ratio(code: u32) -> f32 {
     match code {
         0 => 0.0,
         FULL_THICKNESS.. => 1.0,
-        c => ((c as f32 - 62.0) / 4.0).exp2(),
+        k => (k as f32 - 7.0).exp2(),
     }
 }
 
@@ -127,12 +131,22 @@ impl Model {
 
     /// Each material's thickness code for the G-buffer's thickness layer ([`thickness_code`]
     /// of [`Model::material_thickness`] against the scene's default thickness).
+    /// Logs the thin ones, so a user can see why a scene draws the thickness layer.
     pub fn thickness_codes(&self) -> Vec<u32> {
         let default = crate::render::THICKNESS_RADII * self.default_radius();
-        self.material_thickness(THIN_SHARE * default)
-            .into_iter()
-            .map(|t| thickness_code(t.map(|t| t / default)))
-            .collect()
+        let thickness = self.material_thickness(THIN_SHARE * default);
+        let thin: Vec<String> = (self.materials.iter().zip(&thickness))
+            .filter_map(|(m, t)| {
+                t.map(|t| match t {
+                    0.0 => format!("'{}' a cut-out sheet", crate::text::bounded_name(&m.name)),
+                    t => format!("'{}' {t:.3}", crate::text::bounded_name(&m.name)),
+                })
+            })
+            .collect();
+        if !thin.is_empty() {
+            log::info!("thinner than the march's default thickness {default:.3}: {}", thin.join(", "));
+        }
+        thickness.into_iter().map(|t| thickness_code(t.map(|t| t / default))).collect()
     }
 
     /// Each material's thickness where it is thinner than `thin` (model units), `None` where
@@ -210,16 +224,18 @@ mod tests {
     use crate::scene::model::{Cutout, Material};
 
     #[test]
-    fn a_code_stands_for_its_thickness_within_a_ninth() {
+    fn a_class_stands_for_its_thickness_within_a_factor_of_the_square_root_of_two() {
         assert_eq!(thickness_code(None), FULL_THICKNESS);
         assert_eq!(thickness_code(Some(0.0)), 0);
         assert_eq!(thickness_ratio(0), 0.0);
         assert_eq!(thickness_ratio(FULL_THICKNESS), 1.0);
-        for ratio in [0.9, 0.5, 0.14, 0.01, 1e-3, 1e-4] {
+        for ratio in [0.5, 0.3, 0.14, 0.05, 0.02] {
             let back = thickness_ratio(thickness_code(Some(ratio)));
-            assert!((back / ratio).log2().abs() <= 0.125 + 1e-6, "{ratio} -> {back}");
+            assert!((back / ratio).log2().abs() <= 0.5 + 1e-6, "{ratio} -> {back}");
         }
-        assert_eq!(thickness_code(Some(1e-9)), 1, "the thinnest step, not a sheet");
+        assert_eq!(thickness_ratio(thickness_code(Some(0.9))), 0.5, "a thin class is never above half");
+        assert_eq!(thickness_code(Some(1e-9)), 1, "the thinnest class, not a sheet");
+        assert!(FULL_THICKNESS < 1 << 3, "the class fits its three bits");
     }
 
     #[test]

@@ -69,7 +69,7 @@ impl Sides {
         features: Features,
     ) -> Self {
         let pipeline = |culled| GBufferPass::pipeline(device, layout, module, features, culled);
-        if (Features { thickness_layer: false, ..features }) == Features::default() {
+        if features.with_layer(false) == Features::default() {
             Self { first: pipeline(None), second: None }
         } else {
             Self { first: pipeline(Some(wgpu::Face::Back)), second: Some(pipeline(Some(wgpu::Face::Front))) }
@@ -156,6 +156,7 @@ impl GBufferPass {
             ("SPECULAR_MAP", features.specular.shader_code()),
             ("NORMAL_MAPPED", flag(features.normal_mapped)),
             ("CUT_OUT", flag(features.cut_out)),
+            ("THIN", flag(features.thin)),
         ];
         let (entry, targets) = if features.thickness_layer {
             (
@@ -239,7 +240,7 @@ impl GBufferPass {
                 let m = &model.materials[part.material];
                 let code = thickness.get(part.material).copied().unwrap_or(FULL_THICKNESS);
                 let bind_group = self.material_bind_group(gpu, m, code, &mut maps);
-                let features = Features::of(m, tangents.is_some());
+                let features = Features { thin: code < FULL_THICKNESS, ..Features::of(m, tangents.is_some()) };
                 Draw { first_index: part.first_index, index_count: part.index_count, bind_group, features }
             })
             .collect();
@@ -248,7 +249,7 @@ impl GBufferPass {
         let thin_materials = thickness.iter().any(|&c| c < FULL_THICKNESS);
         for draw in &draws {
             for thickness_layer in [false, thin_materials] {
-                let features = Features { thickness_layer, ..draw.features };
+                let features = draw.features.with_layer(thickness_layer);
                 if !self.pipelines.contains_key(&features) {
                     let sides = Sides::new(device, &self.pipeline_layout, &self.module, features);
                     self.pipelines.insert(features, sides);
@@ -401,7 +402,7 @@ impl Pass for GBufferPass {
         // every face), then the faces of those that read maps seen from behind.
         for second in [false, true] {
             for draw in &scene.draws {
-                let features = Features { thickness_layer: plan.thickness_layer, ..draw.features };
+                let features = draw.features.with_layer(plan.thickness_layer);
                 let Some(pipeline) = self.pipelines[&features].round(second) else { continue };
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(1, &draw.bind_group, &[]);

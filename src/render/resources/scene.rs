@@ -28,6 +28,9 @@ pub struct Features {
     /// The scene has the thickness layer's third target (the same for every material of a
     /// scene that has it: the G-buffer pass's attachments are one set).
     pub thickness_layer: bool,
+    /// The material is thinner than the scene's default thickness: with the thickness layer, its
+    /// fragments write their class and tilt (the others, the default class alone).
+    pub thin: bool,
 }
 
 /// Where a material's specular map is read from.
@@ -74,7 +77,14 @@ impl Features {
             normal_mapped: m.normal_map.is_some() && has_tangents,
             cut_out: m.cutout.is_some(),
             thickness_layer: false,
+            thin: false,
         }
+    }
+
+    /// The pipeline's features with the thickness layer or without it (a thin material's tilt
+    /// only with it).
+    pub fn with_layer(self, thickness_layer: bool) -> Self {
+        Self { thickness_layer, thin: self.thin && thickness_layer, ..self }
     }
 }
 
