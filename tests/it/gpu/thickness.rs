@@ -84,6 +84,43 @@ fn march_sky(
     at.iter().map(|&((x, y), _)| d[y * W as usize + x][0]).sum::<f32>() / at.len() as f32
 }
 
+/// The mean sky light over some pixels: the truth's, the march's with each material's own
+/// thickness, and with every surface a slab of the scene's default thickness (as before).
+struct SkyAt {
+    pixels: usize,
+    truth: f32,
+    own: f32,
+    slab: f32,
+}
+
+impl SkyAt {
+    fn measure(gpu: &ssdo::gpu::Gpu, model: &Model, camera: &OrbitCamera, at: &[((usize, usize), Surface)]) -> Self {
+        let default = Scene::new(model.clone(), 0, 1).default_radius() * ssdo::render::THICKNESS_RADII;
+        Self {
+            pixels: at.len(),
+            truth: truth_sky(&ReferenceScene::new(model), at),
+            own: march_sky(gpu, model, camera, sky_light(None), at),
+            slab: march_sky(gpu, model, camera, sky_light(Some(default)), at),
+        }
+    }
+
+    /// The relative errors of the march with the materials' thickness and with the slab.
+    fn own_error(&self) -> f32 {
+        (self.own - self.truth).abs() / self.truth
+    }
+
+    fn slab_error(&self) -> f32 {
+        (self.slab - self.truth).abs() / self.truth
+    }
+}
+
+impl std::fmt::Display for SkyAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let (pixels, truth, own, slab) = (self.pixels, self.truth, self.own, self.slab);
+        write!(f, "{pixels} pixels: truth {truth:.4}, own thickness {own:.4}, one slab {slab:.4}")
+    }
+}
+
 /// Whether the renderer plans a thickness layer for `model` with `settings`.
 fn plans_layer(gpu: &ssdo::gpu::Gpu, model: &Model, settings: Settings) -> bool {
     let scene = Scene::new(model.clone(), 0, 1);
@@ -91,13 +128,18 @@ fn plans_layer(gpu: &ssdo::gpu::Gpu, model: &Model, settings: Settings) -> bool 
     r.plan().thickness_layer
 }
 
+/// The report's checker-cut fence, its truth, and a camera in front of it and above, through
+/// whose holes the floor behind it shows.
+fn fence_from_the_front() -> (Model, ReferenceScene, OrbitCamera) {
+    let model = ssdo::report::scenes::fence().unwrap();
+    let truth = ReferenceScene::new(&model);
+    (model, truth, looking(Vec3::new(0.0, 0.45, -0.3), 0.0, 24.0, 3.2))
+}
+
 #[test]
 fn the_floor_seen_through_a_checker_fence_gets_the_truths_sky() {
     let Some(gpu) = gpu() else { return };
-    let model = ssdo::report::scenes::fence().unwrap();
-    let truth = ReferenceScene::new(&model);
-    // From the front and above: the floor behind the fence shows through its holes.
-    let camera = looking(Vec3::new(0.0, 0.45, -0.3), 0.0, 24.0, 3.2);
+    let (model, truth, camera) = fence_from_the_front();
     let behind = |s: &Surface| s.normal.y > 0.99 && s.position.y.abs() < 1e-3 && s.position.z < -0.05;
     let seen_through = pixels(&truth, &camera, 1, behind)
         .into_iter()
@@ -111,16 +153,10 @@ fn the_floor_seen_through_a_checker_fence_gets_the_truths_sky() {
         .collect::<Vec<_>>();
     assert!(seen_through.len() >= 40, "only {} floor pixels show through the fence", seen_through.len());
     let at: Vec<_> = seen_through.into_iter().step_by(3).collect();
-    let want = truth_sky(&truth, &at);
-    let got = march_sky(gpu, &model, &camera, sky_light(None), &at);
-    let slab = Scene::new(model.clone(), 0, 1).default_radius() * ssdo::render::THICKNESS_RADII;
-    let closed = march_sky(gpu, &model, &camera, sky_light(Some(slab)), &at);
-    eprintln!(
-        "floor behind the fence ({} pixels): truth {want:.4}, the fence a sheet {got:.4}, a slab of {slab:.3} {closed:.4}",
-        at.len()
-    );
-    assert!((got - want).abs() <= 0.05 * want, "the floor behind the fence sees {got}, the truth {want}");
-    assert!((closed - want).abs() > 0.05 * want, "a slab closes the holes ({closed} against {want})");
+    let sky = SkyAt::measure(gpu, &model, &camera, &at);
+    eprintln!("floor behind the fence: {sky}");
+    assert!(sky.own_error() <= 0.05, "the floor behind the fence: {sky}");
+    assert!(sky.slab_error() > 0.05, "a slab closes the holes: {sky}");
 }
 
 /// Three thin fins (0.2 wide, 0.8 tall, 0.03 thick) in a row on a floor: a thin solid material.
@@ -151,16 +187,10 @@ fn the_far_side_of_a_thin_fin_is_not_taken_for_a_slab() {
     };
     let at = pixels(&truth, &camera, 2, behind);
     assert!(at.len() >= 40, "only {} floor pixels behind the fins", at.len());
-    let want = truth_sky(&truth, &at);
-    let got = march_sky(gpu, &model, &camera, sky_light(None), &at);
-    let slab = Scene::new(model.clone(), 0, 1).default_radius() * ssdo::render::THICKNESS_RADII;
-    let thick = march_sky(gpu, &model, &camera, sky_light(Some(slab)), &at);
-    eprintln!(
-        "floor behind thin fins ({} pixels): truth {want:.4}, the fins' own thickness {got:.4}, a slab of {slab:.3} {thick:.4}",
-        at.len()
-    );
-    assert!((got - want).abs() <= 0.03 * want, "behind the fins {got}, the truth {want}");
-    assert!((thick - want).abs() > 0.05 * want, "a slab darkens the floor behind ({thick} against {want})");
+    let sky = SkyAt::measure(gpu, &model, &camera, &at);
+    eprintln!("floor behind thin fins: {sky}");
+    assert!(sky.own_error() <= 0.03, "behind the fins: {sky}");
+    assert!(sky.slab_error() > 0.05, "a slab darkens the floor behind: {sky}");
 }
 
 #[test]
@@ -184,9 +214,7 @@ fn only_a_scene_with_a_thin_material_and_no_given_thickness_draws_the_thickness_
 #[test]
 fn the_thickness_view_shows_a_cut_out_as_a_sheet_and_the_floor_as_the_default_slab() {
     let Some(gpu) = gpu() else { return };
-    let model = ssdo::report::scenes::fence().unwrap();
-    let truth = ReferenceScene::new(&model);
-    let camera = looking(Vec3::new(0.0, 0.45, -0.3), 0.0, 24.0, 3.2);
+    let (model, truth, camera) = fence_from_the_front();
     let fence = pixels(&truth, &camera, 1, |s| s.position.z.abs() < 1e-3 && s.normal.z.abs() > 0.99);
     let floor = pixels(&truth, &camera, 1, |s| s.normal.y > 0.99 && s.position.z > 0.3);
     assert!(fence.len() >= 20 && floor.len() >= 20, "{} fence and {} floor pixels", fence.len(), floor.len());
