@@ -96,13 +96,12 @@ impl Pieces {
 pub const THIN_SHARE: f32 = 0.5;
 
 /// The thickness class of the default slab. The G-buffer's thickness layer keeps, in the low
-/// [`CODE_BITS`] bits of each pixel's depth, the surface's class in bits 0-2 (7 the default
+/// 8 bits of each pixel's depth, the surface's class in bits 0-2 (7 the default
 /// thickness, 0 a sheet, `k` in 1-6 the default times 2^(k − 7), from a 64th to a half) and its
 /// tilt from the view ray in bits 3-7 (`shaders/common/thickness.wgsl`).
 pub const FULL_THICKNESS: u32 = 7;
 
-/// The low bits of the thickness layer's depth that hold the class and the tilt.
-pub const CODE_BITS: u32 = 8;
+const _: () = assert!(FULL_THICKNESS < 1 << 3, "a class fits its three bits");
 
 /// The class of a thickness `ratio` times the default (`None`: the default), the nearest power
 /// of two, never above half the default nor below a 64th of it; 0 (a sheet) only for 0.
@@ -235,7 +234,6 @@ mod tests {
         }
         assert_eq!(thickness_ratio(thickness_code(Some(0.9))), 0.5, "a thin class is never above half");
         assert_eq!(thickness_code(Some(1e-9)), 1, "the thinnest class, not a sheet");
-        assert!(FULL_THICKNESS < 1 << 3, "the class fits its three bits");
     }
 
     #[test]
