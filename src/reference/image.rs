@@ -6,7 +6,7 @@ use glam::{Vec3, Vec4Swizzles};
 use rand::{rngs::StdRng, SeedableRng};
 use rayon::prelude::*;
 
-use super::scene::{point_lighting, ray_box, ReferenceScene, TraceSettings};
+use super::scene::{point_lighting, ray_box, ReferenceScene, SenderPlace, Surface, TraceSettings};
 use crate::scene::{LightRig, OrbitCamera, PointLight, Skybox};
 
 /// What the reference computes per pixel (linear, before albedo where the GPU's buffers are too).
@@ -27,6 +27,8 @@ pub struct Reference {
     /// Within-R sky and bounce (diagnostics), E/π.
     pub sky_near: Vec<Vec3>,
     pub bounce_near: Vec<Vec3>,
+    /// The bounce's luminance by where its sender lies for the camera ([`SenderPlace::ALL`]).
+    pub bounce_by_place: Vec<[f32; 4]>,
     /// Direct point lighting (diffuse + specular), as displayed.
     pub direct: Vec<Vec3>,
     /// Mean Monte Carlo standard errors over the valid pixels.
@@ -50,6 +52,7 @@ struct PixelResult {
     open: f32,
     sky_near: Vec3,
     bounce_near: Vec3,
+    bounce_by_place: [f32; 4],
     direct: Vec3,
 }
 
@@ -99,6 +102,7 @@ pub fn trace_while(
         gpu_depth,
         size,
         eye: camera.eye(),
+        world_to_view: camera.world_to_view(),
         view_to_world: camera.world_to_view().inverse(),
         projection: camera.view_to_clip(w as f32 / h as f32),
     };
@@ -131,9 +135,15 @@ struct Tracer<'a> {
     gpu_depth: &'a [f32],
     size: (u32, u32),
     eye: Vec3,
+    world_to_view: glam::Mat4,
     view_to_world: glam::Mat4,
     projection: glam::Mat4,
 }
+
+/// How far a sender may lie from the depth buffer's surface at its pixel and still be the
+/// surface the screen shows: this share of its distance, plus the depth its tilt spans over one
+/// pixel.
+const SEEN_DEPTH_SHARE: f32 = 0.02;
 
 impl Tracer<'_> {
     /// Pixel (x, y): the surface its centre's ray hits, if the GPU sees the same one there, and
@@ -156,6 +166,7 @@ impl Tracer<'_> {
             open: 1.0,
             sky_near: Vec3::ZERO,
             bounce_near: Vec3::ZERO,
+            bounce_by_place: [0.0; 4],
             direct: Vec3::ZERO,
         };
         let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
@@ -175,7 +186,7 @@ impl Tracer<'_> {
             return empty;
         }
         let mut rng = StdRng::seed_from_u64(self.settings.seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        let e = scene.estimate(&surface, lights, rig, self.sky, self.settings, &mut rng);
+        let e = scene.estimate_placed(&surface, (lights, rig), self.sky, self.settings, &mut rng, &|s| self.place(s));
         let (diffuse, specular) = point_lighting(&surface, -direction, lights, rig);
         PixelResult {
             valid: true,
@@ -187,7 +198,46 @@ impl Tracer<'_> {
             open: e.open,
             sky_near: e.sky_near,
             bounce_near: e.bounce_near,
+            bounce_by_place: e.bounce_by_place,
             direct: diffuse + specular,
+        }
+    }
+
+    /// Where `sender` lies for this camera and its depth buffer: off screen (outside the view),
+    /// facing away (the side that lights the receiver turned from the eye), seen (where the
+    /// depth buffer is, at its pixel), or hidden (behind what the depth buffer holds there).
+    fn place(&self, sender: &Surface) -> SenderPlace {
+        let (w, h) = self.size;
+        let view = self.world_to_view.transform_point3(sender.position);
+        let clip = self.projection * view.extend(1.0);
+        if !(clip.w > 0.0) {
+            return SenderPlace::OffScreen;
+        }
+        let ndc = clip.xy() / clip.w;
+        if !(ndc.abs().max_element() < 1.0) {
+            return SenderPlace::OffScreen;
+        }
+        let to_eye = self.eye - sender.position;
+        let facing = sender.geometric.dot(to_eye) / to_eye.length().max(1e-30);
+        if !(facing > 0.0) {
+            return SenderPlace::FacingAway;
+        }
+        let x = (((ndc.x * 0.5 + 0.5) * w as f32) as u32).min(w - 1);
+        let y = (((0.5 - ndc.y * 0.5) * h as f32) as u32).min(h - 1);
+        let depth = self.gpu_depth[(y * w + x) as usize];
+        if !(depth > 0.0) {
+            return SenderPlace::Hidden;
+        }
+        let shown = self.projection.w_axis.z / (depth + self.projection.z_axis.z);
+        let z = -view.z;
+        // One pixel's width at the sender's distance, and the depth the sender's tilt spans
+        // over it.
+        let pixel = 2.0 * z / (h as f32 * self.projection.y_axis.y);
+        let tilt = (1.0 - facing * facing).max(0.0).sqrt() / facing.max(0.02);
+        if (z - shown).abs() <= SEEN_DEPTH_SHARE * z + pixel * tilt {
+            SenderPlace::Seen
+        } else {
+            SenderPlace::Hidden
         }
     }
 }
@@ -217,6 +267,7 @@ impl Reference {
             open: pixels.iter().map(|p| p.open).collect(),
             sky_near: pixels.iter().map(|p| p.sky_near).collect(),
             bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
+            bounce_by_place: pixels.iter().map(|p| p.bounce_by_place).collect(),
             direct: pixels.iter().map(|p| p.direct).collect(),
         }
     }
@@ -244,6 +295,25 @@ impl Reference {
         self.sky_near[i] + self.bounce_near[i]
     }
 
+    /// The shares of the truth's bounce (its luminance over the measured pixels) by where its
+    /// senders lie ([`SenderPlace::ALL`]); `None` where there is no bounce.
+    pub fn bounce_shares(&self) -> Option<[f64; 4]> {
+        let mut sums = [0.0f64; 4];
+        for (by_place, _) in self.bounce_by_place.iter().zip(&self.valid).filter(|(_, v)| **v) {
+            for (sum, b) in sums.iter_mut().zip(by_place) {
+                *sum += *b as f64;
+            }
+        }
+        let total: f64 = sums.iter().sum();
+        (total > 0.0).then(|| sums.map(|s| s / total))
+    }
+
+    /// The mean luminance of the truth's bounce from senders the camera sees, over `pixels`.
+    pub fn seen_bounce(&self, pixels: &[usize]) -> f64 {
+        pixels.iter().map(|&i| self.bounce_by_place[i][SenderPlace::Seen as usize] as f64).sum::<f64>()
+            / pixels.len().max(1) as f64
+    }
+
     /// The mean of two independent traces of the same view (the truth with half the noise).
     pub fn mean(a: &Reference, b: &Reference) -> Reference {
         Self::weighted_mean((a, 1.0), (b, 1.0))
@@ -268,6 +338,12 @@ impl Reference {
             open: avg1(&a.open, &b.open),
             sky_near: avg3(&a.sky_near, &b.sky_near),
             bounce_near: avg3(&a.bounce_near, &b.bounce_near),
+            bounce_by_place: a
+                .bounce_by_place
+                .iter()
+                .zip(&b.bounce_by_place)
+                .map(|(p, q)| std::array::from_fn(|k| ka * p[k] + kb * q[k]))
+                .collect(),
             direct: a.direct.clone(),
             ao_error: error(a.ao_error, b.ao_error),
             sky_error: error(a.sky_error, b.sky_error),

@@ -228,6 +228,35 @@ fn mapped_normal(n: Vec3, t: &[[f32; 4]; 3], weights: [f32; 3], map: &NormalMap,
     (tu * m.x + bv * m.y + n * m.z).try_normalize().unwrap_or(n)
 }
 
+/// Where a bounce's sender lies for the camera: what the screen can and cannot send from (the
+/// report splits the truth's bounce by it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SenderPlace {
+    /// The depth buffer holds it (at its pixel, within a tolerance), its lit side towards the eye.
+    Seen,
+    /// On screen, facing the eye, but not where the depth buffer is: behind a nearer surface.
+    Hidden,
+    /// Outside the view (beside the frustum, or behind the eye).
+    OffScreen,
+    /// On screen, but the side that lights the receiver faces away from the eye (an underside, a
+    /// back face).
+    FacingAway,
+}
+
+impl SenderPlace {
+    pub const ALL: [SenderPlace; 4] =
+        [SenderPlace::Seen, SenderPlace::Hidden, SenderPlace::OffScreen, SenderPlace::FacingAway];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            SenderPlace::Seen => "seen",
+            SenderPlace::Hidden => "hidden",
+            SenderPlace::OffScreen => "off screen",
+            SenderPlace::FacingAway => "facing away",
+        }
+    }
+}
+
 /// The reference's estimates at one surface point, each with its Monte Carlo standard error.
 #[derive(Clone, Copy, Debug)]
 pub struct Estimate {
@@ -246,11 +275,14 @@ pub struct Estimate {
     pub sky_near: Vec3,
     /// One bounce from senders within the radius, E/π.
     pub bounce_near: Vec3,
+    /// The bounce's luminance by where its sender lies ([`SenderPlace`], in `ALL`'s order): they
+    /// add up to the bounce's.
+    pub bounce_by_place: [f32; 4],
 }
 
 impl ReferenceScene {
     /// Sky light, one bounce and openness at `surface` with exact visibility, and the within-R
-    /// AO, sky and bounce, from `spp` cosine-distributed rays.
+    /// AO, sky and bounce, from `spp` cosine-distributed rays (every sender counted as seen).
     pub fn estimate(
         &self,
         surface: &Surface,
@@ -260,12 +292,26 @@ impl ReferenceScene {
         settings: &TraceSettings,
         rng: &mut StdRng,
     ) -> Estimate {
+        self.estimate_placed(surface, (lights, rig), sky, settings, rng, &|_| SenderPlace::Seen)
+    }
+
+    /// [`ReferenceScene::estimate`], with the bounce split by where `place` says each sender lies.
+    pub fn estimate_placed(
+        &self,
+        surface: &Surface,
+        (lights, rig): (&[PointLight], &LightRig),
+        sky: &Skybox,
+        settings: &TraceSettings,
+        rng: &mut StdRng,
+        place: &dyn Fn(&Surface) -> SenderPlace,
+    ) -> Estimate {
         let n = settings.samples_per_pixel.max(1);
         let origin = surface.position + surface.geometric * self.epsilon;
         let (mut ao_sum, mut ao_sq) = (0.0f32, 0.0f32);
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
         let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
+        let mut by_place = [0.0f32; 4];
         for _ in 0..n {
             let dir = Self::hemisphere_direction(surface, rng);
             match self.trace(origin, dir, f32::INFINITY) {
@@ -280,6 +326,7 @@ impl ReferenceScene {
                     let diffuse = self.sender_radiance(&sender, -dir, lights, rig, sky, settings, rng);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
+                    by_place[place(&sender) as usize] += luminance(diffuse);
                     if sender.distance < settings.radius {
                         ao_sum += 1.0;
                         ao_sq += 1.0;
@@ -302,6 +349,7 @@ impl ReferenceScene {
             open: open / nf,
             sky_near: sky_near / nf,
             bounce_near: bounce_near / nf,
+            bounce_by_place: by_place.map(|b| b / nf),
         }
     }
 

@@ -182,10 +182,10 @@ impl Bench<'_> {
         let image = capture_path(gpu, renderer, camera_at)?;
         let frame = Frame::read(gpu, renderer, mode)?;
         let errors = frame.errors(truth, self.ambient);
-        let bounce_ratio = if self.diagnostics && frame.directional.is_some() && bounce.is_some() {
-            self.bounce_ratio(renderer, &camera_at, truth, frame.unexpose)?
+        let (bounce_ratio, bounce_seen_ratio) = if self.diagnostics && frame.directional.is_some() && bounce.is_some() {
+            self.bounce_ratios(renderer, &camera_at, truth, frame.unexpose)?
         } else {
-            None
+            (None, None)
         };
         let flip = self.flip(image, truth, renderer.settings.exposure, maps.map(|m| (m, &frame.ao)))?;
         let Errors { hdr_rmse, hdr_rmse_near, hdr_peak, ao_rmse, do_rmse, do_rmse_near } = errors;
@@ -211,6 +211,7 @@ impl Bench<'_> {
             do_rmse,
             do_rmse_near,
             bounce_ratio,
+            bounce_seen_ratio,
             hdr_rmse,
             hdr_rmse_near,
             hdr_psnr: metrics::psnr(hdr_rmse, hdr_peak),
@@ -220,15 +221,16 @@ impl Bench<'_> {
         })
     }
 
-    /// The bounce alone (the DO-indirect view zeroes the sky), against the truth's: a ratio of
-    /// means, so noise cancels and only the estimator's bias remains.
-    fn bounce_ratio(
+    /// The bounce alone (the DO-indirect view zeroes the sky), against the truth's and against
+    /// the truth's from the senders the camera sees: ratios of means, so noise cancels and only
+    /// the estimator's bias remains.
+    fn bounce_ratios(
         &self,
         renderer: &mut Renderer,
         camera_at: &dyn Fn(u32) -> OrbitCamera,
         truth: &Truth,
         unexpose: f32,
-    ) -> Result<Option<f64>> {
+    ) -> Result<(Option<f64>, Option<f64>)> {
         let view = renderer.settings.view;
         renderer.settings.view = View::DoIndirect;
         capture_path(self.gpu, renderer, camera_at)?;
@@ -240,7 +242,8 @@ impl Bench<'_> {
             |f: &dyn Fn(usize) -> f32| valid.iter().map(|&i| f(i) as f64).sum::<f64>() / valid.len().max(1) as f64;
         let got = mean(&|i| reference::luminance(Vec3::new(bounce[i][0], bounce[i][1], bounce[i][2]) * unexpose));
         let want = mean(&|i| reference::luminance(truth.reference.bounce[i]));
-        Ok((want > 0.0).then(|| got / want))
+        let seen = truth.reference.seen_bounce(valid);
+        Ok(((want > 0.0).then(|| got / want), (seen > 0.0).then(|| got / seen)))
     }
 
     /// FLIP between the displayed GPU image and the truth displayed alike; with `maps` (where

@@ -33,6 +33,9 @@ pub struct Row {
     pub do_rmse_near: Option<f64>,
     /// The mean of the DO's bounce over the measured pixels, over the truth's (1 is unbiased).
     pub bounce_ratio: Option<f64>,
+    /// The same mean over the truth's bounce from senders the camera sees (`SenderPlace::Seen`):
+    /// how much of what the screen can reach the estimate reaches.
+    pub bounce_seen_ratio: Option<f64>,
     /// Linear HDR radiance against the truth, and against the within-R image.
     pub hdr_rmse: f64,
     pub hdr_rmse_near: f64,

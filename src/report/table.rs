@@ -5,7 +5,7 @@ use super::options::ReportOptions;
 use super::row::Row;
 use super::Report;
 use crate::render::{Mode, SenderSky, Variant};
-use crate::{output, Result};
+use crate::{output, reference, Result};
 
 fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(String::new, |v| format!("{v:.digits$}"))
@@ -58,7 +58,7 @@ impl Row {
             (false, false) => "off",
         };
         format!(
-            "| {marks} | {} | {} | {} | {blur} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} |\n",
+            "| {marks} | {} | {} | {} | {blur} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} | {} |\n",
             self.mode.name(),
             self.variant,
             if off { "—".to_string() } else { self.label() },
@@ -73,6 +73,7 @@ impl Row {
             cell(self.do_rmse, 4),
             cell(self.do_rmse_near, 4),
             cell(self.bounce_ratio, 2),
+            cell(self.bounce_seen_ratio, 2),
             cell(self.ao_rmse, 4),
         )
     }
@@ -89,7 +90,7 @@ impl Row {
 
 impl Report {
     pub fn csv(&self) -> String {
-        const HEADER: [&str; 22] = [
+        const HEADER: [&str; 23] = [
             "mode",
             "variant",
             "samples",
@@ -106,6 +107,7 @@ impl Report {
             "do_rmse",
             "do_rmse_within_r",
             "bounce_ratio",
+            "bounce_seen_ratio",
             "hdr_rmse",
             "hdr_rmse_within_r",
             "hdr_psnr",
@@ -113,7 +115,7 @@ impl Report {
             "pareto",
             "preset",
         ];
-        let rows = self.rows.iter().map(|r| -> [String; 22] {
+        let rows = self.rows.iter().map(|r| -> [String; 23] {
             [
                 r.mode.name().to_string(),
                 r.variant.to_string(),
@@ -131,6 +133,7 @@ impl Report {
                 cell(r.do_rmse, 6),
                 cell(r.do_rmse_near, 6),
                 cell(r.bounce_ratio, 3),
+                cell(r.bounce_seen_ratio, 3),
                 format!("{:.6}", r.hdr_rmse),
                 format!("{:.6}", r.hdr_rmse_near),
                 format!("{:.3}", r.hdr_psnr),
@@ -155,6 +158,8 @@ impl Report {
              - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n\
              - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
              surfaces differ), {} under a light's cube\n\
+             - the truth's bounce by where its senders lie for the camera: {}; \"bounce / seen\" is the estimate's \
+             bounce over the seen part, what screen space can reach\n\
              - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
              over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
              cost of one frame with the average running\n\
@@ -181,12 +186,13 @@ impl Report {
             background,
             r.mismatched,
             r.covered,
+            bounce_places(r),
             options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", crate::text::markdown_cell(&p.name))),
         );
         out.push_str(
-            "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | frames (orbit) | ms a frame | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | AO RMSE within R |\n",
+            "| | mode | variant | samples (slices×steps) | blur | bounce senders | radius | frames (orbit) | ms a frame | HDR RMSE | HDR RMSE within R | HDR PSNR | FLIP | DO RMSE | DO RMSE within R | bounce / truth | bounce / seen | AO RMSE within R |\n",
         );
-        out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        out.push_str("|---|---|---|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for row in &self.rows {
             out.push_str(&row.markdown());
         }
@@ -205,5 +211,16 @@ impl Report {
         let plot = options.out.join("report.png");
         batch.stage(&plot, &self.plot(&plot)?)?;
         batch.commit().map(|_| ())
+    }
+}
+
+/// The truth's bounce by where its senders lie, as the report's header says it.
+fn bounce_places(r: &reference::Reference) -> String {
+    match r.bounce_shares() {
+        None => "no bounce".to_string(),
+        Some(shares) => (reference::SenderPlace::ALL.iter().zip(shares))
+            .map(|(place, share)| format!("{} {:.1}%", place.name(), 100.0 * share))
+            .collect::<Vec<_>>()
+            .join(", "),
     }
 }

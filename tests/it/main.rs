@@ -17,6 +17,7 @@ mod common;
 mod backends;
 
 mod cpu {
+    mod bounce_places;
     mod fuzz_entries;
     mod fuzz_loaders;
     mod help_defaults;

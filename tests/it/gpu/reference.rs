@@ -149,7 +149,7 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
     assert!(csv.starts_with(
-        "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,hdr_rmse"
+        "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,bounce_seen_ratio,hdr_rmse"
     ));
     assert_eq!(
         csv.lines().count(),

@@ -1,0 +1,79 @@
+//! The truth's bounce split by where its senders lie for the camera: a wall beside the view
+//! sends its whole bounce from off the screen, the same wall in view sends it from what the
+//! screen shows.
+
+use glam::Vec3;
+use ssdo::reference::{self, ReferenceScene, SenderPlace, TraceSettings};
+use ssdo::scene::builtin::MeshBuilder;
+use ssdo::scene::{LightRig, Material, OrbitCamera, Skybox};
+
+const SIZE: (u32, u32) = (64, 48);
+
+/// A black floor (it sends nothing: the wall is the only sender) and, at x = 1.5, a red wall 2
+/// wide and 1.5 high facing -x.
+fn floor_and_wall() -> ReferenceScene {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.0; 3]));
+    let wall = b.material(Material::plain("wall", [0.8, 0.1, 0.1]));
+    b.quad(floor, [v(-10.0, 0.0, 10.0), v(10.0, 0.0, 10.0), v(10.0, 0.0, -10.0), v(-10.0, 0.0, -10.0)]);
+    b.quad(wall, [v(1.5, 0.0, 1.0), v(1.5, 0.0, -1.0), v(1.5, 1.5, -1.0), v(1.5, 1.5, 1.0)]);
+    ReferenceScene::new(&b.build("wall").unwrap())
+}
+
+/// The shares of the truth's bounce by place, seen from `camera`, with the depth buffer the
+/// truth's own first hits would give.
+fn shares(scene: &ReferenceScene, camera: &OrbitCamera) -> [f64; 4] {
+    let (w, h) = SIZE;
+    let projection = camera.view_to_clip(w as f32 / h as f32);
+    let world_to_clip = projection * camera.world_to_view();
+    let to_world = world_to_clip.inverse();
+    let eye = camera.eye();
+    let depth: Vec<f32> = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let ndc = Vec3::new((x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0, 0.5);
+            let dir = (to_world.project_point3(ndc) - eye).normalize();
+            scene.trace(eye, dir, f32::INFINITY).map_or(0.0, |s| {
+                let clip = world_to_clip * s.position.extend(1.0);
+                clip.z / clip.w
+            })
+        })
+        .collect();
+    let settings = TraceSettings { samples_per_pixel: 64, seed: 1, radius: 0.5, sky_scale: 1.0, ambient: 0.0 };
+    let rig = LightRig { strength: 1.0, min_distance: 0.01, cube_half_size: 0.01 };
+    let sky = Skybox::constant(Vec3::ONE);
+    let truth = reference::trace(scene, &[], &rig, &sky, camera, SIZE, &depth, &settings, &|| {});
+    assert!(truth.valid.iter().filter(|v| **v).count() > (w * h / 2) as usize, "the floor fills the view");
+    truth.bounce_shares().expect("the wall bounces light onto the floor")
+}
+
+#[test]
+fn a_wall_beside_the_view_sends_its_bounce_from_off_screen_and_in_view_from_the_screen() {
+    let scene = floor_and_wall();
+    let (seen, off) = (SenderPlace::Seen as usize, SenderPlace::OffScreen as usize);
+    // Straight down from 2 above the origin: the view reaches x = ±0.55 on the floor and never
+    // the wall, which stands at x = 1.5 lower than the eye.
+    let above = OrbitCamera {
+        target: Vec3::ZERO,
+        yaw_deg: 0.0,
+        pitch_deg: 89.0,
+        distance: 2.0,
+        fov_y_deg: 45.0,
+        near: 0.01,
+        far: None,
+    };
+    let s = shares(&scene, &above);
+    eprintln!("wall beside the view: {s:?}");
+    assert!(s[off] > 0.99, "all the bounce comes from off the screen: {s:?}");
+    // From the floor's open side, looking at the wall's face: what bounces is on the screen.
+    let facing =
+        OrbitCamera { target: Vec3::new(0.9, 0.5, 0.0), yaw_deg: -90.0, pitch_deg: 35.0, distance: 3.0, ..above };
+    let s = shares(&scene, &facing);
+    eprintln!("wall in view: {s:?}");
+    assert!(s[seen] > 0.85, "most of the bounce comes from the wall the screen shows: {s:?}");
+    // The floor seen beyond the wall's top gets its bounce from the wall's back, which faces away.
+    let away = SenderPlace::FacingAway as usize;
+    assert!(s[away] > 0.02 && s[SenderPlace::OffScreen as usize] == 0.0, "{s:?}");
+    assert!((s.iter().sum::<f64>() - 1.0).abs() < 1e-9, "the shares add up: {s:?}");
+}
