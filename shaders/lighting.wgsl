@@ -33,6 +33,10 @@ override SENDER_SKY: u32 = 2u;
 override REPROJECT: bool = false;
 // There are point lights to evaluate (fs_main); fs_bounce is the entry point without them.
 override LIGHTS: bool = true;
+// A material has a normal map: the sender's normal the bounce's facing test reads is its
+// surface's own, from the depth buffer (`depth_normal`), not the map's, which leans away where
+// the surface faces the receiver. The light it sends keeps the mapped normal's.
+override NORMAL_MAPPED: bool = false;
 
 struct LightingOut {
     @location(0) hdr: vec4<f32>,
@@ -69,7 +73,12 @@ fn direct(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> LightingOu
         let seen = textureLoad(sender_sky, min(pixel >> shift, last), 0);
         bounce += albedo.rgb * (seen.rgb + ambient * seen.a);
     }
-    out.bounce = vec4<u32>(pack_sender(bounce, normal_bits), 0u, 0u);
+    var facing_bits = normal_bits;
+    if NORMAL_MAPPED {
+        let p = view_position_of(c, position, depth);
+        facing_bits = pack_normal(depth_normal_in(pixel, p, normal.xyz, c.projection, c.viewport));
+    }
+    out.bounce = vec4<u32>(pack_sender(bounce, facing_bits), 0u, 0u);
     return out;
 }
 

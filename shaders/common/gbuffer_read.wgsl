@@ -56,3 +56,47 @@ fn unproject(pixel: vec2<f32>, depth: f32, k: vec4<f32>, inv_size: vec2<f32>) ->
     let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
     return vec3<f32>(ndc.x * -z / k.z, ndc.y * -z / k.w, z);
 }
+
+// The surface's own unit normal at `pixel` (view space, towards the camera) from the depth
+// buffer: the cross product of the position's steps to a horizontal and a vertical neighbour,
+// each on the side whose depth continues the surface best (the nearer in view z), so an edge of
+// the surface does not bend it. `p` is the pixel's position; `fallback` is returned where no
+// neighbour has a surface.
+fn depth_normal(pixel: vec2<i32>, p: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    return depth_normal_in(pixel, p, fallback, projection_terms(), frame.viewport);
+}
+
+// `depth_normal` with the frame's projection terms and viewport (width, height, 1/width,
+// 1/height) given, for a pass that has them as varyings.
+fn depth_normal_in(pixel: vec2<i32>, p: vec3<f32>, fallback: vec3<f32>, k: vec4<f32>, viewport: vec4<f32>) -> vec3<f32> {
+    let last = vec2<i32>(viewport.xy) - vec2<i32>(1);
+    var steps: array<vec3<f32>, 2>;
+    for (var axis = 0; axis < 2; axis += 1) {
+        var best = vec3<f32>(0.0);
+        var best_gap = 3.4e38;
+        for (var side = -1; side <= 1; side += 2) {
+            var q = pixel;
+            q[axis] += side;
+            if any(q < vec2<i32>(0)) || any(q > last) {
+                continue;
+            }
+            let d = load_depth(q);
+            if d <= 0.0 {
+                continue;
+            }
+            let s = unproject(vec2<f32>(q) + 0.5, d, k, viewport.zw);
+            let gap = abs(s.z - p.z);
+            if gap < best_gap {
+                best_gap = gap;
+                best = (s - p) * f32(side);
+            }
+        }
+        steps[axis] = best;
+    }
+    let n = cross(steps[0], steps[1]);
+    if dot(n, n) <= 0.0 || !(dot(n, n) < 3.4e38) {
+        return fallback;
+    }
+    let unit = normalize(n);
+    return select(-unit, unit, dot(unit, -p) >= 0.0);
+}

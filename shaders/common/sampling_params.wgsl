@@ -55,43 +55,6 @@ fn sampled_position(frag: vec2<f32>) -> vec2<f32> {
 // A material has a normal map: the G-buffer's normals are the maps', not the geometry's. The
 // samples' hemisphere is then cut at the surface's own plane, taken from the depth buffer, so a
 // flat surface whose mapped normals lean never occludes itself (its own depth lies in its plane,
-// not above it); the cosines stay the mapped normal's. Off: the G-buffer's normal is both.
+// not above it: `depth_normal` in common/gbuffer_read.wgsl); the cosines stay the mapped
+// normal's. Off: the G-buffer's normal is both.
 override NORMAL_MAPPED: bool = false;
-
-// The surface's own unit normal at `pixel` (view space, towards the camera) from the depth
-// buffer: the cross product of the position's steps to a horizontal and a vertical neighbour,
-// each on the side whose depth continues the surface best (the nearer in view z), so an edge of
-// the surface does not bend it. `p` is the pixel's position; `fallback` is returned where no
-// neighbour has a surface.
-fn depth_normal(pixel: vec2<i32>, p: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
-    let last = vec2<i32>(frame.viewport.xy) - vec2<i32>(1);
-    var steps: array<vec3<f32>, 2>;
-    for (var axis = 0; axis < 2; axis += 1) {
-        var best = vec3<f32>(0.0);
-        var best_gap = 3.4e38;
-        for (var side = -1; side <= 1; side += 2) {
-            var q = pixel;
-            q[axis] += side;
-            if any(q < vec2<i32>(0)) || any(q > last) {
-                continue;
-            }
-            let d = load_depth(q);
-            if d <= 0.0 {
-                continue;
-            }
-            let s = view_position(vec2<f32>(q) + 0.5, d);
-            let gap = abs(s.z - p.z);
-            if gap < best_gap {
-                best_gap = gap;
-                best = (s - p) * f32(side);
-            }
-        }
-        steps[axis] = best;
-    }
-    let n = cross(steps[0], steps[1]);
-    if dot(n, n) <= 0.0 || !(dot(n, n) < 3.4e38) {
-        return fallback;
-    }
-    let unit = normalize(n);
-    return select(-unit, unit, dot(unit, -p) >= 0.0);
-}

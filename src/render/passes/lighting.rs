@@ -45,6 +45,8 @@ struct Key {
     half_resolution: bool,
     /// The camera moved since the last frame (only with the sky from the last frame).
     reproject: bool,
+    /// The model has normal maps: a sender's facing comes from the depth buffer's plane.
+    normal_mapped: bool,
 }
 
 impl Key {
@@ -57,6 +59,7 @@ impl Key {
             sender_sky: plan.sender_sky.without_march(),
             half_resolution: plan.half_resolution,
             reproject: false,
+            normal_mapped: plan.features.normal_mapped,
         }
     }
 
@@ -67,6 +70,7 @@ impl Key {
             ("SENDER_SKY", self.sender_sky.shader_code()),
             ("HALF_RES", flag(self.half_resolution)),
             ("REPROJECT", flag(self.reproject)),
+            ("NORMAL_MAPPED", flag(self.normal_mapped)),
         ];
         PipelineSpec {
             entry: if self.lights { "fs_main" } else { "fs_bounce" },

@@ -400,3 +400,48 @@ fn leaf_gltf(tangents: bool) -> (serde_json::Value, Vec<u8>) {
     });
     (document, bytes)
 }
+
+/// A red wall whose normal map leans its normals 80° up, away from the floor in front of it,
+/// under a white sky: the wall's surface faces the floor, so the floor still gets its bounce.
+/// The bounce's facing test reads the sender's own plane (from the depth), not the map, which
+/// would have it face the sky and send nothing down.
+#[test]
+fn a_wall_whose_normal_map_leans_away_from_the_floor_still_bounces_onto_it() {
+    let Some(gpu) = gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let lean = 80f32.to_radians();
+    write_png(&dir.path().join("up.png"), 4, 4, |_, _| encode(Vec3::new(0.0, lean.sin(), lean.cos())));
+    let v = Vec3::new;
+    // The wall x = 0.6 facing -x, u along +z and v up it.
+    let wall = Quad {
+        corners: [v(0.6, 0.0, -1.5), v(0.6, 0.0, 1.5), v(0.6, 1.5, 1.5), v(0.6, 1.5, -1.5)],
+        uvs: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        normal: -Vec3::X,
+        material: "wall",
+    };
+    let mtl = "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl wall\nKd 0.8 0.1 0.1\nnorm up.png\n";
+    let path = write_obj(dir.path(), "wall", &[floor(4.0, 1.0, "floor"), wall], mtl);
+    let mapped = scene::obj_model::load_obj(&path).unwrap();
+    let plain = {
+        let mut m = mapped.clone();
+        m.drop_surface_maps();
+        m
+    };
+    // The map does lean the wall's shading normal up (the truth reads it as the G-buffer does).
+    let lit = ReferenceScene::new(&mapped).trace(v(-1.0, 0.75, 0.01), Vec3::X, 10.0).expect("the wall");
+    assert!(lit.normal.y > 0.9, "the mapped normal leans up: {}", lit.normal);
+    let sky = Skybox::constant(Vec3::ONE);
+    let camera = looking(v(0.0, 0.3, 0.0), -90.0, 35.0, 3.0);
+    let receiver = common::project(&camera, v(0.3, 0.0, 0.0));
+    let bounce = |model: &scene::Model| {
+        let s = Settings { view: View::DoIndirect, ..settings(Mode::Ssdo) };
+        let mut r = renderer(gpu, &Scene::new(model.clone(), 0, 1), &sky, (W, H), s);
+        shoot(gpu, &mut r, &camera);
+        let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
+        common::window_mean(&d, receiver, 2)
+    };
+    let (with_map, without) = (bounce(&mapped), bounce(&plain));
+    eprintln!("the floor's bounce from the wall: with the map {with_map}, without {without}");
+    assert!(without.x > 0.02 && without.x > 3.0 * without.y, "the plain wall bounces red: {without}");
+    assert!(with_map.x > 0.5 * without.x, "the mapped wall still bounces: {with_map} against {without}");
+}
