@@ -72,19 +72,22 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             // The thickness the march takes a depth sample here to have at its nearest step (one
             // pixel's footprint), against the scene's default: white the default slab (everywhere
             // without the thickness layer), red none (a cut-out seen face-on), pink between them
-            // by the square root of the share; the sky black.
-            let depth = textureLoad(g_depth, pixel, 0).r;
+            // by the square root of the share; the sky black. With the layer, its own depth: what
+            // the march reads (the light cubes, drawn later into the depth, are not in it).
+            var depth = textureLoad(g_depth, pixel, 0).r;
+            var code = DEFAULT_THICKNESS_CLASS;
+            if THICKNESS_LAYER {
+                let bits = textureLoad(thickness_layer, pixel, 0).r;
+                depth = bitcast<f32>(bits & ~THICKNESS_CODE_MASK);
+                code = bits & THICKNESS_CODE_MASK;
+            }
             if depth <= 0.0 {
                 return vec3<f32>(0.0);
             }
-            var share = 1.0;
-            if THICKNESS_LAYER {
-                let code = textureLoad(thickness_layer, pixel, 0).r & THICKNESS_CODE_MASK;
-                let uv = (vec2<f32>(pixel) + 0.5) / frame.viewport.xy;
-                let clip = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-                let unit = max(frame.default_thickness, 1e-30);
-                share = min(depth_extent(code, pixel_footprint(1.0, clip.z / clip.w), unit) / unit, 1.0);
-            }
+            let uv = (vec2<f32>(pixel) + 0.5) / frame.viewport.xy;
+            let clip = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+            let unit = max(frame.default_thickness, 1e-30);
+            let share = min(depth_extent(code, pixel_footprint(1.0, clip.z / clip.w), unit) / unit, 1.0);
             return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(share));
         }
         default: {
