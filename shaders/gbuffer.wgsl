@@ -178,9 +178,7 @@ fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessO
     // (A material of the default thickness has no tilt to compute: its pipeline's THIN is off.)
     var code = DEFAULT_THICKNESS_CLASS;
     if THIN {
-        let uv = in.clip.xy * frame.viewport.zw;
-        let view = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, in.clip.z, 1.0);
-        let to_eye = safe_normalize(-view.xyz / view.w, vec3<f32>(0.0, 0.0, 1.0));
+        let to_eye = safe_normalize(-view_point(in.clip.xy, in.clip.z), vec3<f32>(0.0, 0.0, 1.0));
         let n = safe_normalize(in.normal, to_eye);
         code = thickness_code_of(material.thickness_code, abs(dot(n, to_eye)));
     }

@@ -150,7 +150,7 @@ fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, spacing: f32
     if !THICKNESS_LAYER {
         return r.thickness;
     }
-    let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), occ.default_thickness);
+    let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), frame.default_thickness);
     return select(min(r.thickness, extent), r.thickness, (sample.code & 7u) >= DEFAULT_THICKNESS_CLASS);
 }
 

@@ -84,10 +84,9 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             if depth <= 0.0 {
                 return vec3<f32>(0.0);
             }
-            let uv = (vec2<f32>(pixel) + 0.5) / frame.viewport.xy;
-            let clip = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+            let z = view_point(vec2<f32>(pixel) + 0.5, depth).z;
             let unit = max(frame.default_thickness, 1e-30);
-            let share = min(depth_extent(code, pixel_footprint(1.0, clip.z / clip.w), unit) / unit, 1.0);
+            let share = min(depth_extent(code, pixel_footprint(1.0, z), unit) / unit, 1.0);
             return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(share));
         }
         default: {

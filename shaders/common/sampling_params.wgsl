@@ -24,9 +24,7 @@ struct SamplingParams {
     // the user's sky strength for the bounce's senders (the debug views' overrides of
     // `sky_strength` leave it alone, so the DO-indirect view still bounces sky light)
     sender_sky_strength: f32,
-    // the scene's default thickness at scale 1 (view units): what a surface's thickness code in
-    // the thickness layer is a share of (src/scene/thickness.rs)
-    default_thickness: f32,
+    _pad0: f32,
     // The march (shaders/march.wgsl): slices and steps per side...
     slices: u32,
     steps: u32,

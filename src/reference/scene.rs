@@ -9,6 +9,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rand::{rngs::StdRng, RngExt};
 
+use super::image::SenderPlace;
 use crate::scene::model::NormalMap;
 use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
 
@@ -226,35 +227,6 @@ fn mapped_normal(n: Vec3, t: &[[f32; 4]; 3], weights: [f32; 3], map: &NormalMap,
     let m = Vec3::new(r as f32, g as f32, b as f32) / 255.0 * 2.0 - 1.0;
     let m = Vec3::new(m.x * map.scale, m.y * map.scale, m.z.max(0.0));
     (tu * m.x + bv * m.y + n * m.z).try_normalize().unwrap_or(n)
-}
-
-/// Where a bounce's sender lies for the camera: what the screen can and cannot send from (the
-/// report splits the truth's bounce by it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SenderPlace {
-    /// The depth buffer holds it (at its pixel, within a tolerance), its lit side towards the eye.
-    Seen,
-    /// On screen, facing the eye, but not where the depth buffer is: behind a nearer surface.
-    Hidden,
-    /// Outside the view (beside the frustum, or behind the eye).
-    OffScreen,
-    /// On screen, but the side that lights the receiver faces away from the eye (an underside, a
-    /// back face).
-    FacingAway,
-}
-
-impl SenderPlace {
-    pub const ALL: [SenderPlace; 4] =
-        [SenderPlace::Seen, SenderPlace::Hidden, SenderPlace::OffScreen, SenderPlace::FacingAway];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            SenderPlace::Seen => "seen",
-            SenderPlace::Hidden => "hidden",
-            SenderPlace::OffScreen => "off screen",
-            SenderPlace::FacingAway => "facing away",
-        }
-    }
 }
 
 /// The reference's estimates at one surface point, each with its Monte Carlo standard error.

@@ -105,8 +105,7 @@ pub struct SamplingParams {
     pub sky_strength: f32,
     pub indirect_strength: f32,
     pub sender_sky_strength: f32,
-    /// The scene's default thickness at scale 1 (a thickness code's unit).
-    pub default_thickness: f32,
+    pub _pad0: f32,
     pub slices: u32,
     pub steps: u32,
     pub reach: f32,

@@ -256,3 +256,13 @@ pub fn write_glb(path: &std::path::Path, document: &serde_json::Value, bin: &[u8
     out.extend(bin);
     std::fs::write(path, out).unwrap();
 }
+
+/// The eye ray (origin, unit direction) through the centre of pixel `(x, y)` of a `size` image
+/// from `camera`.
+pub fn eye_ray_in(camera: &OrbitCamera, size: (u32, u32), (x, y): (usize, usize)) -> (Vec3, Vec3) {
+    let (w, h) = (size.0 as f32, size.1 as f32);
+    let to_world = (camera.view_to_clip(w / h) * camera.world_to_view()).inverse();
+    let ndc = Vec3::new((x as f32 + 0.5) / w * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h * 2.0, 0.5);
+    let eye = camera.eye();
+    (eye, (to_world.project_point3(ndc) - eye).normalize())
+}

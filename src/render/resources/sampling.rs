@@ -77,7 +77,6 @@ impl SamplingData {
         u.schedule = params.schedule;
         (u.slices, u.steps, u.reach, u.thickness) =
             (sampling.slices as u32, sampling.steps as u32, lengths.reach, lengths.thickness);
-        u.default_thickness = lengths.default_thickness;
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
         let filter = FilterParams {
             radius: lengths.radius,

@@ -27,13 +27,9 @@ fn shares(scene: &ReferenceScene, camera: &OrbitCamera) -> [f64; 4] {
     let (w, h) = SIZE;
     let projection = camera.view_to_clip(w as f32 / h as f32);
     let world_to_clip = projection * camera.world_to_view();
-    let to_world = world_to_clip.inverse();
-    let eye = camera.eye();
     let depth: Vec<f32> = (0..w * h)
         .map(|i| {
-            let (x, y) = (i % w, i / w);
-            let ndc = Vec3::new((x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0, 0.5);
-            let dir = (to_world.project_point3(ndc) - eye).normalize();
+            let (eye, dir) = crate::common::eye_ray_in(camera, SIZE, ((i % w) as usize, (i / w) as usize));
             scene.trace(eye, dir, f32::INFINITY).map_or(0.0, |s| {
                 let clip = world_to_clip * s.position.extend(1.0);
                 clip.z / clip.w

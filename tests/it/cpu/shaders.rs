@@ -133,7 +133,7 @@ fn uniform_structs_match_wgsl_member_for_member() {
             sky_strength,
             indirect_strength,
             sender_sky_strength,
-            default_thickness,
+            _pad0,
             slices,
             steps,
             reach,

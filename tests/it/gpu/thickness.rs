@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::{gpu, looking, renderer, shoot, H, W};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::reference::{ReferenceScene, Surface, TraceSettings};
@@ -26,11 +26,8 @@ fn sky_light(thickness: Option<f32>) -> Settings {
 }
 
 /// The eye ray through the centre of pixel `(x, y)` of a test-sized image.
-fn eye_ray(camera: &OrbitCamera, (x, y): (usize, usize)) -> (Vec3, Vec3) {
-    let to_world = (camera.view_to_clip(W as f32 / H as f32) * camera.world_to_view()).inverse();
-    let ndc = Vec2::new((x as f32 + 0.5) / W as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / H as f32 * 2.0);
-    let eye = camera.eye();
-    (eye, (to_world.project_point3(ndc.extend(0.5)) - eye).normalize())
+fn eye_ray(camera: &OrbitCamera, pixel: (usize, usize)) -> (Vec3, Vec3) {
+    common::eye_ray_in(camera, (W, H), pixel)
 }
 
 /// The pixels whose surface, and every neighbour's, `keep` accepts (so no pixel measured lies on
