@@ -7,37 +7,9 @@ use glam::{Vec3, Vec4Swizzles};
 use rand::{rngs::StdRng, SeedableRng};
 use rayon::prelude::*;
 
+use super::place::SenderPlace;
 use super::scene::{point_lighting, ray_box, ReferenceScene, Surface, TraceSettings};
 use crate::scene::{LightRig, OrbitCamera, PointLight, Skybox};
-
-/// Where a bounce's sender lies for the camera: what the screen can and cannot send from (the
-/// report splits the truth's bounce by it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SenderPlace {
-    /// The depth buffer holds it (at its pixel, within a tolerance), its lit side towards the eye.
-    Seen,
-    /// On screen, facing the eye, but not where the depth buffer is: behind a nearer surface.
-    Hidden,
-    /// Outside the view (beside the frustum, or behind the eye).
-    OffScreen,
-    /// On screen, but the side that lights the receiver faces away from the eye (an underside, a
-    /// back face).
-    FacingAway,
-}
-
-impl SenderPlace {
-    pub const ALL: [SenderPlace; 4] =
-        [SenderPlace::Seen, SenderPlace::Hidden, SenderPlace::OffScreen, SenderPlace::FacingAway];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            SenderPlace::Seen => "seen",
-            SenderPlace::Hidden => "hidden",
-            SenderPlace::OffScreen => "off screen",
-            SenderPlace::FacingAway => "facing away",
-        }
-    }
-}
 
 /// What the reference computes per pixel (linear, before albedo where the GPU's buffers are too).
 pub struct Reference {

@@ -37,7 +37,9 @@
 //! mean, [`Reference::mean`]) and its noise floor (their difference).
 
 mod image;
+mod place;
 mod scene;
 
 pub use image::*;
+pub use place::*;
 pub use scene::*;

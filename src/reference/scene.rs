@@ -9,7 +9,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rand::{rngs::StdRng, RngExt};
 
-use super::image::SenderPlace;
+use super::place::SenderPlace;
 use crate::scene::model::NormalMap;
 use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
 
