@@ -1,10 +1,10 @@
 // The temporal pass: this frame's (blurred) AO / DO averaged with what the last frames left for
 // the same surface. The scene and its lights are static, so where a surface was on screen a
 // frame ago follows from the camera alone: each pixel's world position through the previous
-// frame's world-to-clip transform. The 4x4 history texels around that point are each kept only
-// if they hold the same surface — their own position (from the depth they stored and the
-// previous camera) within a tenth of the sampling radius of this pixel's tangent plane, and
-// their normal within 25° of this one — and are weighted by Catmull-Rom's cubic. Where the kept
+// frame's world-to-clip transform. The 4x4 history texels around that point (but its corners)
+// are each kept only if they hold the same surface — their own position (from the depth they
+// stored and the previous camera) within a tenth of the sampling radius of this pixel's tangent
+// plane, and their normal within 25° of this one — and are weighted by Catmull-Rom's cubic. Where the kept
 // texels carry less than half the weight (disoccluded, off screen, or the first frame after a
 // reset) the pixel starts anew from this frame.
 //
@@ -14,6 +14,9 @@
 // in); while it moves, up to `motion_accumulate`, with the history clamped to the range of this
 // frame's 3x3 neighbourhood: screen-space occlusion depends on what the view shows, so a moving
 // view keeps less of the past.
+//
+// Where the plan has no blur pass (BLUR: half resolution, the bilateral blur, accumulation) it
+// blurs this frame's samples as it reads that neighbourhood, in the frames that blur.
 //
 // After a half-resolution sampling pass (HALF_RES) it runs where the samples are: each texel is the
 // sample of the full-resolution pixel (2x, 2y), its surface that pixel's, and the histories are
@@ -62,22 +65,58 @@ fn finite4(v: vec4<f32>) -> bool {
     return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
 }
 
-// The range of this frame's values over the 3x3 texels around `texel` on a surface.
-fn neighbourhood(texel: vec2<i32>, centre: vec4<f32>) -> array<vec4<f32>, 2> {
+// The samples are blurred here, not by a pass of their own (BLUR): the bilateral 3x3 tent of
+// shaders/blur.wgsl at half resolution, over the texels whose range the moving view's history is
+// clamped to, so the blur's reads are this pass's.
+override BLUR: bool = false;
+
+// How well two normals agree, from their octahedral codes (as shaders/blur.wgsl weighs them).
+fn normal_agreement(a: vec2<f32>, b: vec2<f32>) -> f32 {
+    let spread = octahedral_distance(a, b);
+    return max(1.0 - 3.0 * spread * spread, 0.0);
+}
+
+// This frame's samples over the 3x3 texels around `texel` (its surface at view point `p` with
+// normal `n` and octahedral code `oct`): with BLUR their bilateral tent average, else the
+// texel's own sample; and their range over the texels on a surface.
+struct Around {
+    value: vec4<f32>,
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+}
+
+fn around(texel: vec2<i32>, p: vec3<f32>, n: vec3<f32>, oct: vec2<f32>) -> Around {
     let last = vec2<i32>(textureDimensions(current)) - 1;
-    var lo = centre;
-    var hi = centre;
+    let centre = textureLoad(current, texel, 0);
+    var out = Around(centre, centre, centre);
+    let tolerance = max(0.25 * params.radius, 1e-30);
+    var sum = vec4<f32>(0.0);
+    var total = 0.0;
     for (var y = -1; y <= 1; y += 1) {
         for (var x = -1; x <= 1; x += 1) {
             let t = clamp(texel + vec2<i32>(x, y), vec2<i32>(0), last);
+            let at = surface_pixel(t);
+            let d = load_depth(at);
             let v = textureLoad(current, t, 0);
-            if load_depth(surface_pixel(t)) > 0.0 && finite4(v) {
-                lo = min(lo, v);
-                hi = max(hi, v);
+            if d <= 0.0 || !finite4(v) {
+                continue;
+            }
+            out.lo = min(out.lo, v);
+            out.hi = max(out.hi, v);
+            if BLUR {
+                let q = view_position(vec2<f32>(at) + 0.5, d);
+                let plane = abs(dot(n, q - p));
+                let agree = normal_agreement(oct, octahedral_code(textureLoad(g_normal, at, 0).r));
+                let w = f32((2 - abs(x)) * (2 - abs(y))) * max(1.0 - plane / tolerance, 0.0) * agree;
+                sum += w * v;
+                total += w;
             }
         }
     }
-    return array<vec4<f32>, 2>(lo, hi);
+    if BLUR && total > 0.0 {
+        out.value = sum / total;
+    }
+    return out;
 }
 
 // What the history holds of a pixel's surface: its average, the frames that average holds (0:
@@ -104,7 +143,7 @@ fn past_in_place(texel: vec2<i32>, depth: f32) -> Past {
 // The camera moved: the surface at view point `p` (pixel centre `position`, `clip` where the last
 // frame's camera put it, `n_then` its normal in the last frame's view) seen there again,
 // from the history texels there that hold it. Catmull-Rom weights over the 4x4 texels around the
-// point, from the taps that hold this surface (renormalised; below half the weight, the history
+// point but its corners, from the taps that hold this surface (renormalised; below half the weight, the history
 // is dropped): a history resampled every frame on a grid two pixels wide loses its detail under
 // bilinear weights (turning 1° a frame, SSAO's AO near contacts came out 5-13% further from the
 // truth). The frames held are the bilinear average of the 2x2 around the point.
@@ -130,8 +169,12 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
     let c3 = frac * frac * (-0.5 + 0.5 * frac);
     var weight = 0.0;
     var held_weight = 0.0;
-    for (var i = 0u; i < 16u; i += 1u) {
-        let corner = vec2<u32>(i & 3u, i >> 2u);
+    for (var i = 0u; i < 12u; i += 1u) {
+        // The 4x4 taps but its corners (their weight is at most 0.006 of the sum): rows 0 and 3
+        // hold their middle two, rows 1 and 2 all four.
+        let row = select(select(select(0u, 1u, i >= 2u), 2u, i >= 6u), 3u, i >= 10u);
+        let column = select(select(select(i + 1u, i - 2u, i >= 2u), i - 6u, i >= 6u), i - 9u, i >= 10u);
+        let corner = vec2<u32>(column, row);
         let tap = vec2<i32>(base) + vec2<i32>(corner) - 1;
         if any(tap < vec2<i32>(0)) || any(tap >= texels) {
             continue;
@@ -197,20 +240,27 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     let texel = vec2<i32>(in.position.xy);
     let pixel = surface_pixel(texel);
     let position = vec2<f32>(pixel) + 0.5;
-    let now = textureLoad(current, texel, 0);
     var out: TemporalOut;
-    out.shown = now;
-    out.history = now;
+    out.shown = textureLoad(current, texel, 0);
+    out.history = out.shown;
     out.surface = vec4<u32>(0u);
     let depth = load_depth(pixel);
-    // The sky keeps nothing; a non-finite value is passed on as it is, and never kept.
-    if depth <= 0.0 || !finite4(now) {
+    // The sky keeps nothing.
+    if depth <= 0.0 {
         return out;
     }
     let p = view_position(position, depth);
-    let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
     let normal_bits = textureLoad(g_normal, pixel, 0).r;
     let view_normal = unpack_normal(normal_bits);
+    let samples = around(texel, p, view_normal, octahedral_code(normal_bits));
+    let now = samples.value;
+    // A non-finite value is passed on as it is, and never kept.
+    if !finite4(now) {
+        out.shown = now;
+        out.history = now;
+        return out;
+    }
+    let world = (frame.view_to_world * vec4<f32>(p, 1.0)).xyz;
     // The normal as the last frame's view saw it (the taps' surfaces are compared there).
     let n_then = (frame.view_to_previous_view * vec4<f32>(view_normal, 0.0)).xyz;
 
@@ -239,8 +289,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
         } else {
             var kept = past.value;
             if CAMERA_MOVED && !still {
-                let range = neighbourhood(texel, now);
-                kept = clamp(kept, range[0], range[1]);
+                kept = clamp(kept, samples.lo, samples.hi);
             }
             result = mix(kept, now, 1.0 / frames);
         }

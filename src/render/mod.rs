@@ -185,6 +185,7 @@ impl Renderer {
         let display = !keep_hdr && settings.view == View::Final;
         let options = PlanOptions {
             blur: settings.blur,
+            bilateral: settings.sampling.variant.decl().blur == variant::Blur::Bilateral,
             pyramid,
             display,
             indirect: settings.indirect_strength > 0.0,

@@ -10,13 +10,13 @@
 //! | mode | steps (the defaults: lights, half resolution, blur, accumulation, display plan) | targets besides the G-buffer and histories |
 //! |---|---|---|
 //! | Off | gbuffer, composite, light_cubes | — |
-//! | SSAO | gbuffer, ssao, blur, temporal, composite, light_cubes | `ao_half`, `ao_half_blurred`, `ao_half_accumulated` |
-//! | SSDO | gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_blurred`, `do_half_accumulated` |
-//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
+//! | SSAO | gbuffer, ssao, temporal, composite, light_cubes | `ao_half`, `ao_half_accumulated` |
+//! | SSDO | gbuffer, sender_sky, lighting, ssdo, temporal, composite, light_cubes | `hdr_color`, `bounce_radiance`, `sender_sky`, `do_half`, `do_half_accumulated` |
+//! | SSAO+SSDO | gbuffer, sender_sky, lighting, ssao_ssdo, temporal, composite, light_cubes | as SSDO (AO travels in the DO target's alpha) |
 //!
-//! The sampling pass, the blur and the temporal pass run at half size, over the samples; the
-//! composite upsamples the average as it reads it, so no full-screen pass lies between the
-//! samples and the composite.
+//! The sampling pass and the temporal pass run at half size, over the samples, and the temporal
+//! pass blurs them as it reads them ([`PlanFacts::temporal_blurs`]); the composite upsamples the
+//! average as it reads it, so no full-screen pass lies between the samples and the composite.
 //!
 //! By default (`--sender-sky last-frame`) the march of the sampling pass writes the sky each
 //! pixel sees into a history the next frame's lighting pass reads, and the sender-sky step runs
@@ -29,8 +29,9 @@
 //! all (the composite then runs the light loop). An HDR plan (the report, `--raw`, `--stats`, a
 //! debug view) adds `hdr_color`, the skybox and the tone map, and after a half-size chain the
 //! upsample pass with the full-size copy of its last stage (`ao_accumulated` / `do_accumulated`),
-//! which the debug views and the report read; `--no-blur` drops the blur and its half-size
-//! target; `--accumulate 1` drops the temporal pass, its target and its two histories (the
+//! which the debug views and the report read; the classic variant (a box blur) keeps a blur pass
+//! and its half-size target (`ao_half_blurred` / `do_half_blurred`); `--accumulate 1` drops the
+//! temporal pass, its target and its two histories, and blurs in a pass of its own (the
 //! composite then upsamples `ao_half_blurred` / `do_half_blurred`; an HDR plan's copy is
 //! `ao_blurred` / `do_blurred`); `--full-res` the half-size targets (the blur then reads `ao_raw`
 //! / `do_raw` and writes `ao_blurred` / `do_blurred`, the temporal pass `ao_accumulated` /
@@ -69,6 +70,9 @@ impl SceneFeatures {
 pub struct PlanOptions {
     /// Denoise the sampling output.
     pub blur: bool,
+    /// The blur is the bilateral tent (every variant's but the classic one's box): the temporal
+    /// pass can run it as it reads the samples (see [`PlanFacts::temporal_blurs`]).
+    pub bilateral: bool,
     /// The sampling pass marches the depth buffer and its far steps, taken only where DO is
     /// computed, read a depth pyramid (the march variant with `depth_pyramid` on).
     pub pyramid: bool,
@@ -95,7 +99,8 @@ impl Default for PlanOptions {
     fn default() -> Self {
         let (blur, pyramid, display, indirect, half_resolution, accumulate) = (true, false, true, true, true, true);
         let sender_sky = SenderSky::default();
-        Self { blur, pyramid, display, indirect, sender_sky, half_resolution, accumulate, material_thickness: true }
+        let (bilateral, material_thickness) = (true, true);
+        Self { blur, bilateral, pyramid, display, indirect, sender_sky, half_resolution, accumulate, material_thickness }
     }
 }
 
@@ -135,6 +140,16 @@ impl PlanFacts {
     /// Whether the mode samples at half resolution.
     pub fn half_resolution(&self) -> bool {
         self.samples() && self.options.half_resolution
+    }
+
+    /// Whether the temporal pass blurs the samples as it reads them, and no blur pass runs: the
+    /// bilateral tent at half resolution covers the 3x3 texels whose range a moving view's
+    /// history is clamped to, so one pass reads them once (a moving view's blur and temporal
+    /// pass 14.7 → 11.6 ms, docs/performance.md). The classic box and a full-resolution blur
+    /// (a 4x4 window) keep their pass.
+    pub fn temporal_blurs(&self) -> bool {
+        let o = &self.options;
+        self.half_resolution() && o.blur && o.bilateral && o.accumulate
     }
 }
 
@@ -178,8 +193,11 @@ pub struct Plan {
     pub mode: Mode,
     pub decl: ModeDecl,
     pub features: SceneFeatures,
-    /// The sampling output is blurred.
+    /// The sampling output is blurred: by the blur pass, or by the temporal pass as it reads it
+    /// ([`Plan::temporal_blurs`]).
     pub blur: bool,
+    /// The temporal pass blurs the samples ([`PlanFacts::temporal_blurs`]): no blur pass.
+    pub temporal_blurs: bool,
     /// Nothing reads HDR after the frame (the final image is shown or saved as it is): the
     /// G-buffer pass draws the displayed sky behind the geometry, the composite tone-maps
     /// straight into the output, and there is no skybox or tone-map pass, and no HDR target

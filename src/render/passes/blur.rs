@@ -3,7 +3,8 @@
 //! the samples were taken at half resolution it runs there, on a quarter of the pixels, before
 //! the upsample: its window is that of the rotation tile the samples were taken with.
 //! A still view's frames after its first few skip it (`BLURRED_FRAMES`): the temporal pass then
-//! reads the raw samples.
+//! reads the raw samples. A half-resolution plan that averages over frames has no blur pass: its
+//! temporal pass blurs as it reads the samples (`PlanFacts::temporal_blurs`).
 
 use super::sampling::{filter_io, Outputs};
 use crate::render::graph::io::PassIo;
@@ -19,7 +20,7 @@ impl Step {
 }
 
 pub const ENTRY: Entry =
-    Entry::new(Step::BLUR, |f| f.samples() && f.options.blur, BlurPass::io, |cx| Ok(Box::new(BlurPass::new(cx)?)))
+    Entry::new(Step::BLUR, |f| f.samples() && f.options.blur && !f.temporal_blurs(), BlurPass::io, |cx| Ok(Box::new(BlurPass::new(cx)?)))
         .binding(&["blur.wgsl"])
         .role(Role::Denoise);
 

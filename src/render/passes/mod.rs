@@ -93,7 +93,8 @@ impl Plan {
             mode,
             decl: facts.decl,
             features,
-            blur: has(Step::BLUR),
+            blur: has(Step::BLUR) || (has(Step::TEMPORAL) && facts.temporal_blurs()),
+            temporal_blurs: has(Step::TEMPORAL) && facts.temporal_blurs(),
             display: o.display,
             sender_sky: facts.sender_sky(),
             // The sampling pass runs at half size, and so do its blur and the temporal pass;

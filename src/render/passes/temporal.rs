@@ -7,8 +7,10 @@
 //! / `do_half_accumulated`, or the full-size `ao_accumulated` / `do_accumulated`), and the two
 //! histories the next frame reads (`history.rs`). Its bind group
 //! reads one side of each history pair, so it keeps one group a parity and binds the frame's;
-//! and where the plan blurs, one set reading the blurred samples and one the raw, for the frames
-//! that skip the blur (`FrameState::blur`).
+//! and where a blur pass runs, one set reading the blurred samples and one the raw, for the frames
+//! that skip the blur (`FrameState::blur`). Where the plan has no blur pass but blurs
+//! (`Plan::temporal_blurs`), it reads the raw samples and blurs them itself in the frames that
+//! blur (a pipeline built with `BLUR`).
 
 use super::sampling::Outputs;
 use crate::render::graph::io::{PassIo, Read};
@@ -33,19 +35,22 @@ pub const ENTRY: Entry = Entry::new(
 .keeping(TemporalPass::histories)
 .role(Role::Denoise);
 
-/// What distinguishes one temporal pipeline from another: what the sampling pass produces, and
-/// whether it runs at half size (over half-size samples).
+/// What distinguishes one temporal pipeline from another: what the sampling pass produces,
+/// whether it runs at half size (over half-size samples), and whether it blurs them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     outputs: Outputs,
     half_resolution: bool,
+    blur: bool,
 }
 
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
-    /// whose camera moved (reprojecting), and the one for a still camera (each pixel its own).
+    /// whose camera moved (reprojecting), and the ones for a still camera (each pixel its own),
+    /// which blurs the samples first and which does not (built where the plan has no blur pass).
     state: PassState<Key>,
     still: PassState<Key>,
+    still_blurring: PassState<Key>,
     /// This frame's camera moved, and its samples were blurred (set in `begin_frame`).
     camera_moved: bool,
     blurred: bool,
@@ -58,13 +63,14 @@ impl TemporalPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let state = PassState::new(cx, "temporal", "temporal.wgsl", false)?;
         let still = state.sibling("temporal_still");
-        Ok(Self { state, still, camera_moved: false, blurred: false, groups: Vec::new() })
+        let still_blurring = state.sibling("temporal_still_blurring");
+        Ok(Self { state, still, still_blurring, camera_moved: false, blurred: false, groups: Vec::new() })
     }
 
     /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
     /// histories; the average and this frame's histories, all at the samples' size.
     pub fn io(plan: &Plan) -> PassIo {
-        Self::io_reading(plan, plan.blur)
+        Self::io_reading(plan, plan.has(Step::BLUR))
     }
 
     /// [`TemporalPass::io`] reading the blurred samples or, in a frame that skips the blur, the
@@ -98,15 +104,26 @@ impl Pass for TemporalPass {
         if !plan.accumulates() {
             self.state.clear();
             self.still.clear();
+            self.still_blurring.clear();
             self.groups.clear();
             return;
         }
         let io = Self::io(plan);
-        let inputs = if plan.blur { vec![Self::io_reading(plan, false), io.clone()] } else { vec![io.clone()] };
+        let blur_pass = plan.has(Step::BLUR);
+        let inputs = if blur_pass { vec![Self::io_reading(plan, false), io.clone()] } else { vec![io.clone()] };
         self.groups = inputs.iter().map(|io| self.state.parity_groups(device, io, &p.inputs)).collect();
         self.still.layout_for(device, &io);
-        for (state, moved) in [(&mut self.state, true), (&mut self.still, false)] {
-            let key = Key { outputs: Outputs::of(plan), half_resolution: plan.half_resolution };
+        // A moving view blurs wherever the plan blurs; a still one only in its first frames.
+        let blurs = plan.temporal_blurs;
+        let mut states = vec![(&mut self.state, true, blurs), (&mut self.still, false, false)];
+        if blurs {
+            self.still_blurring.layout_for(device, &io);
+            states.push((&mut self.still_blurring, false, true));
+        } else {
+            self.still_blurring.clear();
+        }
+        for (state, moved, blur) in states {
+            let key = Key { outputs: Outputs::of(plan), half_resolution: plan.half_resolution, blur };
             state.ensure_fullscreen(device, key, |key| PipelineSpec {
                 entry: "fs_main",
                 targets: vec![
@@ -114,7 +131,11 @@ impl Pass for TemporalPass {
                     Some(key.outputs.format().into()),
                     Some(SURFACE_HISTORY_FORMAT.into()),
                 ],
-                constants: vec![("CAMERA_MOVED", flag(moved)), ("HALF_RES", flag(key.half_resolution))],
+                constants: vec![
+                    ("CAMERA_MOVED", flag(moved)),
+                    ("HALF_RES", flag(key.half_resolution)),
+                    ("BLUR", flag(key.blur)),
+                ],
             });
         }
     }
@@ -133,7 +154,11 @@ impl Pass for TemporalPass {
         let set = if self.blurred { self.groups.last() } else { self.groups.first() };
         let groups = set.expect("the temporal pass recorded before `prepare`");
         let attachments = rec.attachments(self.state.writes(), true);
-        let state = if self.camera_moved { &self.state } else { &self.still };
+        let state = match (self.camera_moved, self.blurred && rec.plan.temporal_blurs) {
+            (true, _) => &self.state,
+            (false, true) => &self.still_blurring,
+            (false, false) => &self.still,
+        };
         state.draw_with((rec.encoder, rec.timestamps), &attachments, (rec.frame, groups.of(occlusion), None), None);
     }
 }

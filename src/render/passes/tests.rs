@@ -48,13 +48,14 @@ fn all_plans() -> Vec<Plan> {
     let mut plans = Vec::new();
     for mode in Mode::ALL {
         for lights in [0, 8] {
-            for bits in 0..64u32 {
+            for bits in 0..128u32 {
                 for sender_sky in SenderSky::ALL {
-                    let [blur, pyramid, display, indirect, accumulate, half_resolution] =
-                        [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
+                    let [blur, pyramid, display, indirect, accumulate, half_resolution, bilateral] =
+                        [0, 1, 2, 3, 4, 5, 6].map(|b| bits & (1 << b) != 0);
                     let material_thickness = true;
                     let o = PlanOptions {
                         blur,
+                        bilateral,
                         pyramid,
                         display,
                         indirect,
@@ -98,7 +99,10 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
             (t.ao, t.directional),
             (sampled && !plan.decl.directional_occlusion, plan.decl.directional_occlusion)
         );
-        assert_eq!(t.blurred, plan.blur);
+        // A blurred target where a blur pass runs; none where the temporal pass blurs as it reads.
+        assert_eq!(t.blurred, plan.has(Step::BLUR));
+        assert_eq!(plan.blur, plan.has(Step::BLUR) || plan.temporal_blurs, "{:?}", plan.steps);
+        assert_eq!(plan.temporal_blurs, plan.blur && plan.half_resolution && plan.accumulates() && !plan.has(Step::BLUR));
         assert_eq!(t.accumulated, plan.accumulates());
         assert_eq!(t.half, plan.half_resolution);
         // The composite upsamples a half-size chain as it reads it; an upsample pass makes a
@@ -179,15 +183,11 @@ fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
     // (mode, steps, (hdr, bounce, ao, directional))
     let rows = [
         (Mode::Off, "gbuffer, composite, light_cubes", (false, false, false, false)),
-        (Mode::Ssao, "gbuffer, ssao, blur, temporal, composite, light_cubes", (false, false, true, false)),
-        (
-            Mode::Ssdo,
-            "gbuffer, sender_sky, lighting, ssdo, blur, temporal, composite, light_cubes",
-            (true, true, false, true),
-        ),
+        (Mode::Ssao, "gbuffer, ssao, temporal, composite, light_cubes", (false, false, true, false)),
+        (Mode::Ssdo, "gbuffer, sender_sky, lighting, ssdo, temporal, composite, light_cubes", (true, true, false, true)),
         (
             Mode::Both,
-            "gbuffer, sender_sky, lighting, ssao_ssdo, blur, temporal, composite, light_cubes",
+            "gbuffer, sender_sky, lighting, ssao_ssdo, temporal, composite, light_cubes",
             (true, true, false, true),
         ),
     ];
@@ -196,7 +196,9 @@ fn the_table_at_the_top_of_this_file_is_what_the_plans_are() {
         assert_eq!(plan.step_names().join(", "), steps, "{mode}");
         let t = set(&plan);
         assert_eq!((t.hdr, t.bounce, t.ao, t.directional), targets, "{mode}");
-        assert_eq!((t.blurred, t.pyramid), (plan.decl.runs_sampling(), false), "{mode}");
+        // The temporal pass blurs as it reads the samples: no blurred target.
+        assert_eq!((t.blurred, t.pyramid), (false, false), "{mode}");
+        assert_eq!(plan.temporal_blurs, plan.decl.runs_sampling(), "{mode}");
     }
 }
 
@@ -339,14 +341,14 @@ fn a_declaration_that_drops_a_read_fails_the_checks() {
     io.reads.retain(|r| *r != Read::Target(BOUNCE));
     let error = declared_as_bound(entry, &io).unwrap_err();
     assert!(error.contains(".wgsl binds"), "{error}");
-    // A list that reads what no earlier step writes (the blur of a DO plan reading AO) fails
-    // the plan's check.
+    // A list that reads what no earlier step writes (the temporal pass of a DO plan reading AO)
+    // fails the plan's check.
     let mut io = plan.io();
-    let blur = io.iter_mut().find(|(s, _)| *s == Step::BLUR).unwrap();
-    blur.1.reads.retain(|t| *t != DO_RAW);
-    blur.1.reads.push(AO_RAW);
+    let temporal = io.iter_mut().find(|(s, _)| *s == Step::TEMPORAL).unwrap();
+    temporal.1.reads.retain(|t| *t != DO_HALF);
+    temporal.1.reads.push(AO_HALF);
     let error = reads_are_written_first(&io).unwrap_err();
-    assert!(error.contains("blur reads ao_raw"), "{error}");
+    assert!(error.contains("temporal reads ao_half"), "{error}");
 }
 
 /// `bench`'s split follows the data: in every plan the other sampling passes come before the
