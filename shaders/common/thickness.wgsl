@@ -27,15 +27,22 @@ fn thickness_code_of(thickness_class: u32, c: f32) -> u32 {
 }
 
 // The share of the scene's default thickness the class in `code` stands for.
+// 2^(k − 7) from the exponent bits (the march decodes every depth sample's code: a float built
+// from integers, not exp2's polynomial).
 fn thickness_ratio(code: u32) -> f32 {
     let thickness_class = code & 7u;
-    return select(exp2(f32(thickness_class) - 7.0), 0.0, thickness_class == 0u);
+    return select(bitcast<f32>((thickness_class + 120u) << 23u), 0.0, thickness_class == 0u);
 }
 
 // tan θ of the tilt in `code`.
+// 2^((j − 16) / 3) as 2^(q − 16) · 2^(r / 3) with j + 32 = 3q + r: the power of two from the
+// exponent bits, the third from one of three constants.
 fn code_tan(code: u32) -> f32 {
     let tilt = (code >> 3u) & 31u;
-    return select(exp2((f32(tilt) - 16.0) / 3.0), 0.0, tilt == 0u);
+    let q = (tilt + 32u) / 3u;
+    let r = tilt + 32u - 3u * q;
+    let third = select(select(1.0, 1.2599210, r == 1u), 1.5874011, r == 2u);
+    return select(bitcast<f32>((q + 111u) << 23u) * third, 0.0, tilt == 0u);
 }
 
 // How deep along its view ray the surface of `code` spans over a footprint `footprint` wide
