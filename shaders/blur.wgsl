@@ -14,6 +14,7 @@
 #include "common/gbuffer_read.wgsl"
 #include "common/filter_params.wgsl"
 #include "common/fullscreen.wgsl"
+#include "common/bilateral.wgsl"
 
 @group(1) @binding(3) var<uniform> params: FilterParams;
 // The sampling pass's output: AO (SSAO, r) or DO + AO (SSDO and both, rgb + a).
@@ -29,16 +30,6 @@ fn finite4(v: vec4<f32>) -> bool {
     return all(abs(v) < vec4<f32>(1e30)) && all(v == v);
 }
 
-
-// How well two normals agree, from their octahedral codes rather than decoded vectors (decoding
-// 16 neighbours was a third of the blur's time on a CPU rasteriser). With δ their L1 distance in
-// octahedral units (about the angle in radians between facing normals), 1 - 3δ², clamped: 1 for
-// equal normals, 0.6 at 30°, 0.25 at 45°, 0 from about 55° — close to the cos⁴ it replaces
-// (0.56, 0.25, 0.06 at 60°).
-fn normal_agreement(a: vec2<f32>, b: vec2<f32>) -> f32 {
-    let spread = octahedral_distance(a, b);
-    return max(1.0 - 3.0 * spread * spread, 0.0);
-}
 
 // The classic 4x4 box: the sampling pass wrote every pixel (the sky as unoccluded), so no depth
 // is read per neighbour; only non-finite values are left out.
@@ -76,8 +67,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     let oct_p = octahedral_code(bits_p);
     let p = view_position(vec2<f32>(centre) + 0.5, depth);
     let size = vec2<i32>(textureDimensions(input));
-    // Never 0: a radius of 0 still blurs flat surfaces.
-    let tolerance = max(0.25 * params.radius, 1e-30);
+    let tolerance = bilateral_tolerance(params.radius);
 
     var sum = vec4<f32>(0.0);
     var total = 0.0;
@@ -99,9 +89,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
             }
             if BILATERAL {
                 let q = view_position(vec2<f32>(at) + 0.5, d);
-                let plane = abs(dot(n, q - p));
-                let agree = normal_agreement(oct_p, octahedral_code(textureLoad(g_normal, at, 0).r));
-                w *= max(1.0 - plane / tolerance, 0.0) * agree;
+                w *= bilateral_weight(p, n, oct_p, q, octahedral_code(textureLoad(g_normal, at, 0).r), tolerance);
             }
             let value = textureLoad(input, t, 0);
             if w <= 0.0 || !finite4(value) {

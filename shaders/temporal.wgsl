@@ -27,6 +27,7 @@
 #include "common/gbuffer_read.wgsl"
 #include "common/filter_params.wgsl"
 #include "common/fullscreen.wgsl"
+#include "common/bilateral.wgsl"
 
 @group(1) @binding(3) var<uniform> params: FilterParams;
 // This frame's output of the blur (or of the sampling pass without blur), at this pass's size.
@@ -70,12 +71,6 @@ fn finite4(v: vec4<f32>) -> bool {
 // clamped to, so the blur's reads are this pass's.
 override BLUR: bool = false;
 
-// How well two normals agree, from their octahedral codes (as shaders/blur.wgsl weighs them).
-fn normal_agreement(a: vec2<f32>, b: vec2<f32>) -> f32 {
-    let spread = octahedral_distance(a, b);
-    return max(1.0 - 3.0 * spread * spread, 0.0);
-}
-
 // This frame's samples over the 3x3 texels around `texel` (its surface at view point `p` with
 // normal `n` and octahedral code `oct`): with BLUR their bilateral tent average, else the
 // texel's own sample; and their range over the texels on a surface.
@@ -89,7 +84,7 @@ fn around(texel: vec2<i32>, p: vec3<f32>, n: vec3<f32>, oct: vec2<f32>) -> Aroun
     let last = vec2<i32>(textureDimensions(current)) - 1;
     let centre = textureLoad(current, texel, 0);
     var out = Around(centre, centre, centre);
-    let tolerance = max(0.25 * params.radius, 1e-30);
+    let tolerance = bilateral_tolerance(params.radius);
     var sum = vec4<f32>(0.0);
     var total = 0.0;
     for (var y = -1; y <= 1; y += 1) {
@@ -105,9 +100,8 @@ fn around(texel: vec2<i32>, p: vec3<f32>, n: vec3<f32>, oct: vec2<f32>) -> Aroun
             out.hi = max(out.hi, v);
             if BLUR {
                 let q = view_position(vec2<f32>(at) + 0.5, d);
-                let plane = abs(dot(n, q - p));
-                let agree = normal_agreement(oct, octahedral_code(textureLoad(g_normal, at, 0).r));
-                let w = f32((2 - abs(x)) * (2 - abs(y))) * max(1.0 - plane / tolerance, 0.0) * agree;
+                let oct_q = octahedral_code(textureLoad(g_normal, at, 0).r);
+                let w = f32((2 - abs(x)) * (2 - abs(y))) * bilateral_weight(p, n, oct, q, oct_q, tolerance);
                 sum += w * v;
                 total += w;
             }
