@@ -231,3 +231,53 @@ fn the_thickness_view_shows_a_cut_out_as_a_sheet_and_the_floor_as_the_default_sl
     assert!(slab.min_element() > 250.0, "the floor is the default slab (white): {slab}");
     assert!(sheet.x > 150.0 && sheet.y < 0.5 * sheet.x, "the fence, a sheet seen face-on, is red: {sheet}");
 }
+
+/// The march's mean bounce over `at` (SSDO's DO less its sky light: the same frame rendered
+/// with the bounce off), from one frame under a white sky.
+fn march_bounce(gpu: &ssdo::gpu::Gpu, model: &Model, camera: &OrbitCamera, at: &[((usize, usize), Surface)]) -> Vec3 {
+    let scene = Scene::new(model.clone(), 0, 1);
+    let directional = |indirect_strength: f32| {
+        let settings = Settings { indirect_strength, view: View::Final, ..sky_light(None) };
+        let mut r = renderer(gpu, &scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+        shoot(gpu, &mut r, camera);
+        read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap()
+    };
+    let (with, without) = (directional(1.0), directional(0.0));
+    let texel = |d: &[[f32; 4]], (x, y): (usize, usize)| Vec3::from_slice(&d[y * W as usize + x][..3]);
+    at.iter().map(|&(pixel, _)| texel(&with, pixel) - texel(&without, pixel)).sum::<Vec3>() / at.len() as f32
+}
+
+#[test]
+fn the_floor_behind_a_fence_gets_the_bounce_of_the_fences_far_side() {
+    let Some(gpu) = gpu() else { return };
+    let (model, truth, camera) = fence_from_the_front();
+    // The floor just behind the fence, seen through its holes: the fence's side that faces it
+    // is the one the camera does not see.
+    let behind = |s: &Surface| s.normal.y > 0.99 && s.position.y.abs() < 1e-3 && (-0.4..-0.05).contains(&s.position.z);
+    let at: Vec<_> = pixels(&truth, &camera, 1, behind)
+        .into_iter()
+        .filter(|&((x, y), _)| {
+            let (eye, dir) = eye_ray(&camera, (x, y));
+            let crossing = eye + (-eye.z / dir.z) * dir;
+            crossing.y > 0.05 && crossing.y < 1.15 && crossing.x.abs() < 1.2
+        })
+        .collect();
+    assert!(at.len() >= 20, "only {} floor pixels behind the fence", at.len());
+    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
+    let rig = LightRig { strength: 1.0, min_distance: 0.01, cube_half_size: 0.01 };
+    let mut rng = StdRng::seed_from_u64(5);
+    let sky = Skybox::constant(Vec3::ONE);
+    let truth_bounce =
+        at.iter().map(|(_, s)| truth.estimate(s, &[], &rig, &sky, &settings, &mut rng).bounce).sum::<Vec3>()
+            / at.len() as f32;
+    let bounce = march_bounce(gpu, &model, &camera, &at);
+    eprintln!("bounce on the floor behind the fence ({} pixels): truth {truth_bounce}, march {bounce}", at.len());
+    // Brown slats: the bounce is redder than it is blue, on both sides.
+    assert!(truth_bounce.x > 1.15 * truth_bounce.z, "the truth's bounce is the fence's: {truth_bounce}");
+    assert!(bounce.x > 1.15 * bounce.z, "the march's bounce is the fence's: {bounce}");
+    // With the far side sending nothing the march's red was a tenth of the truth's (0.006 against
+    // 0.060); with it, about 1.5 times (the near side's light stands in for the far side's, and
+    // the march takes the holes between two samples on the fence for fence).
+    let ratio = bounce.x / truth_bounce.x;
+    assert!((0.5..=2.0).contains(&ratio), "the march's bounce over the truth's: {ratio:.2}");
+}
