@@ -212,7 +212,8 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
 // so a history of frames seen from elsewhere is an error of its own, not an average. At 1° a frame
 // the motion cap binds (8 frames); at 10° a frame nothing is kept, so history never makes an
 // image worse than none.
-const MAX_HISTORY_TURN: f32 = 12.0;
+// Set from MAX_HISTORY_TURN_DEG (src/render/settings.rs), whose blur rule depends on it.
+override MAX_HISTORY_TURN: f32;
 
 // The frames a surface at view point `p` may keep: MAX_HISTORY_TURN over the angle between the
 // directions to this frame's and the last frame's eye (at least one: this frame).

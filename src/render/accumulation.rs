@@ -2,6 +2,7 @@
 //! average has come, and the reset when the view jumps.
 
 use super::history::{History, StillView};
+use super::settings::MAX_HISTORY_TURN_DEG;
 use super::{modes, Renderer};
 use crate::scene::OrbitCamera;
 
@@ -13,6 +14,14 @@ use crate::scene::OrbitCamera;
 /// 0.0307 (+1%, within what the frame must hold; open +0.3%, stairs −0.2%) for a tenth of a DO
 /// frame's time.
 pub const BLURRED_FRAMES: u32 = 4;
+
+/// The fastest turn (degrees a frame) at which a moving view skips the blur once its history
+/// holds [`BLURRED_FRAMES`]: at or below it a surface keeps at least that many frames
+/// ([`MAX_HISTORY_TURN_DEG`] over the turn), which do the blur's work as a still view's do.
+/// Measured at 1° a frame (cornell, 16 frames, docs/performance.md): SSAO's AO within R 0.0578 →
+/// 0.0524 without the blur, SSDO's image 0.0215 → 0.0214 (DO 0.0328 → 0.0333), and the turning
+/// frame 2.7 ms shorter; at 10° the blur stays (nothing is kept).
+pub const SLOW_TURN_DEG: f32 = MAX_HISTORY_TURN_DEG / BLURRED_FRAMES as f32;
 
 /// The average over frames: what the temporal pass keeps, and where a still view stands.
 impl Renderer {
@@ -71,11 +80,15 @@ impl Renderer {
     }
 
     /// Whether the last frame recorded (inside `encode`: the frame being recorded) blurred its
-    /// samples: the plan blurs, and it does not average over frames, or the view moves, or the
-    /// frame is one of a still view's first [`BLURRED_FRAMES`].
+    /// samples: the plan blurs, and it does not average over frames, or the frame is one of a
+    /// still view's first [`BLURRED_FRAMES`], or the view turns faster than [`SLOW_TURN_DEG`], or
+    /// the history holds fewer than [`BLURRED_FRAMES`] frames.
     pub fn blurs(&self) -> bool {
-        let settled = self.plan.accumulates() && self.still.frames > BLURRED_FRAMES;
-        self.plan.blur && !settled
+        let accumulates = self.plan.accumulates();
+        let settled = accumulates && self.still.frames > BLURRED_FRAMES;
+        // (The history's count includes the frame being recorded.)
+        let slow = self.still.turn_deg <= SLOW_TURN_DEG && self.frames_accumulated() > BLURRED_FRAMES;
+        self.plan.blur && !settled && !(accumulates && slow)
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last

@@ -154,6 +154,10 @@ pub struct StillView {
     /// The view's first frame went into an empty history: the average holds this view's frames
     /// alone, none reprojected from a moving camera's.
     pub clean: bool,
+    /// The degrees the view turned about what it looks at since the last frame (0 on a first
+    /// frame): the angle at the camera's target between the last eye and this one. A camera that
+    /// turns in place sees every surface from where it was: 0.
+    pub turn_deg: f32,
 }
 
 impl StillView {
@@ -165,6 +169,10 @@ impl StillView {
             self.clean = history.is_none_or(|h| h.frames == 0);
         }
         self.frames = if same { self.frames.saturating_add(1) } else { 1 };
+        self.turn_deg = self.camera.map_or(0.0, |last| {
+            let (then, now) = (last.eye() - camera.target, camera.eye() - camera.target);
+            then.angle_between(now).to_degrees()
+        });
         self.camera = Some(*camera);
         self.generation = history.map_or(0, |h| h.generation);
     }

@@ -30,7 +30,7 @@ use crate::gpu::Gpu;
 use crate::scene::thickness::FULL_THICKNESS;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
-pub use accumulation::BLURRED_FRAMES;
+pub use accumulation::{BLURRED_FRAMES, SLOW_TURN_DEG};
 use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};

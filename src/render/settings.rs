@@ -258,3 +258,8 @@ pub const MAX_GAIN: f32 = 1e6;
 /// screen-space occlusion changes with what the view shows, so a moving pixel keeps at most this
 /// many frames' worth of its past (a blend of at least 1/8, as kajiya's).
 pub const MOTION_ACCUMULATE: u32 = 8;
+
+/// How far (degrees) the viewpoints of a moving view's kept frames may spread
+/// (`MAX_HISTORY_TURN` in `shaders/temporal.wgsl`): a surface keeps this over its turn since the
+/// last frame, so at 1° a frame the motion cap binds and at 12° and more nothing is kept.
+pub const MAX_HISTORY_TURN_DEG: f32 = 12.0;

@@ -18,6 +18,7 @@ use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{Plan, PlanFacts, Step, OCCLUSION_HISTORY, SURFACE_HISTORY, SURFACE_HISTORY_FORMAT};
+use crate::render::settings::MAX_HISTORY_TURN_DEG;
 use crate::render::targets::{Stage, ALBEDO, DEPTH, NORMAL};
 use crate::Result;
 
@@ -46,10 +47,11 @@ struct Key {
 
 pub struct TemporalPass {
     /// Keyed by what the sampling pass produces (AO alone, or DO + AO): the pipeline for a frame
-    /// whose camera moved (reprojecting), and the ones for a still camera (each pixel its own),
-    /// which blurs the samples first and which does not (built where the plan has no blur pass).
+    /// whose camera moved (reprojecting) and the one for a still camera (each pixel its own),
+    /// and where the plan has no blur pass, each of them blurring the samples first.
     state: PassState<Key>,
     still: PassState<Key>,
+    moving_blurring: PassState<Key>,
     still_blurring: PassState<Key>,
     /// This frame's camera moved, and its samples were blurred (set in `begin_frame`).
     camera_moved: bool,
@@ -63,8 +65,10 @@ impl TemporalPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let state = PassState::new(cx, "temporal", "temporal.wgsl", false)?;
         let still = state.sibling("temporal_still");
+        let moving_blurring = state.sibling("temporal_blurring");
         let still_blurring = state.sibling("temporal_still_blurring");
-        Ok(Self { state, still, still_blurring, camera_moved: false, blurred: false, groups: Vec::new() })
+        let (camera_moved, blurred, groups) = (false, false, Vec::new());
+        Ok(Self { state, still, moving_blurring, still_blurring, camera_moved, blurred, groups })
     }
 
     /// The G-buffer, the parameters, the (blurred) sampling output and the last frame's
@@ -102,9 +106,9 @@ impl Pass for TemporalPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let plan = p.plan;
         if !plan.accumulates() {
-            self.state.clear();
-            self.still.clear();
-            self.still_blurring.clear();
+            for state in [&mut self.state, &mut self.still, &mut self.moving_blurring, &mut self.still_blurring] {
+                state.clear();
+            }
             self.groups.clear();
             return;
         }
@@ -113,13 +117,13 @@ impl Pass for TemporalPass {
         let inputs = if blur_pass { vec![Self::io_reading(plan, false), io.clone()] } else { vec![io.clone()] };
         self.groups = inputs.iter().map(|io| self.state.parity_groups(device, io, &p.inputs)).collect();
         self.still.layout_for(device, &io);
-        // A moving view blurs wherever the plan blurs; a still one only in its first frames.
-        let blurs = plan.temporal_blurs;
-        let mut states = vec![(&mut self.state, true, blurs), (&mut self.still, false, false)];
-        if blurs {
+        let mut states = vec![(&mut self.state, true, false), (&mut self.still, false, false)];
+        if plan.temporal_blurs {
+            self.moving_blurring.layout_for(device, &io);
             self.still_blurring.layout_for(device, &io);
-            states.push((&mut self.still_blurring, false, true));
+            states.extend([(&mut self.moving_blurring, true, true), (&mut self.still_blurring, false, true)]);
         } else {
+            self.moving_blurring.clear();
             self.still_blurring.clear();
         }
         for (state, moved, blur) in states {
@@ -135,6 +139,7 @@ impl Pass for TemporalPass {
                     ("CAMERA_MOVED", flag(moved)),
                     ("HALF_RES", flag(key.half_resolution)),
                     ("BLUR", flag(key.blur)),
+                    ("MAX_HISTORY_TURN", f64::from(MAX_HISTORY_TURN_DEG)),
                 ],
             });
         }
@@ -155,7 +160,8 @@ impl Pass for TemporalPass {
         let groups = set.expect("the temporal pass recorded before `prepare`");
         let attachments = rec.attachments(self.state.writes(), true);
         let state = match (self.camera_moved, self.blurred && rec.plan.temporal_blurs) {
-            (true, _) => &self.state,
+            (true, true) => &self.moving_blurring,
+            (true, false) => &self.state,
             (false, true) => &self.still_blurring,
             (false, false) => &self.still,
         };

@@ -162,19 +162,26 @@ fn a_still_view_blurs_its_first_frames_only_and_then_averages_the_raw_samples() 
             }
         }
         let settled = if mode == Mode::Ssao { ao(gpu, &r) } else { Vec::new() };
-        let turned = OrbitCamera { yaw_deg: camera.yaw_deg + 1.0, ..camera };
-        render_frames(gpu, &mut r, [turned]).unwrap();
+        // A slow turn keeps the history's frames, which do the blur's work; a fast one keeps
+        // nothing, and blurs.
+        let slow = ssdo::render::SLOW_TURN_DEG;
+        let mut moving = Vec::new();
+        for turn in [0.5 * slow, 2.0 * slow] {
+            let turned = OrbitCamera { yaw_deg: camera.yaw_deg + turn, ..camera };
+            render_frames(gpu, &mut r, [turned]).unwrap();
+            moving.push(r.blurs());
+        }
         let depth = ssdo::headless::readback::read_depth(gpu, &r.targets().depth().texture).unwrap();
-        (young, settled, blurred, r.blurs(), depth)
+        (young, settled, blurred, moving, depth)
     };
     let (young, settled, blurred, moving, _) = render(Mode::Ssao, true);
     let want: Vec<bool> = (0..16).map(|i| i < first).collect();
     assert_eq!(blurred, want, "a still SSAO view blurs its first {first} frames only");
-    assert!(moving, "a moving view blurs every frame");
+    assert_eq!(moving, [false, true], "a slow turn does not blur, a fast one does");
     for mode in [Mode::Ssdo, Mode::Both] {
         let (_, _, blurred, moving, _) = render(mode, true);
         assert_eq!(blurred, want, "{mode}: a still view blurs its first {first} frames only");
-        assert!(moving, "{mode}: a moving view blurs every frame");
+        assert_eq!(moving, [false, true], "{mode}: a slow turn does not blur, a fast one does");
     }
     let (raw_young, raw_settled, never, _, depth) = render(Mode::Ssao, false);
     assert!(never.iter().all(|b| !b), "a plan without the blur never blurs");
