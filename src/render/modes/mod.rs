@@ -100,7 +100,17 @@ impl Default for PlanOptions {
         let (blur, pyramid, display, indirect, half_resolution, accumulate) = (true, false, true, true, true, true);
         let sender_sky = SenderSky::default();
         let (bilateral, material_thickness) = (true, true);
-        Self { blur, bilateral, pyramid, display, indirect, sender_sky, half_resolution, accumulate, material_thickness }
+        Self {
+            blur,
+            bilateral,
+            pyramid,
+            display,
+            indirect,
+            sender_sky,
+            half_resolution,
+            accumulate,
+            material_thickness,
+        }
     }
 }
 

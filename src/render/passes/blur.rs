@@ -19,10 +19,14 @@ impl Step {
     pub const BLUR: Step = Step::new("blur");
 }
 
-pub const ENTRY: Entry =
-    Entry::new(Step::BLUR, |f| f.samples() && f.options.blur && !f.temporal_blurs(), BlurPass::io, |cx| Ok(Box::new(BlurPass::new(cx)?)))
-        .binding(&["blur.wgsl"])
-        .role(Role::Denoise);
+pub const ENTRY: Entry = Entry::new(
+    Step::BLUR,
+    |f| f.samples() && f.options.blur && !f.temporal_blurs(),
+    BlurPass::io,
+    |cx| Ok(Box::new(BlurPass::new(cx)?)),
+)
+.binding(&["blur.wgsl"])
+.role(Role::Denoise);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {

@@ -23,12 +23,13 @@ use crate::render::bindings::{sampler_entry, texture_entry, uniform_entry};
 use crate::render::graph::io::PassIo;
 use crate::render::graph::{Entry, Pass, PassContext, Recording};
 use crate::render::modes::{Plan, Step};
-use crate::render::resources::scene::{upload_texture, Draw, Features, SceneGpu, SpecularMap};
+use crate::render::resources::maps::MaterialMaps;
+use crate::render::resources::scene::{Draw, Features, SceneGpu};
 use crate::render::surface_pack::shininess_bits;
 use crate::render::targets::{ALBEDO, ALBEDO_FORMAT, DEPTH, DEPTH_FORMAT, NORMAL, NORMAL_FORMAT};
 use crate::render::targets::{THICKNESS, THICKNESS_FORMAT};
 use crate::render::uniforms::MaterialParams;
-use crate::scene::model::{Material, TextureImage};
+use crate::scene::model::Material;
 use crate::scene::thickness::FULL_THICKNESS;
 use crate::scene::{Model, Vertex};
 use crate::{shaders, Result};
@@ -38,15 +39,6 @@ impl Step {
 }
 
 pub const ENTRY: Entry = Entry::new(Step::GBUFFER, |_| true, GBufferPass::io, |cx| Ok(Box::new(GBufferPass::new(cx)?)));
-
-/// The diffuse map's colour with the specular map's red as its alpha (two maps of one size).
-fn pack_specular(diffuse: &TextureImage, specular: &TextureImage) -> TextureImage {
-    let mut rgba = diffuse.rgba.to_vec();
-    for (texel, spec) in rgba.chunks_exact_mut(4).zip(specular.rgba.chunks_exact(4)) {
-        texel[3] = spec[0];
-    }
-    TextureImage { width: diffuse.width, height: diffuse.height, rgba: std::sync::Arc::new(rgba) }
-}
 
 /// How a material's faces are drawn; every face is drawn, two-sided, in one of two rounds. A
 /// material that reads maps draws the faces the camera sees from the side their normals point to
@@ -286,26 +278,7 @@ impl GBufferPass {
             usage: wgpu::BufferUsages::UNIFORM,
         });
         maps.bytes += uniform.size();
-        let (srgb, linear) = (wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm);
-        let (diffuse, specular) = match (&m.diffuse_map, &m.specular_map, SpecularMap::of(m)) {
-            (Some(d), Some(s), SpecularMap::DiffuseAlpha) => {
-                let key = (std::sync::Arc::as_ptr(&d.rgba) as usize, std::sync::Arc::as_ptr(&s.rgba) as usize);
-                let both = maps.packed.entry(key).or_insert_with(|| pack_specular(d, s)).clone();
-                (
-                    maps.view(gpu, &m.name, Some(&both), "diffuse_specular", srgb),
-                    maps.view(gpu, &m.name, None, "", linear),
-                )
-            }
-            _ => (
-                maps.view(gpu, &m.name, m.diffuse_map.as_ref(), "diffuse", srgb),
-                maps.view(gpu, &m.name, m.specular_map.as_ref(), "specular", linear),
-            ),
-        };
-        let normals = maps.view(gpu, &m.name, m.normal_map.as_ref().map(|n| &n.image), "normals", linear);
-        // sRGB like the colour map it often is (alpha is linear in either), so the two share one
-        // upload.
-        let mask = m.cutout.as_ref().and_then(|c| c.mask.as_ref());
-        let coverage = maps.view(gpu, &m.name, mask, "coverage", srgb);
+        let [diffuse, specular, normals, coverage] = maps.of(gpu, m);
         gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("material_{}_bind_group", m.name)),
             layout: &self.material_layout,
@@ -318,53 +291,6 @@ impl GBufferPass {
                 wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&coverage) },
             ],
         })
-    }
-}
-
-/// The materials' maps as a scene's upload makes them: each image uploaded once (by its pixels'
-/// identity and format), the diffuse maps with a specular map packed in (by the two maps'
-/// identities), the white stand-ins of a missing map, and the bytes uploaded so far.
-struct MaterialMaps {
-    uploaded: std::collections::HashMap<(usize, wgpu::TextureFormat), wgpu::TextureView>,
-    packed: std::collections::HashMap<(usize, usize), TextureImage>,
-    white_srgb: wgpu::TextureView,
-    white_linear: wgpu::TextureView,
-    bytes: u64,
-}
-
-impl MaterialMaps {
-    fn new(gpu: &Gpu) -> Self {
-        let white = TextureImage { width: 1, height: 1, rgba: std::sync::Arc::new(vec![255; 4]) };
-        let (white_srgb, _) =
-            upload_texture(gpu, "material_default_diffuse", &white, wgpu::TextureFormat::Rgba8UnormSrgb);
-        let (white_linear, _) =
-            upload_texture(gpu, "material_default_specular", &white, wgpu::TextureFormat::Rgba8Unorm);
-        let (uploaded, packed) = Default::default();
-        Self { uploaded, packed, white_srgb, white_linear, bytes: 0 }
-    }
-
-    /// The view of `image` in `format` (material `name`'s `kind` of map), uploaded unless it was;
-    /// the white stand-in of that format without one.
-    fn view(
-        &mut self,
-        gpu: &Gpu,
-        name: &str,
-        image: Option<&TextureImage>,
-        kind: &str,
-        format: wgpu::TextureFormat,
-    ) -> wgpu::TextureView {
-        let Some(image) = image else {
-            return if format == wgpu::TextureFormat::Rgba8UnormSrgb { &self.white_srgb } else { &self.white_linear }
-                .clone();
-        };
-        let key = (std::sync::Arc::as_ptr(&image.rgba) as usize, format);
-        if let Some(view) = self.uploaded.get(&key) {
-            return view.clone();
-        }
-        let (view, size) = upload_texture(gpu, &format!("material_{name}_{kind}"), image, format);
-        self.bytes += size;
-        self.uploaded.insert(key, view.clone());
-        view
     }
 }
 
