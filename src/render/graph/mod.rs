@@ -211,8 +211,8 @@ pub struct FrameState<'a> {
     pub history: &'a History,
     /// The camera differs from the last frame's.
     pub camera_moved: bool,
-    /// The blur runs this frame (`Renderer::blurs`): the plan blurs, and it computes DO or the view
-    /// moves or its average is young. Where it does not, the temporal pass reads the raw samples.
+    /// The samples are blurred this frame (`Renderer::blurs`): the plan blurs, and the view turns
+    /// fast or its average is young. Where they are not, the temporal pass reads them raw.
     pub blur: bool,
 }
 
