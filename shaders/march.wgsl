@@ -151,7 +151,7 @@ fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, spacing: f32
         return r.thickness;
     }
     let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), frame.default_thickness);
-    return select(min(r.thickness, extent), r.thickness, (sample.code & 7u) >= DEFAULT_THICKNESS_CLASS);
+    return min(r.thickness, extent);
 }
 
 // The depth step `i` reads at `texel`, `spacing` pixels past the last step. A far step stands for
@@ -257,7 +257,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
             (*taken).near_mask |= bits;
         }
         if HAS_DO && INDIRECT && fresh != 0u {
-            let sheet = THICKNESS_LAYER && (sample.code & 7u) < DEFAULT_THICKNESS_CLASS;
+            let sheet = THICKNESS_LAYER && is_thin(sample.code);
             (*sums).indirect += bounce_from(texel, front, fresh, s.weights, sheet);
         }
     }

@@ -26,17 +26,22 @@ fn thickness_code_of(thickness_class: u32, c: f32) -> u32 {
     return thickness_class | (tilt << 3u);
 }
 
-// The share of the scene's default thickness the class in `code` stands for.
-// 2^(k − 7) from the exponent bits (the march decodes every depth sample's code: a float built
-// from integers, not exp2's polynomial).
+// Whether `code` is a thin class (a sheet, or below the default): the march takes such a sample's
+// own span, and its far side sends bounce.
+fn is_thin(code: u32) -> bool {
+    return (code & 7u) < DEFAULT_THICKNESS_CLASS;
+}
+
+// The share of the scene's default thickness the class in `code` stands for: 2^(k − 7) from the
+// exponent bits (the march decodes every depth sample's code: a float built from integers, not
+// exp2's polynomial).
 fn thickness_ratio(code: u32) -> f32 {
     let thickness_class = code & 7u;
     return select(bitcast<f32>((thickness_class + 120u) << 23u), 0.0, thickness_class == 0u);
 }
 
-// tan θ of the tilt in `code`.
-// 2^((j − 16) / 3) as 2^(q − 16) · 2^(r / 3) with j + 32 = 3q + r: the power of two from the
-// exponent bits, the third from one of three constants.
+// tan θ of the tilt in `code`, 2^((j − 16) / 3), as 2^(q − 16) · 2^(r / 3) with j + 32 = 3q + r:
+// the power of two from the exponent bits, the third from one of three constants.
 fn code_tan(code: u32) -> f32 {
     let tilt = (code >> 3u) & 31u;
     let q = (tilt + 32u) / 3u;
@@ -51,7 +56,7 @@ fn code_tan(code: u32) -> f32 {
 fn depth_extent(code: u32, footprint: f32, default_thickness: f32) -> f32 {
     let t = code_tan(code);
     let own = thickness_ratio(code) * default_thickness * sqrt(1.0 + t * t) + 0.5 * footprint * t;
-    return select(own, default_thickness, (code & 7u) >= DEFAULT_THICKNESS_CLASS);
+    return select(default_thickness, own, is_thin(code));
 }
 
 // The view-space point at fragment position `frag` (pixels) with reverse-Z depth `depth`, through

@@ -6,10 +6,11 @@ use super::settings::MAX_HISTORY_TURN_DEG;
 use super::{modes, Renderer};
 use crate::scene::OrbitCamera;
 
-/// The frames of a still view whose samples are blurred before they are averaged. The blur makes
-/// a young average clean at once, and keeps a moving view's clean; a still view's later frames
-/// go into the average raw, since by then the average over frames does most of the blur's work,
-/// and a settled frame costs no blur. Measured on the default scene (docs/performance.md): SSAO's
+/// The frames a history holds before its view stops blurring the samples it averages (a still
+/// view, or one turning at most [`SLOW_TURN_DEG`] a frame). The blur makes a young average clean
+/// at once, and keeps a fast-turning view's clean; later frames go into the average raw, since
+/// by then the average over frames does most of the blur's work, and a settled frame costs no
+/// blur. Measured on the default scene (docs/performance.md): SSAO's
 /// error within R 0.0361 → 0.0324 at 16 frames; SSDO's image 0.0195 → 0.0197 and DO 0.0303 →
 /// 0.0307 (+1%, within what the frame must hold; open +0.3%, stairs −0.2%) for a tenth of a DO
 /// frame's time.
@@ -18,9 +19,9 @@ pub const BLURRED_FRAMES: u32 = 4;
 /// The fastest turn (degrees a frame) at which a moving view skips the blur once its history
 /// holds [`BLURRED_FRAMES`]: at or below it a surface keeps at least that many frames
 /// ([`MAX_HISTORY_TURN_DEG`] over the turn), which do the blur's work as a still view's do.
-/// Measured at 1° a frame (cornell, 16 frames, docs/performance.md): SSAO's AO within R 0.0578 →
-/// 0.0524 without the blur, SSDO's image 0.0215 → 0.0214 (DO 0.0328 → 0.0333), and the turning
-/// frame 2.7 ms shorter; at 10° the blur stays (nothing is kept).
+/// Measured at 1° a frame (cornell 320x240, 16 frames, docs/performance.md): SSAO's AO within R
+/// 0.0378 → 0.0355 without the blur, SSDO's image 0.0201 → 0.0206 (DO 0.0309 → 0.0319), and the
+/// temporal pass 2.4 ms shorter on the room; at 10° the blur stays (nothing is kept).
 pub const SLOW_TURN_DEG: f32 = MAX_HISTORY_TURN_DEG / BLURRED_FRAMES as f32;
 
 /// The average over frames: what the temporal pass keeps, and where a still view stands.
@@ -81,14 +82,12 @@ impl Renderer {
 
     /// Whether the last frame recorded (inside `encode`: the frame being recorded) blurred its
     /// samples: the plan blurs, and it does not average over frames, or the frame is one of a
-    /// still view's first [`BLURRED_FRAMES`], or the view turns faster than [`SLOW_TURN_DEG`], or
-    /// the history holds fewer than [`BLURRED_FRAMES`] frames.
+    /// still view's first [`BLURRED_FRAMES`] while its history holds no more than that many
+    /// (counting this frame), or the view turns faster than [`SLOW_TURN_DEG`].
     pub fn blurs(&self) -> bool {
-        let accumulates = self.plan.accumulates();
-        let settled = accumulates && self.still.frames > BLURRED_FRAMES;
-        // (The history's count includes the frame being recorded.)
-        let slow = self.still.turn_deg <= SLOW_TURN_DEG && self.frames_accumulated() > BLURRED_FRAMES;
-        self.plan.blur && !settled && !(accumulates && slow)
+        let still_young = self.still.frames <= BLURRED_FRAMES;
+        let history_young = self.frames_accumulated() <= BLURRED_FRAMES || self.still.turn_deg > SLOW_TURN_DEG;
+        self.plan.blur && (!self.plan.accumulates() || (still_young && history_young))
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last
