@@ -48,7 +48,7 @@ pub(crate) enum Command {
 /// The scene a report or tune measures against its truth: a named scene or a model, its sky, the
 /// image size and the lights.
 #[derive(Args)]
-pub(crate) struct TruthScene {
+pub(crate) struct TruthSceneArgs {
     /// Scene: cornell (the default scene), crevices (thin features, deep slots), fence (a
     /// checker-cut fence), open (redblue sky) or stairs (stairs under an overhang, a scene nobody
     /// tuned on)
@@ -74,6 +74,20 @@ pub(crate) struct TruthScene {
     pub(crate) seed: u64,
 }
 
+impl TruthSceneArgs {
+    fn scene(&self) -> ssdo::report::TruthScene {
+        ssdo::report::TruthScene {
+            scene: self.scene.clone(),
+            model: self.model.clone(),
+            no_surface_maps: self.no_surface_maps,
+            skybox: self.skybox.clone(),
+            size: (self.size.0, self.size.1),
+            lights: self.lights,
+            seed: self.seed,
+        }
+    }
+}
+
 #[derive(Args)]
 pub(crate) struct TuneArgs {
     /// The frame budget in GPU milliseconds
@@ -89,7 +103,7 @@ pub(crate) struct TuneArgs {
     #[arg(long, default_value = "ssdo")]
     pub(crate) mode: Mode,
     #[command(flatten)]
-    pub(crate) on: TruthScene,
+    pub(crate) on: TruthSceneArgs,
     /// Views measured: the report's, and the others turned about the model up to --spread
     /// degrees either side, 1-8
     #[arg(long, default_value_t = 3, value_parser = |s: &str| ssdo::spec::whole_number(s, (1, ssdo::tune::MAX_VIEWS)))]
@@ -126,13 +140,7 @@ impl TuneArgs {
             also.extend(Quality::ALL.map(Quality::preset));
         }
         Ok(ssdo::tune::TuneOptions {
-            scene: self.on.scene.clone(),
-            model: self.on.model.clone(),
-            no_surface_maps: self.on.no_surface_maps,
-            skybox: self.on.skybox.clone(),
-            size: (self.on.size.0, self.on.size.1),
-            lights: self.on.lights,
-            seed: self.on.seed,
+            on: self.on.scene(),
             mode: self.mode,
             budget: self.budget_ms.map(Budget::Ms).or(self.budget_off.map(Budget::OffTimes)),
             target_error: self.target_error,
@@ -229,11 +237,7 @@ impl ReportArgs {
     /// The report's options from the flags (checked by `ReportOptions::check`).
     pub(crate) fn options(&self) -> ssdo::report::ReportOptions {
         ssdo::report::ReportOptions {
-            scene: self.on.scene.clone(),
-            model: self.on.model.clone(),
-            no_surface_maps: self.on.no_surface_maps,
-            skybox: self.on.skybox.clone(),
-            size: (self.on.size.0, self.on.size.1),
+            on: self.on.scene(),
             samples: self.samples.clone(),
             march: self.march.clone(),
             radii: self.radius.clone(),
@@ -241,8 +245,6 @@ impl ReportArgs {
             frames: self.frames,
             accumulate: self.accumulate.clone(),
             orbit: self.orbit,
-            lights: self.on.lights,
-            seed: self.on.seed,
             out: self.out.clone(),
             preset: None,
         }
@@ -263,7 +265,7 @@ pub(crate) struct ReportArgs {
     #[arg(long)]
     pub(crate) quality: Option<ssdo::preset::Quality>,
     #[command(flatten)]
-    pub(crate) on: TruthScene,
+    pub(crate) on: TruthSceneArgs,
     /// Sample counts of the points and classic variants to sweep (the help states the range)
     #[arg(long, default_value = "4,8,16,32,64", value_delimiter = ',')]
     pub(crate) samples: Vec<usize>,

@@ -23,7 +23,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     options.preset = args.preset()?;
     output::check_folder(&options.out)?;
     let gpu = Gpu::headless()?;
-    warn_if_elsewhere(options.preset.as_ref(), &gpu, options.size);
+    warn_if_elsewhere(options.preset.as_ref(), &gpu, options.on.size);
     let started = Instant::now();
     let bar = progress::bar(ssdo::report::progress_steps(&options), "");
     let report = ssdo::report::run(&gpu, &options, &|message: &str| {
@@ -47,7 +47,7 @@ fn run_tune(args: &TuneArgs) -> Result<()> {
     options.check()?;
     output::check_folder(&options.out)?;
     let gpu = Gpu::headless()?;
-    let bar = progress::bar(2 * options.size.1 as u64 * options.views as u64, " truth rows");
+    let bar = progress::bar(2 * options.on.size.1 as u64 * options.views as u64, " truth rows");
     let tune = ssdo::tune::run(&gpu, &options, &|message: &str| {
         if message == "reference row" {
             bar.inc(1);

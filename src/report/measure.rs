@@ -48,7 +48,7 @@ impl<'a> TruthSource<'a> {
         options: &ReportOptions,
         base: &crate::render::Settings,
     ) -> Self {
-        Self::of_view(scene, (sky, sky_name), options.size, (options.samples_per_pixel, options.seed), base)
+        Self::of_view(scene, (sky, sky_name), options.on.size, (options.samples_per_pixel, options.on.seed), base)
     }
 
     /// The truth of `scene` under `sky` (and its name) at `size`, with `rays` (rays per pixel in

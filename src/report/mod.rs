@@ -33,13 +33,13 @@ use crate::reference;
 use crate::render::{Mode, Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
-pub use options::{RadiusChoice, ReportOptions, MAX_SWEEP};
+pub use options::{RadiusChoice, ReportOptions, TruthScene, MAX_SWEEP};
 pub use row::{NoiseFloor, Row};
 pub use sweep::{planned_configurations, Config};
 
 /// The work a report plans, in one line for the log.
 fn planned_work(options: &ReportOptions) -> String {
-    let (w, h) = (options.size.0 as u64, options.size.1 as u64);
+    let (w, h) = (options.on.size.0 as u64, options.on.size.1 as u64);
     format!(
         "planned: {} configurations × {} timed frames (and up to {} more where a row accumulates) at {w}x{h}, \
          and a truth of 2 × {} rays over {} pixels per radius",
@@ -54,7 +54,7 @@ fn planned_work(options: &ReportOptions) -> String {
 /// The progress steps [`run`] reports: two reference rows per pixel row and radius, and one
 /// per configuration.
 pub fn progress_steps(options: &ReportOptions) -> u64 {
-    2 * options.size.1 as u64 * options.radii.len() as u64 + planned_configurations(options) as u64
+    2 * options.on.size.1 as u64 * options.radii.len() as u64 + planned_configurations(options) as u64
 }
 
 /// The report's result: rows and the facts printed with them.
@@ -76,20 +76,20 @@ pub struct Report {
 /// The report's scene (its model, or `--model`), its lights, its sky (the scene's, or
 /// `--skybox`, or the default) and the sky's name for messages.
 pub(crate) fn load_scene(options: &ReportOptions) -> Result<(Scene, Skybox, String)> {
-    let (mut model, scene_sky) = match &options.model {
+    let (mut model, scene_sky) = match &options.on.model {
         Some(path) => (scene::load_model_file(path)?, None),
-        None => scenes::by_name(&options.scene)?,
+        None => scenes::by_name(&options.on.scene)?,
     };
-    if options.no_surface_maps {
+    if options.on.no_surface_maps {
         model.drop_surface_maps();
     }
-    let sky_path = options.skybox.clone().or(scene_sky);
+    let sky_path = options.on.skybox.clone().or(scene_sky);
     let sky = match &sky_path {
         Some(path) => Skybox::load(path)?,
         None => scene::load_skybox(None)?,
     };
     let sky_name = sky_path.as_ref().map_or_else(|| "the sky".to_string(), |p| p.display().to_string());
-    Ok((Scene::new(model, options.lights, options.seed), sky, sky_name))
+    Ok((Scene::new(model, options.on.lights, options.on.seed), sky, sky_name))
 }
 
 /// Marks the rows no other row beats on both time and HDR error.
@@ -110,15 +110,15 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             options.samples_per_pixel
         )));
     }
-    let features = crate::render::SceneFeatures::lit(options.lights);
-    Renderer::check_memory(options.size, &Settings::default(), features, true, &Mode::ALL)?;
+    let features = crate::render::SceneFeatures::lit(options.on.lights);
+    Renderer::check_memory(options.on.size, &Settings::default(), features, true, &Mode::ALL)?;
     log::info!("{}", planned_work(options));
     let (scene, sky, sky_name) = load_scene(options)?;
     let camera = OrbitCamera::framing(&scene.model.bounds);
-    gpu.check_size(options.size.0, options.size.1)?;
+    gpu.check_size(options.on.size.0, options.on.size.1)?;
     let base = Settings::default();
     let ambient = base.ambient;
-    let mut renderer = Renderer::new(gpu, &scene, &sky, options.size, CAPTURE_FORMAT, base)?;
+    let mut renderer = Renderer::new(gpu, &scene, &sky, options.on.size, CAPTURE_FORMAT, base)?;
     renderer.keep_hdr(gpu, true);
     let timestamps = renderer.enable_timing(gpu);
     let default_radius = renderer.radius();
@@ -127,7 +127,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     capture(gpu, &mut renderer, &camera)?;
     let depth = read_depth(gpu, &renderer.targets().depth().texture)?;
     let source = measure::TruthSource::new(&scene, &sky, &sky_name, options, &base);
-    let target = crate::headless::capture::output_texture(gpu, options.size);
+    let target = crate::headless::capture::output_texture(gpu, options.on.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let bench = measure::Bench { gpu, camera: &camera, view: &view, options, ambient, diagnostics: true, timed: true };
     let mut rows = Vec::new();

@@ -37,15 +37,54 @@ impl RadiusChoice {
     }
 }
 
-/// What to sweep.
-pub struct ReportOptions {
+/// The scene a report or tune measures against its truth: a named scene or a model, its sky,
+/// the image size, the point lights and the seed of the lights and the truth's rays.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TruthScene {
+    /// A named scene (`report::scenes`), used where no model is given.
     pub scene: String,
     /// Overrides the scene's model with an OBJ or glTF file.
     pub model: Option<PathBuf>,
     /// Leave out the model's normal maps and alpha cutouts, on both sides.
     pub no_surface_maps: bool,
+    /// `None`: the scene's own sky.
     pub skybox: Option<PathBuf>,
     pub size: (u32, u32),
+    pub lights: usize,
+    pub seed: u64,
+}
+
+impl TruthScene {
+    /// A named scene at `size` under its own sky, with the command line's lights and seed.
+    pub fn named(scene: &str, size: (u32, u32)) -> Self {
+        Self {
+            scene: scene.into(),
+            model: None,
+            no_surface_maps: false,
+            skybox: None,
+            size,
+            lights: crate::scene::DEFAULT_LIGHTS,
+            seed: 1,
+        }
+    }
+
+    /// The model's file, or the named scene.
+    pub fn model_name(&self) -> String {
+        self.model.as_ref().map_or_else(|| self.scene.clone(), |p| p.display().to_string())
+    }
+
+    /// The scene in words: the model's name, and the sky where one is given.
+    pub fn name(&self) -> String {
+        match &self.skybox {
+            Some(sky) => format!("{} under {}", self.model_name(), sky.display()),
+            None => self.model_name(),
+        }
+    }
+}
+
+/// What to sweep.
+pub struct ReportOptions {
+    pub on: TruthScene,
     /// Sample counts of the points and classic variants.
     pub samples: Vec<usize>,
     /// Slices × steps of the march variant.
@@ -58,8 +97,6 @@ pub struct ReportOptions {
     pub accumulate: Vec<usize>,
     /// Degrees the camera turns about the model each accumulated frame (0: still rows only).
     pub orbit: f32,
-    pub lights: usize,
-    pub seed: u64,
     pub out: PathBuf,
     /// A preset (`--preset`, `--quality`) measured as one more row, marked in the table.
     pub preset: Option<crate::preset::Preset>,

@@ -158,11 +158,10 @@ mod tests {
 
     fn options(samples: usize, march: usize, radii: usize) -> ReportOptions {
         ReportOptions {
-            scene: "cornell".into(),
-            model: None,
-            no_surface_maps: false,
-            skybox: None,
-            size: (16, 12),
+            on: super::super::options::TruthScene {
+                lights: 0,
+                ..super::super::options::TruthScene::named("cornell", (16, 12))
+            },
             samples: vec![8; samples],
             march: vec![(2, 16); march],
             radii: vec![super::super::options::RadiusChoice::Times(1.0); radii],
@@ -170,8 +169,6 @@ mod tests {
             frames: 1,
             accumulate: vec![1],
             orbit: 0.0,
-            lights: 0,
-            seed: 1,
             out: "report".into(),
             preset: None,
         }

@@ -216,12 +216,18 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
     options.check()?;
     let started = Instant::now();
     let report_options = options.report_options();
-    Renderer::check_memory(options.size, &Settings::default(), SceneFeatures::lit(options.lights), true, &Mode::ALL)?;
+    Renderer::check_memory(
+        options.on.size,
+        &Settings::default(),
+        SceneFeatures::lit(options.on.lights),
+        true,
+        &Mode::ALL,
+    )?;
     log::info!("{}", options.planned());
     let (scene, sky, sky_name) = crate::report::load_scene(&report_options)?;
-    gpu.check_size(options.size.0, options.size.1)?;
+    gpu.check_size(options.on.size.0, options.on.size.1)?;
     let base = Settings::default();
-    let mut renderer = Renderer::new(gpu, &scene, &sky, options.size, CAPTURE_FORMAT, base)?;
+    let mut renderer = Renderer::new(gpu, &scene, &sky, options.on.size, CAPTURE_FORMAT, base)?;
     renderer.keep_hdr(gpu, true);
     let timestamps = renderer.enable_timing(gpu);
     let default_radius = renderer.radius();
@@ -232,7 +238,7 @@ pub fn run(gpu: &Gpu, options: &TuneOptions, progress: &(dyn Fn(&str) + Sync)) -
 
     // One truth a view, as the report's.
     let source = TruthSource::new(&scene, &sky, &sky_name, &report_options, &base);
-    let target = output_texture(gpu, options.size);
+    let target = output_texture(gpu, options.on.size);
     let view = target.create_view(&wgpu::TextureViewDescriptor::default());
     let mut m = Measurer::new(gpu, renderer, (&cameras, &view, &report_options), &source, progress)?;
     let noise = m.truths.iter().map(|t| t.noise.hdr / cameras.len() as f64).sum();

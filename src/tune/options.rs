@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use crate::render::Mode;
-use crate::report::{RadiusChoice, ReportOptions};
+use crate::report::{RadiusChoice, ReportOptions, TruthScene};
 use crate::{Error, Result};
 
 /// The most views and the most measured settings a run takes.
@@ -21,13 +21,7 @@ pub enum Budget {
 /// What to tune, on what.
 #[derive(Clone, Debug)]
 pub struct TuneOptions {
-    pub scene: String,
-    pub model: Option<PathBuf>,
-    pub no_surface_maps: bool,
-    pub skybox: Option<PathBuf>,
-    pub size: (u32, u32),
-    pub lights: usize,
-    pub seed: u64,
+    pub on: TruthScene,
     pub mode: Mode,
     pub budget: Option<Budget>,
     /// The cheapest setting whose HDR RMSE is at most this (within the budget, if one is given).
@@ -100,11 +94,7 @@ impl TuneOptions {
     /// The report's options for the same scene (what its loaders and measurements read).
     pub(super) fn report_options(&self) -> ReportOptions {
         ReportOptions {
-            scene: self.scene.clone(),
-            model: self.model.clone(),
-            no_surface_maps: self.no_surface_maps,
-            skybox: self.skybox.clone(),
-            size: self.size,
+            on: self.on.clone(),
             samples: vec![16],
             march: vec![(2, 16)],
             radii: vec![RadiusChoice::Times(1.0)],
@@ -112,8 +102,6 @@ impl TuneOptions {
             frames: self.frames,
             accumulate: vec![1],
             orbit: 0.0,
-            lights: self.lights,
-            seed: self.seed,
             out: self.out.clone(),
             preset: None,
         }
@@ -133,20 +121,11 @@ impl TuneOptions {
         offsets
     }
 
-    /// The scene in words: the model file, or the named scene.
-    pub fn scene_name(&self) -> String {
-        let name = self.model.as_ref().map_or_else(|| self.scene.clone(), |p| p.display().to_string());
-        match &self.skybox {
-            Some(sky) => format!("{name} under {}", sky.display()),
-            None => name,
-        }
-    }
-
     /// The work planned, in a line.
     pub fn planned(&self) -> String {
         format!(
             "planned: {} views at {}x{} (a truth of 2 × {} rays a pixel each), up to {} settings × {} timed frames a view",
-            self.views, self.size.0, self.size.1, self.samples_per_pixel, self.max_settings, self.frames
+            self.views, self.on.size.0, self.on.size.1, self.samples_per_pixel, self.max_settings, self.frames
         )
     }
 }
@@ -158,13 +137,7 @@ mod tests {
     #[test]
     fn views_start_at_the_reports_and_spread_evenly_both_ways() {
         let mut o = TuneOptions {
-            scene: "cornell".into(),
-            model: None,
-            no_surface_maps: false,
-            skybox: None,
-            size: (16, 12),
-            lights: 0,
-            seed: 1,
+            on: TruthScene::named("cornell", (16, 12)),
             mode: Mode::Ssdo,
             budget: Some(Budget::Ms(10.0)),
             target_error: None,

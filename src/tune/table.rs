@@ -60,17 +60,17 @@ impl Tune {
     /// The front (sorted by time) as a Markdown document, with the run's facts.
     pub fn markdown(&self, options: &TuneOptions) -> String {
         let mut out = String::new();
-        let _ = writeln!(out, "# ssdo tune: {} in {}\n", options.mode, options.scene_name());
+        let _ = writeln!(out, "# ssdo tune: {} in {}\n", options.mode, options.on.name());
         let software = if self.software { " (a CPU rasteriser, not a GPU)" } else { "" };
         let _ = writeln!(out, "- device: {}{software}", self.device);
         let _ = writeln!(
             out,
             "- {} at {}x{}, {} lights (seed {}); views: yaw {} degrees from the report's",
-            options.scene_name(),
-            options.size.0,
-            options.size.1,
-            options.lights,
-            options.seed,
+            options.on.name(),
+            options.on.size.0,
+            options.on.size.1,
+            options.on.lights,
+            options.on.seed,
             self.views.iter().map(|d| format!("{d:+}")).collect::<Vec<_>>().join(", ")
         );
         let _ = writeln!(
@@ -161,11 +161,11 @@ impl Tune {
             Some(b) => format!(
                 "{} {} {}x{} within {b:.1} ms",
                 options.mode,
-                options.scene_name(),
-                options.size.0,
-                options.size.1
+                options.on.name(),
+                options.on.size.0,
+                options.on.size.1
             ),
-            None => format!("{} {} {}x{}", options.mode, options.scene_name(), options.size.0, options.size.1),
+            None => format!("{} {} {}x{}", options.mode, options.on.name(), options.on.size.0, options.on.size.1),
         };
         Some(Preset {
             name,
@@ -173,9 +173,9 @@ impl Tune {
             knobs,
             measured: Some(Measured {
                 device: self.device.clone(),
-                scene: options.scene_name(),
-                size: options.size,
-                lights: options.lights,
+                scene: options.on.name(),
+                size: options.on.size,
+                lights: options.on.lights,
                 budget_ms: self.budget_ms,
                 ms: p.ms,
                 off_ms: self.off.ms,
@@ -195,26 +195,26 @@ impl Tune {
     pub fn capture_command(&self, options: &TuneOptions) -> Option<String> {
         let knobs = self.picked()?.knobs?;
         let mut words = vec!["capture".to_string(), "--mode".into(), options.mode.name().into()];
-        words.extend(["--size".into(), format!("{}x{}", options.size.0, options.size.1)]);
-        if let Some(model) = &options.model {
+        words.extend(["--size".into(), format!("{}x{}", options.on.size.0, options.on.size.1)]);
+        if let Some(model) = &options.on.model {
             words.extend(["--model".into(), model.display().to_string()]);
         }
-        if let Some(sky) = &options.skybox {
+        if let Some(sky) = &options.on.skybox {
             words.extend(["--skybox".into(), sky.display().to_string()]);
         }
-        if options.no_surface_maps {
+        if options.on.no_surface_maps {
             words.push("--no-surface-maps".into());
         }
-        if options.lights != crate::scene::DEFAULT_LIGHTS {
-            words.extend(["--lights".into(), options.lights.to_string()]);
+        if options.on.lights != crate::scene::DEFAULT_LIGHTS {
+            words.extend(["--lights".into(), options.on.lights.to_string()]);
         }
-        if options.seed != 1 {
-            words.extend(["--seed".into(), options.seed.to_string()]);
+        if options.on.seed != 1 {
+            words.extend(["--seed".into(), options.on.seed.to_string()]);
         }
         words.extend(knobs.flags(self.default_radius));
         let mut line = crate::reproduce::shell_line(&words);
-        if options.model.is_none() && options.scene != "cornell" {
-            let _ = write!(line, "   # the settings; scene '{}' is built into report and tune only", options.scene);
+        if options.on.model.is_none() && options.on.scene != "cornell" {
+            let _ = write!(line, "   # the settings; scene '{}' is built into report and tune only", options.on.scene);
         }
         Some(line)
     }
@@ -237,6 +237,7 @@ mod tests {
     use super::super::{Candidate, Point, Tune, TuneOptions, Verdict};
     use crate::knobs::Knobs;
     use crate::render::{Mode, Variant};
+    use crate::report::TruthScene;
 
     fn point(ms: f64, hdr_rmse: f64, slices: usize) -> Point {
         let candidate = Candidate::new(Mode::Ssdo, Knobs { slices, ..Knobs::for_variant(Variant::March) });
@@ -275,13 +276,7 @@ mod tests {
 
     fn options() -> TuneOptions {
         TuneOptions {
-            scene: "open".into(),
-            model: None,
-            no_surface_maps: false,
-            skybox: None,
-            size: (320, 240),
-            lights: 8,
-            seed: 1,
+            on: TruthScene { lights: 8, ..TruthScene::named("open", (320, 240)) },
             mode: Mode::Ssdo,
             budget: None,
             target_error: Some(0.01),

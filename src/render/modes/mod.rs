@@ -97,19 +97,16 @@ impl Default for PlanOptions {
     /// The defaults' plan: a display plan with half-resolution sampling, blur and accumulation,
     /// no pyramid, and the bounce lit by the sky and the lights.
     fn default() -> Self {
-        let (blur, pyramid, display, indirect, half_resolution, accumulate) = (true, false, true, true, true, true);
-        let sender_sky = SenderSky::default();
-        let (bilateral, material_thickness) = (true, true);
         Self {
-            blur,
-            bilateral,
-            pyramid,
-            display,
-            indirect,
-            sender_sky,
-            half_resolution,
-            accumulate,
-            material_thickness,
+            blur: true,
+            bilateral: true,
+            pyramid: false,
+            display: true,
+            indirect: true,
+            sender_sky: SenderSky::default(),
+            half_resolution: true,
+            accumulate: true,
+            material_thickness: true,
         }
     }
 }

@@ -6,7 +6,7 @@ use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::reference::{Estimate, ReferenceScene, Surface, TraceSettings};
 use ssdo::render::{Mode, Variant};
-use ssdo::report::{self, RadiusChoice, ReportOptions};
+use ssdo::report::{self, RadiusChoice, ReportOptions, TruthScene};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{LightRig, Material, PointLight, Scene, Skybox};
 
@@ -99,12 +99,10 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     let Some(gpu) = common::gpu() else { return };
     let out = tempfile::tempdir().unwrap();
     let options = ReportOptions {
-        scene: "open".into(),
-        size: (160, 120),
+        on: TruthScene { lights: 8, ..TruthScene::named("open", (160, 120)) },
         samples: vec![8, 64],
         march: vec![(1, 4), (4, 16)],
         samples_per_pixel: 64,
-        lights: 8,
         ..tiny_report(out.path(), None, None)
     };
     let result = report::run(gpu, &options, &|_| {}).unwrap();
@@ -212,13 +210,13 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
     std::fs::create_dir(&sky_dir).unwrap();
     builtin::write_skybox(&Skybox::constant(Vec3::new(0.4, 0.5, 0.6)), &sky_dir, true).unwrap();
     let error = |lights: usize| {
+        let tiny = tiny_report(&dir.path().join("out"), Some(dir.path().join("plane.obj")), Some(sky_dir.clone()));
         let options = ReportOptions {
-            size: (96, 72),
+            on: TruthScene { size: (96, 72), lights, ..tiny.on.clone() },
             samples: vec![16],
             march: vec![(2, 8)],
             samples_per_pixel: 8,
-            lights,
-            ..tiny_report(&dir.path().join("out"), Some(dir.path().join("plane.obj")), Some(sky_dir.clone()))
+            ..tiny
         };
         let report = report::run(gpu, &options, &|_| {}).unwrap();
         // One row per resolution, named by its settings: the rows come sorted by time, which
@@ -270,11 +268,7 @@ fn tiny_report(
     skybox: Option<std::path::PathBuf>,
 ) -> ReportOptions {
     ReportOptions {
-        scene: "cornell".into(),
-        model,
-        no_surface_maps: false,
-        skybox,
-        size: (16, 12),
+        on: TruthScene { model, skybox, lights: 2, ..TruthScene::named("cornell", (16, 12)) },
         samples: vec![4],
         march: vec![(1, 4)],
         radii: vec![RadiusChoice::Times(1.0)],
@@ -282,8 +276,6 @@ fn tiny_report(
         frames: 1,
         accumulate: vec![1],
         orbit: 0.0,
-        lights: 2,
-        seed: 1,
         out: out.to_path_buf(),
         preset: None,
     }

@@ -6,17 +6,12 @@ use crate::common;
 
 use ssdo::preset::{Preset, Quality};
 use ssdo::render::Mode;
+use ssdo::report::TruthScene;
 use ssdo::tune::{self, Budget, TuneOptions, Verdict};
 
 fn options(out: &std::path::Path) -> TuneOptions {
     TuneOptions {
-        scene: "cornell".into(),
-        model: None,
-        no_surface_maps: false,
-        skybox: None,
-        size: (64, 48),
-        lights: 2,
-        seed: 1,
+        on: TruthScene { lights: 2, ..TruthScene::named("cornell", (64, 48)) },
         mode: Mode::Ssdo,
         budget: Some(Budget::OffTimes(6.0)),
         target_error: None,
@@ -82,8 +77,7 @@ fn quality_levels_are_ordered_in_error_on_the_scene_they_were_made_on() {
     let Some(gpu) = common::gpu() else { return };
     let out = tempfile::tempdir().unwrap();
     let options = TuneOptions {
-        size: (160, 120),
-        lights: 8,
+        on: TruthScene { lights: 8, ..TruthScene::named("cornell", (160, 120)) },
         views: 1,
         samples_per_pixel: 64,
         max_settings: 0,

@@ -4,7 +4,7 @@
 use ssdo::headless::capture::capture_converged;
 use ssdo::headless::truth::ViewTruth;
 use ssdo::render::{Mode, Settings, Variant};
-use ssdo::report::{self, RadiusChoice, ReportOptions};
+use ssdo::report::{self, RadiusChoice, ReportOptions, TruthScene};
 use ssdo::scene::{OrbitCamera, Scene, Skybox};
 
 use crate::common;
@@ -15,11 +15,12 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
     let out = tempfile::tempdir().unwrap();
     let base = Settings::default();
     let options = ReportOptions {
-        scene: "cornell".into(),
-        model: None,
-        no_surface_maps: false,
-        skybox: Some("skyboxes/day".into()),
-        size: (48, 36),
+        on: TruthScene {
+            skybox: Some("skyboxes/day".into()),
+            lights: 3,
+            seed: 7,
+            ..TruthScene::named("cornell", (48, 36))
+        },
         samples: vec![4],
         march: vec![(base.sampling.slices, base.sampling.steps)],
         radii: vec![RadiusChoice::Times(1.0)],
@@ -27,8 +28,6 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
         frames: 1,
         accumulate: vec![base.accumulate],
         orbit: 0.0,
-        lights: 3,
-        seed: 7,
         out: out.path().to_path_buf(),
         preset: None,
     };
@@ -36,14 +35,14 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
 
     // The same view captured: the report's scene, sky, lights and camera, the default settings.
     let (model, _) = report::scenes::by_name("cornell").unwrap();
-    let scene = Scene::new(model, options.lights, options.seed);
+    let scene = Scene::new(model, options.on.lights, options.on.seed);
     let sky = Skybox::load(std::path::Path::new("skyboxes/day")).unwrap();
     let camera = OrbitCamera::framing(&scene.model.bounds);
     for mode in [Mode::Ssao, Mode::Both] {
         let settings = Settings { mode, ..base };
-        let mut renderer = common::renderer(gpu, &scene, &sky, options.size, settings);
+        let mut renderer = common::renderer(gpu, &scene, &sky, options.on.size, settings);
         renderer.keep_hdr(gpu, true);
-        let rays = (options.samples_per_pixel, options.seed);
+        let rays = (options.samples_per_pixel, options.on.seed);
         let truth = ViewTruth::trace(gpu, &mut renderer, (&scene, &sky), &camera, rays, &|| {}).unwrap();
         let image = capture_converged(gpu, &mut renderer, &camera).unwrap();
         let measured = truth.measure(gpu, &renderer, mode, &image).unwrap();

@@ -53,20 +53,10 @@ fn all_plans() -> Vec<Plan> {
         for lights in [0, 8] {
             for bits in 0..128u32 {
                 for sender_sky in SenderSky::ALL {
-                    let [blur, pyramid, display, indirect, accumulate, half_resolution, bilateral] =
+                    // Every switch both ways over the default (its material thickness on).
+                    let mut o = PlanOptions { sender_sky, ..PlanOptions::default() };
+                    [o.blur, o.pyramid, o.display, o.indirect, o.accumulate, o.half_resolution, o.bilateral] =
                         [0, 1, 2, 3, 4, 5, 6].map(|b| bits & (1 << b) != 0);
-                    let material_thickness = true;
-                    let o = PlanOptions {
-                        blur,
-                        bilateral,
-                        pyramid,
-                        display,
-                        indirect,
-                        sender_sky,
-                        half_resolution,
-                        accumulate,
-                        material_thickness,
-                    };
                     plans.push(Plan::new(mode, SceneFeatures::lit(lights), o));
                 }
             }
