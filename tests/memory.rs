@@ -56,6 +56,15 @@ fn write_quad(dir: &Path, map: &str) -> std::path::PathBuf {
     dir.join("quad.obj")
 }
 
+/// The quad textured with `map`, loaded within `budget` bytes of textures: its diffuse map's
+/// size, its warnings, and the most bytes the load held at once.
+fn load_quad(dir: &Path, map: &str, budget: u64) -> ((u32, u32), Vec<String>, usize) {
+    let quad = write_quad(dir, map);
+    let (model, peak) = peak_during(|| ssdo::scene::obj_model::load_obj_with_budget(&quad, budget).unwrap());
+    let map = model.materials[0].diffuse_map.as_ref().unwrap();
+    ((map.width, map.height), model.warnings, peak)
+}
+
 #[test]
 fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
@@ -63,16 +72,10 @@ fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
     // 8192² grey texels of one value: a 0.2 MB file that is 256 MiB as RGBA8.
     image::GrayImage::from_pixel(8192, 8192, image::Luma([85])).save(dir.path().join("bomb.png")).unwrap();
     assert!(std::fs::metadata(dir.path().join("bomb.png")).unwrap().len() < MIB as u64);
-    let quad = write_quad(dir.path(), "bomb.png");
 
-    let (model, peak) = peak_during(|| ssdo::scene::obj_model::load_obj_with_budget(&quad, 16 << 20).unwrap());
-    let map = model.materials[0].diffuse_map.as_ref().unwrap();
-    assert_eq!((map.width, map.height), (2048, 2048), "halved until 16 MiB of RGBA8 holds it");
-    assert!(
-        model.warnings.iter().any(|w| w.contains("downscaled from 8192x8192 to 2048x2048")),
-        "{:?}",
-        model.warnings
-    );
+    let (size, warnings, peak) = load_quad(dir.path(), "bomb.png", 16 << 20);
+    assert_eq!(size, (2048, 2048), "halved until 16 MiB of RGBA8 holds it");
+    assert!(warnings.iter().any(|w| w.contains("downscaled from 8192x8192 to 2048x2048")), "{warnings:?}");
     // The grey decode (64 MiB) and the result (16 MiB) at most; decoding to RGBA8 first would
     // have held 256 MiB, and a float resize of that twice as much again.
     assert!(peak < 100 * MIB, "the load peaked at {} MiB", peak / MIB);
@@ -107,15 +110,9 @@ fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
     let big = image::ImageBuffer::<image::Rgba<u16>, _>::from_pixel(4096, 2304, image::Rgba([9000u16; 4]));
     big.save(d.join("deep.png")).unwrap();
     drop(big);
-    let quad = write_quad(d, "deep.png");
-    let (model, peak) = peak_during(|| ssdo::scene::obj_model::load_obj_with_budget(&quad, 3 << 20).unwrap());
-    let map = model.materials[0].diffuse_map.as_ref().unwrap();
-    assert_eq!((map.width, map.height), (8, 8), "the checker");
-    assert!(
-        model.warnings.iter().any(|w| w.contains("deep.png") && w.contains("decodes to 72 MiB")),
-        "{:?}",
-        model.warnings
-    );
+    let (size, warnings, peak) = load_quad(d, "deep.png", 3 << 20);
+    assert_eq!(size, (8, 8), "the checker");
+    assert!(warnings.iter().any(|w| w.contains("deep.png") && w.contains("decodes to 72 MiB")), "{warnings:?}");
     assert!(peak < 8 * MIB, "refused from the header, yet {} MiB were held", peak / MIB);
 }
 

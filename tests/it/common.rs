@@ -122,9 +122,10 @@ pub fn project_to(camera: &OrbitCamera, size: (u32, u32), p: Vec3) -> (usize, us
     (((ndc.x * 0.5 + 0.5) * w) as usize, ((0.5 - ndc.y * 0.5) * h) as usize)
 }
 
-/// A white floor beside a red wall (the plane x = 0) lit by one white light: the colour-bleeding
-/// scene.
-pub fn red_wall_scene() -> Scene {
+/// A white floor beside a red wall (the plane x = 0) lit by one white light, under a constant sky
+/// of `sky`, and a camera facing the wall (their corner a horizontal line across the middle of
+/// the view): the colour-bleeding scene.
+pub fn red_wall_view(sky: Vec3) -> (Scene, Skybox, OrbitCamera) {
     let v = Vec3::new;
     let mut b = MeshBuilder::default();
     let floor = b.material(Material::plain("floor", [0.8; 3]));
@@ -133,7 +134,7 @@ pub fn red_wall_scene() -> Scene {
     b.quad(wall, [v(0.0, 0.0, -2.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 2.0), v(0.0, 2.0, -2.0)]);
     let mut scene = Scene::new(b.build("red_wall").unwrap(), 0, 1);
     scene.lights = vec![PointLight { position: v(1.2, 1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }];
-    scene
+    (scene, Skybox::constant(sky), looking(v(1.0, 0.3, 0.0), 90.0, 35.0, 3.5))
 }
 
 /// Runs the `ssdo` binary from the repository root with `args`, on the backend the test run asks
@@ -173,17 +174,25 @@ pub fn has_adapter() -> bool {
     gpu().is_some()
 }
 
-/// The bytes of buffer 0: a unit quad on y = 0 facing up, with normals, UVs and 16-bit indices.
-pub fn quad_buffer() -> Vec<u8> {
+/// A unit quad on y = 0 facing up (u along +x, v along +z): its positions, normals and UVs, then
+/// `extra` (more vertex data, such as tangents), then its 16-bit indices.
+pub fn quad_bytes(extra: &[u8]) -> Vec<u8> {
     let positions: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
     let normals = [[0.0f32, 1.0, 0.0]; 4];
     let uvs: [[f32; 2]; 4] = [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]];
     let indices: [u16; 6] = [0, 1, 3, 0, 3, 2];
     let mut bytes: Vec<u8> = Vec::new();
-    bytes.extend(bytemuck::cast_slice(&positions));
-    bytes.extend(bytemuck::cast_slice(&normals));
-    bytes.extend(bytemuck::cast_slice(&uvs));
-    bytes.extend(bytemuck::cast_slice(&indices));
+    for part in [bytemuck::cast_slice(&positions), bytemuck::cast_slice(&normals), bytemuck::cast_slice(&uvs), extra] {
+        bytes.extend_from_slice(part);
+    }
+    bytes.extend_from_slice(bytemuck::cast_slice(&indices));
+    bytes
+}
+
+/// The bytes of buffer 0: [`quad_bytes`] with nothing between the UVs and the indices, padded to
+/// 144 bytes.
+pub fn quad_buffer() -> Vec<u8> {
+    let mut bytes = quad_bytes(&[]);
     bytes.resize(144, 0);
     bytes
 }

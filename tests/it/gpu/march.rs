@@ -130,9 +130,7 @@ fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
 fn a_red_wall_beyond_the_radius_still_bounces_red_onto_the_floor() {
     let Some(gpu) = gpu() else { return };
     let v = Vec3::new;
-    let scene = common::red_wall_scene();
-    let sky = Skybox::constant(Vec3::ZERO);
-    let camera = looking(v(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = common::red_wall_view(Vec3::ZERO);
     // R = 0.1; the floor point lies 0.4 = 4R from the wall.
     let receiver = project(&camera, v(0.4, 0.0, 0.0));
     let s = march(0.1);

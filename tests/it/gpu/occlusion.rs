@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{gpu, looking, project, red_wall_scene, renderer, shoot, Furnace, H, W};
+use common::{gpu, looking, project, red_wall_view, renderer, shoot, Furnace, H, W};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, OcclusionValues};
@@ -118,11 +118,9 @@ fn open_plane_ao_is_one_everywhere_including_the_edges() {
 #[test]
 fn inside_corner_is_more_occluded_than_open_floor() {
     let Some(gpu) = gpu() else { return };
-    let mut scene = red_wall_scene();
-    scene.lights.clear();
-    let sky = Skybox::constant(Vec3::ONE);
     // Facing the wall: the corner is a horizontal line across the middle of the view.
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (mut scene, sky, camera) = red_wall_view(Vec3::ONE);
+    scene.lights.clear();
     for variant in Variant::ALL {
         let s = Settings {
             sampling: Sampling { variant, samples: 32, radius: Some(0.5), ..Default::default() },
@@ -141,9 +139,7 @@ fn inside_corner_is_more_occluded_than_open_floor() {
 #[test]
 fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let Some(gpu) = gpu() else { return };
-    let scene = red_wall_scene();
-    let sky = Skybox::constant(Vec3::ZERO);
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = red_wall_view(Vec3::ZERO);
     let near = project(&camera, Vec3::new(0.12, 0.0, 0.0));
     let far = project(&camera, Vec3::new(1.8, 0.0, 1.0));
     let ratio = |c: Vec3| c.x / c.y.max(1e-6);

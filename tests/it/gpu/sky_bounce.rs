@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{gpu, looking, project, red_wall_scene, renderer, shoot, H, W};
+use common::{gpu, looking, project, red_wall_view, renderer, shoot, H, W};
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::gpu::Gpu;
@@ -50,9 +50,9 @@ fn traced_bounce(scene: &Scene, sky: &Skybox, point: Vec3, spp: u32) -> (Vec3, f
 /// The red wall's scene with no lights under a white sky, and the camera that sees the floor
 /// beside the wall (the floor point 0.15 from it is the one the tests read).
 fn red_wall_under_a_white_sky() -> (Scene, Skybox, OrbitCamera) {
-    let mut scene = red_wall_scene();
+    let (mut scene, sky, camera) = red_wall_view(Vec3::ONE);
     scene.lights.clear();
-    (scene, Skybox::constant(Vec3::ONE), looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5))
+    (scene, sky, camera)
 }
 
 #[test]
@@ -174,9 +174,7 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
 #[test]
 fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
     let Some(gpu) = gpu() else { return };
-    let scene = red_wall_scene();
-    let sky = Skybox::constant(Vec3::ZERO);
-    let camera = looking(Vec3::new(1.0, 0.3, 0.0), 90.0, 35.0, 3.5);
+    let (scene, sky, camera) = red_wall_view(Vec3::ZERO);
     let lit = |sender_sky| frame(gpu, &scene, &sky, &camera, Settings { sender_sky, ..settings(Mode::Both) }).1;
     let before = lit(SenderSky::Off);
     for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance] {

@@ -28,6 +28,12 @@ pub fn encode(n: Vec3) -> [u8; 4] {
     [c(n.x), c(n.y), c(n.z), 255]
 }
 
+/// A 4x4 normal map whose every normal leans `degrees` from straight out towards the map's +u.
+fn write_leaning_normal_map(path: &Path, degrees: f32) {
+    let lean = degrees.to_radians();
+    write_png(path, 4, 4, |_, _| encode(Vec3::new(lean.sin(), 0.0, lean.cos())));
+}
+
 /// One quad of an OBJ: corners counter-clockwise seen from the side `normal` points to, each
 /// corner's (u, v) (OBJ's v up the image), the material.
 pub struct Quad {
@@ -124,8 +130,7 @@ fn red_share(c: Vec3) -> f32 {
 fn a_tilted_normal_map_takes_the_sky_of_the_side_it_leans_to_in_every_mode_and_in_the_truth() {
     let Some(gpu) = gpu() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let tilt = 40f32.to_radians();
-    write_png(&dir.path().join("tilt.png"), 4, 4, |_, _| encode(Vec3::new(tilt.sin(), 0.0, tilt.cos())));
+    write_leaning_normal_map(&dir.path().join("tilt.png"), 40.0);
     let mtl = "newmtl floor\nKd 0.8 0.8 0.8\nnorm tilt.png\n";
     let model = scene::obj_model::load_obj(&write_obj(dir.path(), "tilted", &[floor(20.0, 4.0, "floor")], mtl));
     let model = model.unwrap();
@@ -302,8 +307,7 @@ fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_tru
 fn a_gltf_leaf_seen_from_behind_is_lit_and_given_tangents_match_generated_ones() {
     let Some(gpu) = gpu() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let tilt = 30f32.to_radians();
-    write_png(&dir.path().join("leaf_normal.png"), 4, 4, |_, _| encode(Vec3::new(tilt.sin(), 0.0, tilt.cos())));
+    write_leaning_normal_map(&dir.path().join("leaf_normal.png"), 30.0);
     // Opaque but for a hole in the middle.
     write_png(&dir.path().join("leaf_colour.png"), 8, 8, |x, y| {
         [60, 200, 60, if (3..5).contains(&x) && (3..5).contains(&y) { 0 } else { 255 }]
@@ -354,17 +358,7 @@ fn a_gltf_leaf_seen_from_behind_is_lit_and_given_tangents_match_generated_ones()
 /// texture and a base colour texture cut as a `MASK`, with `TANGENT` (+x, w = 1) or without;
 /// and its buffer, `leaf.bin`.
 fn leaf_gltf(tangents: bool) -> (serde_json::Value, Vec<u8>) {
-    let positions: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
-    let normals = [[0.0f32, 1.0, 0.0]; 4];
-    let uvs: [[f32; 2]; 4] = [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]];
-    let tangent_data = [[1.0f32, 0.0, 0.0, 1.0]; 4];
-    let indices: [u16; 6] = [0, 1, 3, 0, 3, 2];
-    let mut bytes: Vec<u8> = Vec::new();
-    bytes.extend(bytemuck::cast_slice(&positions));
-    bytes.extend(bytemuck::cast_slice(&normals));
-    bytes.extend(bytemuck::cast_slice(&uvs));
-    bytes.extend(bytemuck::cast_slice(&tangent_data));
-    bytes.extend(bytemuck::cast_slice(&indices));
+    let mut bytes = crate::common::quad_bytes(bytemuck::cast_slice(&[[1.0f32, 0.0, 0.0, 1.0]; 4]));
     bytes.resize(bytes.len().next_multiple_of(4), 0);
     let view =
         |offset: usize, length: usize| serde_json::json!({ "buffer": 0, "byteOffset": offset, "byteLength": length });

@@ -195,16 +195,30 @@ fn a_still_view_blurs_its_first_frames_only_and_then_averages_the_raw_samples() 
     assert!(at_16 < 0.5 * at_first, "{at_16:.4} after 16 frames, {at_first:.4} after {first}");
 }
 
+/// SSAO accumulating 16 frames of `view` converged at its camera, then one frame drawn from the
+/// camera `move_to` makes of it; the renderer, and the clip matrices from the new frame's clip
+/// space to the world and from the world to the last frame's.
+fn converged_then_moved(
+    gpu: &Gpu,
+    (scene, sky, camera): (Scene, Skybox, OrbitCamera),
+    move_to: impl Fn(OrbitCamera) -> OrbitCamera,
+) -> (Renderer, OrbitCamera, OrbitCamera, glam::Mat4, glam::Mat4) {
+    let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
+    capture_converged(gpu, &mut r, &camera).unwrap();
+    let moved = move_to(camera);
+    render_frames(gpu, &mut r, [moved]).unwrap();
+    let aspect = W as f32 / H as f32;
+    let clip = |c: &OrbitCamera| c.view_to_clip(aspect) * c.world_to_view();
+    (r, camera, moved, clip(&moved).inverse(), clip(&camera))
+}
+
 #[test]
 fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     let Some(gpu) = gpu() else { return };
-    let (scene, sky, camera) = cornell();
-    let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
-    capture_converged(gpu, &mut r, &camera).unwrap();
     // A turn the history may span (`MAX_HISTORY_TURN` in shaders/temporal.wgsl: 12°; what a
     // larger one keeps is the next tests').
-    let moved = OrbitCamera { yaw_deg: camera.yaw_deg + 5.0, ..camera };
-    render_frames(gpu, &mut r, [moved]).unwrap();
+    let (mut r, camera, moved, to_world, to_before) =
+        converged_then_moved(gpu, cornell(), |c| OrbitCamera { yaw_deg: c.yaw_deg + 5.0, ..c });
     let pair = r.history().get(SURFACE_HISTORY).unwrap();
     // After the frame, the read side is what it wrote; the write side what the frame before did.
     let (now, before) = (surface_normals(gpu, &pair.read().texture), surfaces(gpu, &pair.write().texture));
@@ -218,9 +232,6 @@ fn a_camera_move_keeps_history_only_where_the_same_surface_was_seen() {
     // The walls turned 5° in the view (the floor did not: the turn is about the vertical), so
     // they keep their history only if the normals are compared in one frame's view.
     let (mut walls, mut walls_kept) = (0, 0);
-    let aspect = W as f32 / H as f32;
-    let clip = |c: &OrbitCamera| c.view_to_clip(aspect) * c.world_to_view();
-    let (to_world, to_before) = (clip(&moved).inverse(), clip(&camera));
     let (mut uncovered, mut kept, mut surface) = (0, 0, 0);
     for y in 0..th {
         for x in 0..tw {
@@ -285,20 +296,14 @@ fn pole_before_a_wall() -> (Scene, Skybox, OrbitCamera) {
 #[test]
 fn sliding_past_a_pole_keeps_no_history_where_the_wall_was_hidden() {
     let Some(gpu) = gpu() else { return };
-    let (scene, sky, camera) = pole_before_a_wall();
-    let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
-    capture_converged(gpu, &mut r, &camera).unwrap();
     // The camera slides 0.25 sideways: the wall turns 2.4° in the view (its history may stay),
     // the pole moves across it by parallax and uncovers a strip of wall it hid.
-    let moved = OrbitCamera { target: Vec3::new(0.25, 0.0, 0.0), ..camera };
-    render_frames(gpu, &mut r, [moved]).unwrap();
+    let (r, _, _, to_world, to_before) =
+        converged_then_moved(gpu, pole_before_a_wall(), |c| OrbitCamera { target: Vec3::new(0.25, 0.0, 0.0), ..c });
     let pair = r.history().get(SURFACE_HISTORY).unwrap();
     let (now, before) = (surfaces(gpu, &pair.read().texture), surfaces(gpu, &pair.write().texture));
     let size = pair.read().texture.size();
     let (tw, th) = (size.width as usize, size.height as usize);
-    let aspect = W as f32 / H as f32;
-    let clip = |c: &OrbitCamera| c.view_to_clip(aspect) * c.world_to_view();
-    let (to_world, to_before) = (clip(&moved).inverse(), clip(&camera));
     let (mut strip, mut wall, mut wall_kept) = (0, 0, 0);
     for y in 0..th {
         for x in 0..tw {
