@@ -168,6 +168,20 @@ pub fn refused(args: &[&str], code: i32, needle: &str) -> String {
     line
 }
 
+/// The names of the files in `dir`, sorted.
+pub fn file_names(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    names
+}
+
+/// A temporary folder for a test that renders with the binary, or `None` (the test skipped) where
+/// there is no adapter; under `CI=true` a missing one fails the test with the install hint.
+pub fn folder_if_adapter() -> Option<tempfile::TempDir> {
+    has_adapter().then(|| tempfile::tempdir().unwrap())
+}
+
 /// Whether there is an adapter to render on (the binary opens its own); under `CI=true` a
 /// missing one fails the test with the install hint.
 pub fn has_adapter() -> bool {

@@ -24,11 +24,7 @@ fn run(label: &str, extra: &[&str]) -> Outcome {
     let result = ssdo(&args);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(!stderr.contains("panicked"), "{label}: panicked:\n{stderr}");
-    let files: Vec<String> = std::fs::read_dir(out.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
+    let files = common::file_names(out.path());
     match result.status.code() {
         Some(0) => {
             assert_eq!(files, vec!["off.png".to_string()], "{label}: output files");

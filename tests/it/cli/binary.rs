@@ -10,10 +10,7 @@ use common::{error_line, has_adapter, refused, run_ssdo as ssdo, stderr};
 
 #[test]
 fn capture_writes_the_png_and_no_temporary_files() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     let result =
         ssdo(&["capture", "--mode", "off", "--size", "161x97", "--out", out.path().to_str().unwrap(), "--print-plan"]);
     assert!(result.status.success(), "{}", stderr(&result));
@@ -21,11 +18,7 @@ fn capture_writes_the_png_and_no_temporary_files() {
     // A capture without --raw or --stats tone-maps in the composite: no skybox, tonemap or HDR.
     assert!(stdout.contains("pass gbuffer") && stdout.contains("pass composite"), "{stdout}");
     assert!(!stdout.contains("pass tonemap") && !stdout.contains("hdr_color"), "{stdout}");
-    let files: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
+    let files = common::file_names(out.path());
     assert_eq!(files, vec!["off.png".to_string()]);
     let image = image::open(out.path().join("off.png")).unwrap();
     assert_eq!((image.width(), image.height()), (161, 97));
@@ -65,10 +58,7 @@ fn usage_errors_come_from_the_parser() {
 
 #[test]
 fn zero_and_oversized_sizes_are_refused() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     for size in ["0x10", "100000x10"] {
         let result = ssdo(&["capture", "--size", size, "--out", out.path().to_str().unwrap()]);
         assert_eq!(result.status.code(), Some(2), "{size}: {}", stderr(&result));
@@ -79,19 +69,11 @@ fn zero_and_oversized_sizes_are_refused() {
 
 #[test]
 fn capture_all_writes_four_modes_and_the_comparison() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     let result =
         ssdo(&["capture", "--mode", "all", "--size", "96x72", "--samples", "8", "--out", out.path().to_str().unwrap()]);
     assert!(result.status.success(), "{}", stderr(&result));
-    let mut files: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    files.sort();
+    let files = common::file_names(out.path());
     assert_eq!(files, ["both.png", "compare.png", "off.png", "ssao.png", "ssdo.png"]);
     let compare = image::open(out.path().join("compare.png")).unwrap();
     assert!(compare.width() > 2 * 96 && compare.height() > 2 * 72, "a 2x2 grid with captions");
@@ -189,10 +171,7 @@ fn viewer_refuses_bad_input_before_opening_a_window() {
 
 #[test]
 fn stats_json_reports_every_linear_buffer_and_raw_writes_exr() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     let result = ssdo(&[
         "capture",
         "--mode",
@@ -236,10 +215,7 @@ fn every_error_is_one_line_in_one_form() {
 
 #[test]
 fn capture_all_writes_everything_or_nothing_and_sweeps_stale_temporaries() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     let dir = out.path().to_str().unwrap();
     // compare.png cannot be written (a folder has its name): not one of the five files lands.
     std::fs::create_dir(out.path().join("compare.png")).unwrap();
@@ -250,12 +226,7 @@ fn capture_all_writes_everything_or_nothing_and_sweeps_stale_temporaries() {
     let result = ssdo(&["capture", "--mode", "all", "--size", "48x36", "--out", dir]);
     assert_eq!(result.status.code(), Some(5), "{}", stderr(&result));
     assert!(error_line(&result).contains("compare.png"), "{}", stderr(&result));
-    let mut left: Vec<String> = std::fs::read_dir(out.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    left.sort();
+    let left = common::file_names(out.path());
     assert_eq!(
         left,
         vec![".off.png.4000000.tmp".to_string(), "compare.png".to_string()],
@@ -330,10 +301,7 @@ fn a_camera_said_as_an_orbit_or_as_an_eye_and_a_point_gives_one_picture() {
 
 #[test]
 fn tune_names_the_cheapest_under_a_budget_below_it_and_its_preset_drives_capture() {
-    if !has_adapter() {
-        return;
-    }
-    let dir = tempfile::tempdir().unwrap();
+    let Some(dir) = common::folder_if_adapter() else { return };
     let out = dir.path().join("tune");
     let small = ["--size", "32x24", "--lights", "1", "--views", "1", "--frames", "1", "--spp", "2"];
     let mut args = vec!["tune", "--budget-ms", "0.0001", "--max-settings", "3", "--out", out.to_str().unwrap()];

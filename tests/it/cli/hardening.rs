@@ -23,10 +23,7 @@ fn ssdo_into(args: &[&str], stdout: std::process::Stdio) -> std::process::Child 
 
 #[test]
 fn a_closed_pipe_ends_quietly_and_a_full_disk_is_one_error_line() {
-    if !has_adapter() {
-        return;
-    }
-    let out = tempfile::tempdir().unwrap();
+    let Some(out) = common::folder_if_adapter() else { return };
     let dir = out.path().to_str().unwrap();
     let args = ["capture", "--mode", "all", "--size", "16x12", "--stats", "--print-plan", "--out", dir];
     // `| head -1` with the reader gone before the first line: SIGPIPE's status, nothing said.
@@ -146,20 +143,13 @@ fn concurrent_batches_into_one_folder_each_land_whole() {
         }
     });
     assert_eq!(mixed.into_inner(), 0, "rounds whose five files came from different batches");
-    let left: Vec<String> = std::fs::read_dir(out.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
+    let left = common::file_names(out.path());
     assert_eq!(left.len(), names.len(), "no temporary or lock left: {left:?}");
 }
 
 #[test]
 fn models_outside_what_f32_shades_are_rescaled_rebased_or_refused() {
-    if !has_adapter() {
-        return;
-    }
-    let dir = tempfile::tempdir().unwrap();
+    let Some(dir) = common::folder_if_adapter() else { return };
     let quad = |name: &str, offset: f64, size: f64| {
         let path = dir.path().join(name);
         let v = |x: f64, y: f64| format!("v {} {} 0\n", offset + x * size, y * size);
