@@ -48,6 +48,33 @@ fn peak_during<T>(work: impl FnOnce() -> T) -> (T, usize) {
 
 const MIB: usize = 1 << 20;
 
+/// One test at a time (the allocator's counts are the process's), and the process's memory
+/// budget, set to `bytes` while the guard lives and to the default again when it drops (even when
+/// the test fails).
+struct Alone {
+    _lock: std::sync::MutexGuard<'static, ()>,
+    budget_set: bool,
+}
+
+fn alone() -> Alone {
+    Alone { _lock: ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner()), budget_set: false }
+}
+
+fn alone_within(bytes: u64) -> Alone {
+    let mut one = alone();
+    ssdo::budget::set(bytes).unwrap();
+    one.budget_set = true;
+    one
+}
+
+impl Drop for Alone {
+    fn drop(&mut self) {
+        if self.budget_set {
+            ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
+        }
+    }
+}
+
 fn write_quad(dir: &Path, map: &str) -> std::path::PathBuf {
     std::fs::write(dir.join("m.mtl"), format!("newmtl m\nKd 1 1 1\nmap_Kd {map}\n")).unwrap();
     let obj = "mtllib m.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
@@ -67,7 +94,7 @@ fn load_quad(dir: &Path, map: &str, budget: u64) -> ((u32, u32), Vec<String>, us
 
 #[test]
 fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = alone();
     let dir = tempfile::tempdir().unwrap();
     // 8192² grey texels of one value: a 0.2 MB file that is 256 MiB as RGBA8.
     image::GrayImage::from_pixel(8192, 8192, image::Luma([85])).save(dir.path().join("bomb.png")).unwrap();
@@ -83,7 +110,7 @@ fn a_decompression_bomb_is_sized_from_its_header_and_never_expanded_whole() {
 
 #[test]
 fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = alone();
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // Eight distinct 512² maps (8 MiB of RGBA8) in 2 MiB: each ends at 256², none below.
@@ -118,8 +145,7 @@ fn textures_share_the_room_fairly_and_a_decode_beyond_it_is_a_checker() {
 
 #[test]
 fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    ssdo::budget::set(256 << 20).unwrap();
+    let _one = alone_within(256 << 20);
     let dir = tempfile::tempdir().unwrap();
     // One polygon of a million corners (a 2 MB file): 999,998 fan triangles, 610 MiB to build,
     // over the 96 MiB geometry share of a 256 MiB budget.
@@ -148,14 +174,12 @@ fn a_model_and_targets_beyond_the_budget_are_refused_before_they_are_built() {
     let error = Renderer::check_memory((8192, 8192), &settings, features, false, &Mode::ALL).unwrap_err();
     assert!(error.to_string().contains("8192x8192 in Off would need"), "{error}");
     Renderer::check_memory((160, 120), &settings, features, true, &Mode::ALL).unwrap();
-    ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
 }
 
 #[test]
 fn every_input_a_gltf_or_a_sky_names_is_sized_before_it_is_read() {
     use serde_json::json;
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    ssdo::budget::set(64 << 20).unwrap();
+    let _one = alone_within(64 << 20);
     let dir = tempfile::tempdir().unwrap();
     // Eight images naming one file of 1000 MiB (sparse: nothing to read but its size). Read once
     // at most, and not at all when it cannot fit: each image is the checker, and the warning
@@ -207,12 +231,11 @@ fn every_input_a_gltf_or_a_sky_names_is_sized_before_it_is_read() {
     let message = result.unwrap_err().to_string();
     assert!(message.contains("--triangles 10000000") && message.contains("memory budget for geometry"), "{message}");
     assert!(peak < MIB, "the figure was built: {} MiB held", peak / MIB);
-    ssdo::budget::set(ssdo::budget::machine_bytes() / 2).unwrap();
 }
 
 #[test]
 fn the_targets_counted_before_allocation_are_the_targets_allocated() {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = alone();
     let Some(gpu) = common::gpu() else { return };
     let scene = ssdo::scene::Scene::new(ssdo::scene::builtin::cornell().unwrap(), 8, 1);
     let sky = ssdo::scene::Skybox::constant(glam::Vec3::ONE);

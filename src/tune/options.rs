@@ -21,14 +21,18 @@ pub enum Budget {
 /// What to tune, on what.
 #[derive(Clone, Debug)]
 pub struct TuneOptions {
+    /// The scene, its sky, size and lights, and the truth's seed.
     pub on: TruthScene,
+    /// The mode whose settings are searched (not Off).
     pub mode: Mode,
+    /// The cheapest-first goal: the most accurate setting within this frame time.
     pub budget: Option<Budget>,
     /// The cheapest setting whose HDR RMSE is at most this (within the budget, if one is given).
     pub target_error: Option<f64>,
-    /// Views of the scene: the report's view, and the others turned about the model by up to
-    /// `spread` degrees either side.
+    /// Views of the scene: the report's view, and `views - 1` others turned about the model by
+    /// up to `spread` degrees either side.
     pub views: usize,
+    /// Degrees.
     pub spread: f32,
     /// Frames timed per setting (on the report's view; a frame costs the same from the others).
     pub frames: usize,
@@ -39,6 +43,7 @@ pub struct TuneOptions {
     /// Presets measured beside the search's settings (`--also`): their figures on this scene and
     /// device, and picked if they are the best.
     pub also: Vec<crate::preset::Preset>,
+    /// Folder for front.csv, tune.md and (with a pick) preset.json.
     pub out: PathBuf,
 }
 
