@@ -168,6 +168,11 @@ pub fn refused(args: &[&str], code: i32, needle: &str) -> String {
     line
 }
 
+/// The process's device and a temporary folder, or `None` (the test skipped) as [`gpu`] says.
+pub fn gpu_and_folder() -> Option<(&'static Gpu, tempfile::TempDir)> {
+    gpu().map(|gpu| (gpu, tempfile::tempdir().unwrap()))
+}
+
 /// The names of the files in `dir`, sorted.
 pub fn file_names(dir: &std::path::Path) -> Vec<String> {
     let mut names: Vec<String> =

@@ -119,8 +119,7 @@ fn an_ldr_panorama_is_srgb_and_bad_panoramas_are_one_clear_line() {
 
 #[test]
 fn a_redblue_panorama_renders_like_the_redblue_folder() {
-    let Some(gpu) = common::gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let from_panorama = Skybox::load(&redblue_panorama(dir.path())).unwrap();
     let folder = Skybox::load(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/skyboxes/redblue"))).unwrap();
     let scene = ssdo::scene::Scene::new(builtin::cornell().unwrap(), 0, 1);

@@ -96,8 +96,7 @@ fn a_lit_wall_sends_its_diffuse_radiance_as_the_bounce() {
 
 #[test]
 fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_variant() {
-    let Some(gpu) = common::gpu() else { return };
-    let out = tempfile::tempdir().unwrap();
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
     let options = ReportOptions {
         on: TruthScene { lights: 8, ..TruthScene::named("open", (160, 120)) },
         samples: vec![8, 64],
@@ -202,8 +201,7 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
     // right up to rounding and SSAO's error must not change with the number of lights. The GPU's
     // buffers hold radiance × pre-exposure, which falls below 1 as lights are added; a report that
     // forgot to divide it out would see a growing error.
-    let Some(gpu) = common::gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let model = builtin::plane(3.0, [0.6; 3]).unwrap();
     builtin::write_obj(&model, &dir.path().join("plane.obj")).unwrap();
     let sky_dir = dir.path().join("sky");
@@ -291,8 +289,7 @@ fn constant_exr_sky(dir: &std::path::Path, value: f32) {
 
 #[test]
 fn the_report_copes_with_any_finite_sky_and_refuses_what_it_cannot_measure() {
-    let Some(gpu) = common::gpu() else { return };
-    let out = tempfile::tempdir().unwrap();
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
     // A sky of 1e19: every figure is huge but finite; the plot's axes are clamped and finish.
     let bright = tempfile::tempdir().unwrap();
     constant_exr_sky(bright.path(), 1e19);

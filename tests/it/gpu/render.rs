@@ -231,8 +231,7 @@ fn default_scene_renders_finite_with_every_part_visible() {
 
 #[test]
 fn textured_model_renders_its_texture() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     // Top row red, blue; bottom row green, white. OBJ's v = 1 is the top of the image.
     let mut img = image::RgbImage::new(2, 2);
     img.put_pixel(0, 0, image::Rgb([255, 0, 0]));

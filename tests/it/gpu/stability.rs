@@ -237,8 +237,7 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
 
 #[test]
 fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
-    let Some(gpu) = common::gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let mut failures = Vec::new();
     println!("| case | cli | mode | variant | AO min..max | DO min..max | HDR min..max | non-finite |");
     println!("|---|---|---|---|---|---|---|---|");

@@ -8,7 +8,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{gpu, looking, renderer, shoot, H, W};
+use common::{looking, renderer, shoot, H, W};
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_depth, read_occlusion, read_rgba16f, read_surfaces};
@@ -128,8 +128,7 @@ fn red_share(c: Vec3) -> f32 {
 /// floor without the map is purple.
 #[test]
 fn a_tilted_normal_map_takes_the_sky_of_the_side_it_leans_to_in_every_mode_and_in_the_truth() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     write_leaning_normal_map(&dir.path().join("tilt.png"), 40.0);
     let mtl = "newmtl floor\nKd 0.8 0.8 0.8\nnorm tilt.png\n";
     let model = scene::obj_model::load_obj(&write_obj(dir.path(), "tilted", &[floor(20.0, 4.0, "floor")], mtl));
@@ -169,8 +168,7 @@ fn a_tilted_normal_map_takes_the_sky_of_the_side_it_leans_to_in_every_mode_and_i
 /// and SSDO returns albedo × sky, as the truth does.
 #[test]
 fn a_flat_normal_mapped_surface_does_not_occlude_itself() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let lean = 45f32.to_radians();
     let (s, c) = (lean.sin(), lean.cos());
     let leans = [Vec3::new(s, 0.0, c), Vec3::new(-s, 0.0, c), Vec3::new(0.0, s, c), Vec3::new(0.0, -s, c)];
@@ -224,8 +222,7 @@ fn a_flat_normal_mapped_surface_does_not_occlude_itself() {
 /// same fence uncut, on the GPU and in the truth alike.
 #[test]
 fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_truth() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     image::GrayImage::from_fn(8, 2, |x, y| image::Luma([if (x + y) % 2 == 0 { 255 } else { 0 }]))
         .save(dir.path().join("checker.png"))
         .unwrap();
@@ -305,8 +302,7 @@ fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_tru
 /// the file gives `TANGENT` or the loader makes MikkTSpace tangents.
 #[test]
 fn a_gltf_leaf_seen_from_behind_is_lit_and_given_tangents_match_generated_ones() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     write_leaning_normal_map(&dir.path().join("leaf_normal.png"), 30.0);
     // Opaque but for a hole in the middle.
     write_png(&dir.path().join("leaf_colour.png"), 8, 8, |x, y| {
@@ -401,8 +397,7 @@ fn leaf_gltf(tangents: bool) -> (serde_json::Value, Vec<u8>) {
 /// would have it face the sky and send nothing down.
 #[test]
 fn a_wall_whose_normal_map_leans_away_from_the_floor_still_bounces_onto_it() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let lean = 80f32.to_radians();
     write_png(&dir.path().join("up.png"), 4, 4, |_, _| encode(Vec3::new(0.0, lean.sin(), lean.cos())));
     let v = Vec3::new;

@@ -27,8 +27,7 @@ fn options(out: &std::path::Path) -> TuneOptions {
 
 #[test]
 fn the_pick_is_on_the_front_and_no_setting_within_the_budget_is_cheaper_and_closer() {
-    let Some(gpu) = common::gpu() else { return };
-    let out = tempfile::tempdir().unwrap();
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
     let options = options(out.path());
     let result = tune::run(gpu, &options, &|_| {}).unwrap();
     let budget = result.budget_ms.unwrap();
@@ -74,8 +73,7 @@ fn the_pick_is_on_the_front_and_no_setting_within_the_budget_is_cheaper_and_clos
 
 #[test]
 fn quality_levels_are_ordered_in_error_on_the_scene_they_were_made_on() {
-    let Some(gpu) = common::gpu() else { return };
-    let out = tempfile::tempdir().unwrap();
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
     let options = TuneOptions {
         on: TruthScene { lights: 8, ..TruthScene::named("cornell", (160, 120)) },
         views: 1,

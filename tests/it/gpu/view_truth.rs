@@ -11,8 +11,7 @@ use crate::common;
 
 #[test]
 fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
-    let Some(gpu) = common::gpu() else { return };
-    let out = tempfile::tempdir().unwrap();
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
     let base = Settings::default();
     let options = ReportOptions {
         on: TruthScene {

@@ -105,8 +105,7 @@ fn loader_turns_triangles_to_agree_with_their_normals() {
 
 #[test]
 fn both_windings_render_the_same_in_every_mode() {
-    let Some(gpu) = gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
     let sky = redblue();
     let camera = looking(Vec3::new(0.0, 1.0, 0.0), 20.0, 15.0, 5.0);
     let scenes: Vec<(Winding, Scene)> = [Winding::CounterClockwise, Winding::Clockwise, Winding::Mixed]
