@@ -8,7 +8,7 @@ use super::loader::Loaded;
 use super::panel_state::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
 use crate::headless::capture::capture_converged;
-use crate::render::{Mode, Settings};
+use crate::render::{Canvas, Mode, Settings};
 use crate::scene::Scene;
 use crate::{compare, output, Result};
 
@@ -281,7 +281,8 @@ impl Viewer {
             self.panel.say(format!("the split's right side cannot be drawn: {e}"), true);
             self.panel.truth.display = super::truth_ui::Display::Live;
         }
-        self.renderer.encode_at(&self.gpu, &mut encoder, &camera, &target, (self.panel_pixels(), 0));
+        let canvas = Canvas { view: &target, origin: (self.panel_pixels(), 0) };
+        self.renderer.encode(&self.gpu, &mut encoder, &camera, canvas);
         self.drawn_camera = Some(camera);
         self.submit_with_panel(encoder, panel, &target);
         self.pending = Some((frame, started));

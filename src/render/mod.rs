@@ -44,6 +44,20 @@ use resources::sky::{sky_layout, SkyGpu};
 pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
 pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE};
 pub use targets::TargetId;
+
+/// Where a frame is drawn: a view of the output, and the image's top-left corner in it (the
+/// viewer draws beside its panel).
+#[derive(Clone, Copy)]
+pub struct Canvas<'a> {
+    pub view: &'a wgpu::TextureView,
+    pub origin: (u32, u32),
+}
+
+impl<'a> From<&'a wgpu::TextureView> for Canvas<'a> {
+    fn from(view: &'a wgpu::TextureView) -> Self {
+        Self { view, origin: (0, 0) }
+    }
+}
 use targets::Targets;
 use timer::GpuTimer;
 pub use uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
@@ -310,26 +324,16 @@ impl Renderer {
         Ok(())
     }
 
-    /// Records one frame of the current plan into `encoder`, drawing into `output`.
-    pub fn encode(
+    /// Records one frame of the current plan into `encoder`, drawing into `canvas`: a view of
+    /// the output (the image at its top-left corner), or a [`Canvas`] that places it.
+    pub fn encode<'a>(
         &mut self,
         gpu: &Gpu,
         encoder: &mut wgpu::CommandEncoder,
         camera: &OrbitCamera,
-        output: &wgpu::TextureView,
+        canvas: impl Into<Canvas<'a>>,
     ) {
-        self.encode_at(gpu, encoder, camera, output, (0, 0));
-    }
-
-    /// Like [`Renderer::encode`], drawing the image at `origin` of a larger `output`.
-    pub fn encode_at(
-        &mut self,
-        gpu: &Gpu,
-        encoder: &mut wgpu::CommandEncoder,
-        camera: &OrbitCamera,
-        output: &wgpu::TextureView,
-        origin: (u32, u32),
-    ) {
+        let Canvas { view: output, origin } = canvas.into();
         self.apply(gpu);
         self.still.count(camera, self.history.get(modes::OCCLUSION_HISTORY));
         self.upload_frame(gpu, camera, origin);

@@ -123,26 +123,12 @@ pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// What the frame is drawn into.
 pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Output);
 
-/// The sampling chain's outputs, each for AO alone (SSAO) or DO + AO (SSDO and SSAO+SSDO: rgb
-/// sky light and bounce before albedo, a AO): what the sampling pass (or the upsample) writes,
-/// what a half-resolution sampling pass writes and its blurred copy, the blurred copy at full
-/// resolution (the blur's, or the upsample's of the half-size one) and the average over frames
-/// (at half size where the samples are: the composite upsamples it as it reads; the full-size
-/// copy is the upsample's, made only where something else reads it).
-pub const AO_RAW: TargetId = TargetId::new("ao_raw", AO_FORMAT, Place::Screen);
-pub const DO_RAW: TargetId = TargetId::new("do_raw", DO_FORMAT, Place::Screen);
-pub const AO_HALF: TargetId = TargetId::new("ao_half", AO_FORMAT, Place::HalfScreen);
-pub const DO_HALF: TargetId = TargetId::new("do_half", DO_FORMAT, Place::HalfScreen);
-pub const AO_HALF_BLURRED: TargetId = TargetId::new("ao_half_blurred", AO_FORMAT, Place::HalfScreen);
-pub const DO_HALF_BLURRED: TargetId = TargetId::new("do_half_blurred", DO_FORMAT, Place::HalfScreen);
-pub const AO_BLURRED: TargetId = TargetId::new("ao_blurred", AO_FORMAT, Place::Screen);
-pub const DO_BLURRED: TargetId = TargetId::new("do_blurred", DO_FORMAT, Place::Screen);
-pub const AO_ACCUMULATED: TargetId = TargetId::new("ao_accumulated", AO_FORMAT, Place::Screen);
-pub const DO_ACCUMULATED: TargetId = TargetId::new("do_accumulated", DO_FORMAT, Place::Screen);
-pub const AO_HALF_ACCUMULATED: TargetId = TargetId::new("ao_half_accumulated", AO_FORMAT, Place::HalfScreen);
-pub const DO_HALF_ACCUMULATED: TargetId = TargetId::new("do_half_accumulated", DO_FORMAT, Place::HalfScreen);
-
-/// A stage of the sampling chain, and its pair of targets (AO alone, DO + AO).
+/// A stage of the sampling chain. Each has two targets, one for AO alone (SSAO) and one for DO +
+/// AO (SSDO and SSAO+SSDO: rgb sky light and bounce before albedo, a AO): what the sampling pass
+/// (or the upsample) writes, what a half-resolution sampling pass writes and its blurred copy,
+/// the blurred copy at full resolution (the blur's, or the upsample's of the half-size one) and
+/// the average over frames (at half size where the samples are: the composite upsamples it as
+/// it reads; the full-size copy is the upsample's, made only where something else reads it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
     Raw,
@@ -170,20 +156,25 @@ impl Stage {
     }
 
     /// The stage's target for a mode that computes DO (`directional`) or AO alone.
-    pub fn target(self, directional: bool) -> TargetId {
-        let (ao, d) = match self {
-            Stage::Raw => (AO_RAW, DO_RAW),
-            Stage::Half => (AO_HALF, DO_HALF),
-            Stage::HalfBlurred => (AO_HALF_BLURRED, DO_HALF_BLURRED),
-            Stage::Blurred => (AO_BLURRED, DO_BLURRED),
-            Stage::Accumulated => (AO_ACCUMULATED, DO_ACCUMULATED),
-            Stage::HalfAccumulated => (AO_HALF_ACCUMULATED, DO_HALF_ACCUMULATED),
+    pub const fn target(self, directional: bool) -> TargetId {
+        let (ao, directional_name, place) = match self {
+            Stage::Raw => ("ao_raw", "do_raw", Place::Screen),
+            Stage::Half => ("ao_half", "do_half", Place::HalfScreen),
+            Stage::HalfBlurred => ("ao_half_blurred", "do_half_blurred", Place::HalfScreen),
+            Stage::Blurred => ("ao_blurred", "do_blurred", Place::Screen),
+            Stage::Accumulated => ("ao_accumulated", "do_accumulated", Place::Screen),
+            Stage::HalfAccumulated => ("ao_half_accumulated", "do_half_accumulated", Place::HalfScreen),
         };
         if directional {
-            d
+            TargetId::new(directional_name, DO_FORMAT, place)
         } else {
-            ao
+            TargetId::new(ao, AO_FORMAT, place)
         }
+    }
+
+    /// Both of the stage's targets: AO alone's and DO + AO's.
+    pub const fn targets(self) -> [TargetId; 2] {
+        [self.target(false), self.target(true)]
     }
 }
 

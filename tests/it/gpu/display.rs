@@ -74,7 +74,7 @@ fn display_frames_land_at_their_origin_in_a_larger_output() {
     let view = texture.create_view(&Default::default());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     r.reset_history();
-    r.encode_at(gpu, &mut encoder, &camera, &view, origin);
+    r.encode(gpu, &mut encoder, &camera, ssdo::render::Canvas { view: &view, origin });
     gpu.queue.submit([encoder.finish()]);
     assert_eq!(texture.format(), CAPTURE_FORMAT);
     let bytes = read_texture(gpu, &texture).unwrap();

@@ -95,8 +95,8 @@ fn a_declaration_that_drops_a_read_fails_the_checks() {
     // fails the plan's check.
     let mut io = plan.io();
     let temporal = io.iter_mut().find(|(s, _)| *s == Step::TEMPORAL).unwrap();
-    temporal.1.reads.retain(|t| *t != DO_HALF);
-    temporal.1.reads.push(AO_HALF);
+    temporal.1.reads.retain(|t| *t != Stage::Half.target(true));
+    temporal.1.reads.push(Stage::Half.target(false));
     let error = reads_are_written_first(&io).unwrap_err();
     assert!(error.contains("temporal reads ao_half"), "{error}");
 }

@@ -5,10 +5,7 @@ use super::*;
 use crate::render::graph::io::{Kind, Read};
 use crate::render::modes::{MODES, SURFACE_HISTORY};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{
-    AO_ACCUMULATED, AO_BLURRED, AO_HALF, AO_HALF_ACCUMULATED, AO_HALF_BLURRED, AO_RAW, BOUNCE, DO_ACCUMULATED,
-    DO_BLURRED, DO_HALF, DO_HALF_ACCUMULATED, DO_HALF_BLURRED, DO_RAW, HDR, OUTPUT,
-};
+use crate::render::targets::{Stage, BOUNCE, HDR, OUTPUT};
 use depth_pyramid::PYRAMID;
 use sampling::LAST_SKY;
 use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
@@ -35,11 +32,11 @@ fn set(plan: &Plan) -> Set {
         hdr: has(HDR),
         bounce: has(BOUNCE),
         // What the sampling pass writes: at full size, or at half size with an upsample after it.
-        ao: has(AO_RAW) || has(AO_HALF),
-        directional: has(DO_RAW) || has(DO_HALF),
-        blurred: [AO_BLURRED, DO_BLURRED, AO_HALF_BLURRED, DO_HALF_BLURRED].into_iter().any(has),
-        accumulated: [AO_ACCUMULATED, DO_ACCUMULATED, AO_HALF_ACCUMULATED, DO_HALF_ACCUMULATED].into_iter().any(has),
-        half: has(AO_HALF) || has(DO_HALF),
+        ao: [Stage::Raw, Stage::Half].into_iter().any(|s| has(s.target(false))),
+        directional: [Stage::Raw, Stage::Half].into_iter().any(|s| has(s.target(true))),
+        blurred: [Stage::Blurred, Stage::HalfBlurred].into_iter().flat_map(Stage::targets).any(has),
+        accumulated: [Stage::Accumulated, Stage::HalfAccumulated].into_iter().flat_map(Stage::targets).any(has),
+        half: Stage::Half.targets().into_iter().any(has),
         pyramid: has(PYRAMID),
         // At half or at quarter size, never both.
         sender_sky: has(SENDER_SKY) || has(SENDER_SKY_QUARTER),
@@ -105,7 +102,7 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         // full-size copy only for an HDR plan's readers (the debug views, the report).
         assert_eq!(plan.has(Step::UPSAMPLE), plan.half_resolution && !plan.display);
         // The average over frames lives where the samples are.
-        let half_average = plan.allocates(AO_HALF_ACCUMULATED) || plan.allocates(DO_HALF_ACCUMULATED);
+        let half_average = Stage::HalfAccumulated.targets().into_iter().any(|t| plan.allocates(t));
         assert_eq!(half_average, plan.half_resolution && plan.accumulates(), "{:?}", plan.steps);
         assert!(plan.history.iter().all(|h| h.half_resolution == plan.half_resolution), "{:?}", plan.steps);
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
