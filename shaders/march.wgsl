@@ -183,12 +183,12 @@ fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSampl
 // and moved the report's rows by under 2%; docs/accuracy.md).
 fn bounce_from(texel: vec2<i32>, front: vec3<f32>, fresh: u32, weights: vec4<f32>, sheet: bool) -> vec3<f32> {
     let sender = textureLoad(bounce_map, texel, 0).xy;
-    if dot(sender_normal(sender), -front) <= 0.0 && !sheet {
-        return vec3<f32>(0.0);
-    }
-    // The measure of the sectors it occludes first, group by group.
+    let sends = dot(sender_normal(sender), -front) > 0.0 || sheet;
+    // The measure of the sectors it occludes first, group by group. (A select, not an early
+    // return: a CPU rasteriser runs both sides of a branch its lanes disagree on, and the
+    // branch's bookkeeping cost the sampling pass 5%.)
     let w = dot(weights, group_counts(fresh));
-    return (w / f32(PER_GROUP)) * sender_radiance(sender);
+    return select(vec3<f32>(0.0), (w / f32(PER_GROUP)) * sender_radiance(sender), sends);
 }
 
 // Marches one side (`sign`) of slice `s`, marking the sectors each depth sample occludes in
