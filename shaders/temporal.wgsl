@@ -210,7 +210,7 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
 // How far (degrees) a moving view's kept frames may have looked at a surface from: screen-space
 // occlusion depends on the viewpoint (what the screen shows beside a surface, and its horizon),
 // so a history of frames seen from elsewhere is an error of its own, not an average. At 1° a frame
-// the motion cap binds (8 frames); at 10° a frame nothing is kept, so history never makes an
+// the motion cap binds (8 frames, SSAO's 4); at 10° a frame nothing is kept, so history never makes an
 // image worse than none.
 // Set from MAX_HISTORY_TURN_DEG (src/render/settings.rs), whose blur rule depends on it.
 override MAX_HISTORY_TURN: f32;

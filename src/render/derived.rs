@@ -9,7 +9,7 @@ use super::kernel;
 use super::modes::OCCLUSION_HISTORY;
 use super::resources::sampling::SamplingFrame;
 use super::sampling::Lengths;
-use super::settings::{View, MOTION_ACCUMULATE};
+use super::settings::{motion_accumulate, View};
 use super::Renderer;
 use crate::scene::OrbitCamera;
 
@@ -74,7 +74,7 @@ impl Renderer {
                 sender_sky_strength: s.sky_strength,
                 schedule: kernel::schedule(held),
                 accumulate,
-                motion_accumulate: accumulate.min(MOTION_ACCUMULATE),
+                motion_accumulate: accumulate.min(motion_accumulate(s.mode)),
                 history_frames: held,
             };
             self.sampling_data.update(&gpu.queue, &params);

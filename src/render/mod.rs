@@ -42,7 +42,7 @@ use resources::sampling::SamplingData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
 pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
-pub use settings::{SenderSky, Settings, View, MOTION_ACCUMULATE};
+pub use settings::{motion_accumulate, SenderSky, Settings, View};
 pub use targets::TargetId;
 
 /// Where a frame is drawn: a view of the output, and the image's top-left corner in it (the

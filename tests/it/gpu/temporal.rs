@@ -341,24 +341,31 @@ fn sliding_past_a_pole_keeps_no_history_where_the_wall_was_hidden() {
 fn a_fast_turn_keeps_no_history_and_a_slow_one_the_motion_cap() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = pole_before_a_wall();
-    // The most frames any surface texel holds after 12 frames turning `step` degrees each.
-    let held = |step: f32| {
-        let mut r = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssao, 16));
+    // The frames the surface texels hold after 12 frames turning `step` degrees each: the most,
+    // the median, how many hold more than this frame, and how many there are.
+    let held = |mode: Mode, step: f32| {
+        let mut r = renderer(gpu, &scene, &sky, (W, H), settings(mode, 16));
         let turning = (0..12).map(|k| OrbitCamera { yaw_deg: camera.yaw_deg + step * k as f32, ..camera });
         render_frames(gpu, &mut r, turning).unwrap();
         let pair = r.history().get(SURFACE_HISTORY).unwrap();
-        let held: Vec<u32> = surfaces(gpu, &pair.read().texture).iter().filter(|s| s.0 > 0.0).map(|s| s.1).collect();
-        (held.iter().copied().max().unwrap_or(0), held.iter().filter(|&&n| n > 1).count(), held.len())
+        let mut held: Vec<u32> =
+            surfaces(gpu, &pair.read().texture).iter().filter(|s| s.0 > 0.0).map(|s| s.1).collect();
+        held.sort_unstable();
+        let kept = held.iter().filter(|&&n| n > 1).count();
+        (held.last().copied().unwrap_or(0), held[held.len() / 2], kept, held.len())
     };
     // 10° a frame: a frame seen from 10° away is another image, not a sample of this one. (A
     // few texels at the wall's edge, far from both eyes, see them 6-8° apart: two frames.)
-    let (most, kept, surface) = held(10.0);
+    let (most, _, kept, surface) = held(Mode::Ssao, 10.0);
     assert!(most <= 2 && kept * 50 < surface, "turning 10° a frame keeps {most} frames on {kept} of {surface} texels");
-    // 1° a frame: the wall keeps the motion cap's 8 frames (the texels about the orbit's centre,
-    // which do not move on screen, are a still view's and keep more).
-    let (most, kept, surface) = held(1.0);
-    assert!(most >= 8, "turning 1° a frame keeps at most {most} frames");
-    assert!(kept * 10 > surface * 9, "turning 1° a frame keeps history on {kept} of {surface} texels");
+    // 1° a frame: the wall keeps the mode's motion cap, SSAO's 4 frames and SSDO's 8 (the texels
+    // about the orbit's centre, which do not move on screen, are a still view's and keep more).
+    for mode in [Mode::Ssao, Mode::Ssdo] {
+        let cap = ssdo::render::motion_accumulate(mode);
+        let (most, median, kept, surface) = held(mode, 1.0);
+        assert!(most >= cap && median == cap, "{mode} turning 1° a frame: most {most}, median {median}, cap {cap}");
+        assert!(kept * 10 > surface * 9, "{mode} turning 1° a frame keeps history on {kept} of {surface} texels");
+    }
 }
 
 #[test]
