@@ -29,11 +29,53 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
 
 /// Writes `text` into `image` with its top-left corner at (`x`, `y`), `size` pixels high.
 pub fn draw_text(image: &mut RgbaImage, x: f32, y: f32, size: f32, color: [u8; 3], text: &str) {
+    draw_text_within(image, (x, y), f32::INFINITY, (size, color), text);
+}
+
+/// The width `text` takes at `size` pixels high.
+fn text_width(size: f32, text: &str) -> f32 {
+    let font = FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("egui's bundled font parses");
+    let scaled = font.as_scaled(PxScale::from(size));
+    let mut previous = None;
+    let mut width = 0.0;
+    for ch in text.chars() {
+        let id = font.glyph_id(ch);
+        if let Some(prev) = previous {
+            width += scaled.kern(prev, id);
+        }
+        width += scaled.h_advance(id);
+        previous = Some(id);
+    }
+    width
+}
+
+/// [`draw_text`] cut to `width` pixels: a line wider than that ends with "…" where it fits, so
+/// a caption never runs into its neighbour's.
+pub fn draw_text_within(
+    image: &mut RgbaImage,
+    (x, y): (f32, f32),
+    width: f32,
+    (size, color): (f32, [u8; 3]),
+    text: &str,
+) {
+    let mut shown = text.to_owned();
+    if text_width(size, text) > width {
+        let mut kept: Vec<char> = text.chars().collect();
+        shown.clear();
+        while !kept.is_empty() {
+            kept.pop();
+            let candidate: String = kept.iter().collect::<String>().trim_end().to_owned() + "…";
+            if text_width(size, &candidate) <= width {
+                shown = candidate;
+                break;
+            }
+        }
+    }
     let font = FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).expect("egui's bundled font parses");
     let scaled = font.as_scaled(PxScale::from(size));
     let mut caret = x;
     let mut previous = None;
-    for ch in text.chars() {
+    for ch in shown.chars() {
         let id = font.glyph_id(ch);
         if let Some(prev) = previous {
             caret += scaled.kern(prev, id);
@@ -77,7 +119,8 @@ pub fn grid(panels: &[(Vec<String>, RgbaImage)]) -> RgbaImage {
         for (k, line) in lines.iter().enumerate() {
             let (size, color) =
                 if k == 0 { (text_size * 1.1, [255, 255, 255]) } else { (text_size * 0.9, [190, 190, 200]) };
-            draw_text(&mut out, x as f32 + 6.0, (y + h) as f32 + 3.0 + k as f32 * text_size * 1.25, size, color, line);
+            let at = (x as f32 + 6.0, (y + h) as f32 + 3.0 + k as f32 * text_size * 1.25);
+            draw_text_within(&mut out, at, w as f32 - 12.0, (size, color), line);
         }
     }
     out
@@ -128,5 +171,19 @@ mod tests {
         assert_eq!(over.get_pixel(3, 3), &Rgba([0, 255, 0, 255]));
         assert_eq!(over.get_pixel(4, 0), red.get_pixel(4, 0));
         assert_eq!(over.get_pixel(9, 3), red.get_pixel(9, 3));
+    }
+
+    #[test]
+    fn a_caption_wider_than_its_panel_ends_within_it() {
+        let line = "march, 2 slices × 16 steps at half res, radius 0.303, blurred, 16 frames";
+        let inked = |width: f32| {
+            let mut image = RgbaImage::from_pixel(400, 20, Rgba([0, 0, 0, 255]));
+            draw_text_within(&mut image, (2.0, 2.0), width, (12.0, [255, 255, 255]), line);
+            (0..400).filter(|&x| (0..20).any(|y| image.get_pixel(x, y).0[0] > 0)).max().unwrap_or(0)
+        };
+        // Unbounded, the line runs to about 350 pixels; within 100 it stops there, with its "…".
+        assert!(inked(f32::INFINITY) > 300);
+        let cut = inked(100.0);
+        assert!((80..=102).contains(&cut), "ink to x = {cut}");
     }
 }
