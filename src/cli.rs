@@ -75,6 +75,7 @@ pub(crate) struct TruthSceneArgs {
 }
 
 impl TruthSceneArgs {
+    /// The flags as the library's scene to measure on.
     fn scene(&self) -> ssdo::report::TruthScene {
         ssdo::report::TruthScene {
             scene: self.scene.clone(),
