@@ -27,6 +27,7 @@
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
 #include "common/thickness.wgsl"
+#include "common/unproject.wgsl"
 
 // Mirrors `MaterialParams` in src/render/uniforms.rs.
 struct MaterialParams {
@@ -178,7 +179,7 @@ fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessO
     // (A material of the default thickness has no tilt to compute: its pipeline's THIN is off.)
     var code = DEFAULT_THICKNESS_CLASS;
     if THIN {
-        let to_eye = safe_normalize(-view_point(in.clip.xy, in.clip.z), vec3<f32>(0.0, 0.0, 1.0));
+        let to_eye = safe_normalize(-view_position(in.clip.xy, in.clip.z), vec3<f32>(0.0, 0.0, 1.0));
         let n = safe_normalize(in.normal, to_eye);
         code = thickness_code_of(material.thickness_code, abs(dot(n, to_eye)));
     }

@@ -71,18 +71,17 @@ fn finite4(v: vec4<f32>) -> bool {
 // clamped to, so the blur's reads are this pass's.
 override BLUR: bool = false;
 
-// This frame's samples over the 3x3 texels around `texel` (its surface at view point `p` with
-// normal `n` and octahedral code `oct`): with BLUR their bilateral tent average, else the
-// texel's own sample; and their range over the texels on a surface.
+// This frame's samples over the 3x3 texels around `texel` (its own sample `centre`, its surface
+// at view point `p` with normal `n` and octahedral code `oct`): with BLUR their bilateral tent
+// average, else `centre`; and their range over the texels on a surface.
 struct Around {
     value: vec4<f32>,
     lo: vec4<f32>,
     hi: vec4<f32>,
 }
 
-fn around(texel: vec2<i32>, p: vec3<f32>, n: vec3<f32>, oct: vec2<f32>) -> Around {
+fn around(texel: vec2<i32>, centre: vec4<f32>, p: vec3<f32>, n: vec3<f32>, oct: vec2<f32>) -> Around {
     let last = vec2<i32>(textureDimensions(current)) - 1;
-    let centre = textureLoad(current, texel, 0);
     var out = Around(centre, centre, centre);
     let tolerance = bilateral_tolerance(params.radius);
     var sum = vec4<f32>(0.0);
@@ -210,8 +209,8 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
 // How far (degrees) a moving view's kept frames may have looked at a surface from: screen-space
 // occlusion depends on the viewpoint (what the screen shows beside a surface, and its horizon),
 // so a history of frames seen from elsewhere is an error of its own, not an average. At 1° a frame
-// the motion cap binds (8 frames, SSAO's 4); at 10° a frame nothing is kept, so history never makes an
-// image worse than none.
+// the motion cap binds (8 frames, SSAO's 4); at 10° a frame nothing is kept (but on a few texels
+// far from both eyes, which see them 6-8° apart: two frames).
 // Set from MAX_HISTORY_TURN_DEG (src/render/settings.rs), whose blur rule depends on it.
 override MAX_HISTORY_TURN: f32;
 
@@ -247,7 +246,7 @@ fn fs_main(in: FullscreenOut) -> TemporalOut {
     let p = view_position(position, depth);
     let normal_bits = textureLoad(g_normal, pixel, 0).r;
     let view_normal = unpack_normal(normal_bits);
-    let samples = around(texel, p, view_normal, octahedral_code(normal_bits));
+    let samples = around(texel, out.shown, p, view_normal, octahedral_code(normal_bits));
     let now = samples.value;
     // A non-finite value is passed on as it is, and never kept.
     if !finite4(now) {

@@ -8,6 +8,7 @@
 #include "common/surface_pack.wgsl"
 #include "common/tone_curve.wgsl"
 #include "common/thickness.wgsl"
+#include "common/unproject.wgsl"
 
 @group(1) @binding(0) var hdr: texture_2d<f32>;
 @group(1) @binding(1) var g_albedo: texture_2d<f32>;
@@ -84,7 +85,7 @@ fn shade(pixel: vec2<i32>) -> vec3<f32> {
             if depth <= 0.0 {
                 return vec3<f32>(0.0);
             }
-            let z = view_point(vec2<f32>(pixel) + 0.5, depth).z;
+            let z = view_position(vec2<f32>(pixel) + 0.5, depth).z;
             let unit = max(frame.default_thickness, 1e-30);
             let share = min(depth_extent(code, pixel_footprint(1.0, z), unit) / unit, 1.0);
             return mix(vec3<f32>(0.8, 0.05, 0.02), vec3<f32>(1.0), sqrt(share));

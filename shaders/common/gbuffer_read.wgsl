@@ -1,11 +1,12 @@
-// The G-buffer as the screen-space passes read it (bind group 1, bindings 0-2), and view-space
-// position reconstructed from reverse-Z depth.
+// The G-buffer as the screen-space passes read it (bind group 1, bindings 0-2), and the
+// surface's own normal from the depth buffer (view-space positions: common/unproject.wgsl).
 
 // Each include declares what it uses: `frame` (bind group 0) comes from uniforms.wgsl. Bindings
 // 0-2 of group 1 are fixed here; each pass that includes this file declares the G-buffer as its
 // first three reads (src/render/passes/<pass>.rs, checked against this file by a test).
 #include "common/uniforms.wgsl"
 #include "common/surface_pack.wgsl"
+#include "common/unproject.wgsl"
 
 @group(1) @binding(0) var g_albedo: texture_2d<f32>;
 // Normal and shininess packed in one u32 (see surface_pack.wgsl).
@@ -33,28 +34,6 @@ fn load_surface(pixel: vec2<i32>) -> vec4<f32> {
 // the bits themselves).
 fn surface_of(bits: u32) -> vec4<f32> {
     return vec4<f32>(unpack_normal(bits), unpack_shininess(bits));
-}
-
-// View-space position of the surface at `pixel` with depth `depth` (> 0).
-fn view_position(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    return unproject(pixel, depth, projection_terms(), frame.viewport.zw);
-}
-
-// What `unproject` needs of view_to_clip: a = [2][2], b = [3][2], and the x and y scales [0][0],
-// [1][1].
-fn projection_terms() -> vec4<f32> {
-    let m = frame.view_to_clip;
-    return vec4<f32>(m[2][2], m[3][2], m[0][0], m[1][1]);
-}
-
-// The view-space position at `pixel` (in pixels; `inv_size` the image's 1/width, 1/height) with
-// depth `depth` > 0, from `projection_terms`. With z_clip = a·z + b and w = -z,
-// depth = -a - b / z, so z = -b / (depth + a).
-fn unproject(pixel: vec2<f32>, depth: f32, k: vec4<f32>, inv_size: vec2<f32>) -> vec3<f32> {
-    let z = -k.y / max(depth + k.x, 1e-30);
-    let uv = pixel * inv_size;
-    let ndc = vec2<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
-    return vec3<f32>(ndc.x * -z / k.z, ndc.y * -z / k.w, z);
 }
 
 // The surface's own unit normal at `pixel` (view space, towards the camera) from the depth

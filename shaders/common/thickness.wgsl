@@ -59,14 +59,6 @@ fn depth_extent(code: u32, footprint: f32, default_thickness: f32) -> f32 {
     return select(default_thickness, own, is_thin(code));
 }
 
-// The view-space point at fragment position `frag` (pixels) with reverse-Z depth `depth`, through
-// the frame's inverse projection (for the two passes that are not given `view_position`).
-fn view_point(frag: vec2<f32>, depth: f32) -> vec3<f32> {
-    let uv = frag * frame.viewport.zw;
-    let p = frame.clip_to_view * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    return p.xyz / p.w;
-}
-
 // The width in view units of `pixels` pixels at view depth `z` (< 0).
 fn pixel_footprint(pixels: f32, z: f32) -> f32 {
     return pixels * -z / (0.5 * frame.viewport.y * frame.view_to_clip[1][1]);

@@ -5,7 +5,6 @@
 struct Frame {
     world_to_view: mat4x4<f32>,
     view_to_clip: mat4x4<f32>,
-    clip_to_view: mat4x4<f32>,
     view_to_world: mat4x4<f32>,
     // width, height, 1/width, 1/height of the image (not of the output it may be drawn into)
     viewport: vec4<f32>,

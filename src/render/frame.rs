@@ -183,7 +183,6 @@ impl FrameData {
         let uniforms = FrameUniforms {
             world_to_view: mat(world_to_view),
             view_to_clip: mat(view_to_clip),
-            clip_to_view: mat(view_to_clip.inverse()),
             view_to_world: mat(world_to_view.inverse()),
             viewport: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
             near: camera.near,

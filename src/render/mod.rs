@@ -44,6 +44,10 @@ use resources::sky::{sky_layout, SkyGpu};
 pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
 pub use settings::{motion_accumulate, SenderSky, Settings, View};
 pub use targets::TargetId;
+use targets::Targets;
+use timer::GpuTimer;
+pub use uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
+pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
 /// Where a frame is drawn: a view of the output, and the image's top-left corner in it (the
 /// viewer draws beside its panel).
@@ -58,10 +62,6 @@ impl<'a> From<&'a wgpu::TextureView> for Canvas<'a> {
         Self { view, origin: (0, 0) }
     }
 }
-use targets::Targets;
-use timer::GpuTimer;
-pub use uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
-pub use variant::{Count, Variant, VariantDecl, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
 pub struct Renderer {
     pub settings: Settings,

@@ -13,7 +13,6 @@ use glam::Mat4;
 pub struct FrameUniforms {
     pub world_to_view: [[f32; 4]; 4],
     pub view_to_clip: [[f32; 4]; 4],
-    pub clip_to_view: [[f32; 4]; 4],
     pub view_to_world: [[f32; 4]; 4],
     pub viewport: [f32; 4],
     pub near: f32,

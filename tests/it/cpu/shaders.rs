@@ -84,7 +84,6 @@ fn uniform_structs_match_wgsl_member_for_member() {
         FrameUniforms {
             world_to_view,
             view_to_clip,
-            clip_to_view,
             view_to_world,
             viewport,
             near,
