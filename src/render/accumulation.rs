@@ -90,6 +90,14 @@ impl Renderer {
         self.plan.blur && (!self.plan.accumulates() || (still_young && history_young))
     }
 
+    /// Frames take the sample schedule from `entry` on: a single frame (or an average's first)
+    /// samples with that entry's pattern rather than the first's. Every view starts at 0; the
+    /// report measures how much a single frame's error owes to its pattern by rendering it under
+    /// each entry a default average goes through.
+    pub fn start_schedule_at(&mut self, entry: u32) {
+        self.schedule_start = entry;
+    }
+
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last
     /// (no history, and its previous camera is its own).
     pub fn reset_history(&mut self) {

@@ -72,7 +72,7 @@ impl Renderer {
                 sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
                 indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
                 sender_sky_strength: s.sky_strength,
-                schedule: kernel::schedule(held),
+                schedule: kernel::schedule(held.wrapping_add(self.schedule_start)),
                 accumulate,
                 motion_accumulate: accumulate.min(motion_accumulate(s.mode)),
                 history_frames: held,

@@ -87,6 +87,9 @@ pub struct Renderer {
     /// Frames recorded since the camera last moved, counting the one it moved in (0 before a
     /// first frame and after a reset), with that frame's camera and the history it went into.
     still: StillView,
+    /// The entry of the sample schedule a history's first frame takes (0, but where the report
+    /// measures a single frame under each entry: [`Renderer::start_schedule_at`]).
+    schedule_start: u32,
     scene: SceneGpu,
     sky: SkyGpu,
     passes: PassSet,
@@ -142,6 +145,7 @@ impl Renderer {
             history,
             history_settings: settings,
             still: StillView::default(),
+            schedule_start: 0,
             scene: scene_gpu,
             sky: sky_gpu,
             passes,

@@ -18,6 +18,7 @@ mod maps;
 pub(crate) mod measure;
 pub mod metrics;
 mod options;
+mod pattern;
 mod plot;
 mod row;
 pub mod scenes;
@@ -34,6 +35,7 @@ use crate::render::{Mode, Renderer, Settings};
 use crate::scene::{self, OrbitCamera, Scene, Skybox};
 use crate::{Error, Result};
 pub use options::{RadiusChoice, ReportOptions, TruthScene, MAX_SWEEP};
+pub use pattern::{PatternSpread, Spread};
 pub use row::{NoiseFloor, Row};
 pub use sweep::{planned_configurations, Config};
 
@@ -66,6 +68,8 @@ pub struct Report {
     pub reference_seconds: f64,
     pub reference: reference::Reference,
     pub noise: NoiseFloor,
+    /// The default single frame's errors under each entry of the sample schedule.
+    pub pattern: PatternSpread,
     /// The constant ambient radiance every configuration and the truth share.
     pub ambient: f32,
     pub default_radius: f32,
@@ -153,13 +157,15 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
             rows.push(row);
         }
         if r_index == 0 {
-            kept = Some((truth.reference, truth.noise));
+            let pattern = pattern::measure(gpu, &mut renderer, &camera, (&truth, radius, ambient))?;
+            log::info!("{}", pattern.line().trim_start_matches("- "));
+            kept = Some((truth.reference, truth.noise, pattern));
         }
     }
     gpu.check()?;
     mark_pareto(&mut rows);
     rows.sort_by(|a, b| a.ms.total_cmp(&b.ms));
-    let (reference, noise) = kept.ok_or_else(|| Error::Setting("--radius: give at least one radius".into()))?;
+    let (reference, noise, pattern) = kept.ok_or_else(|| Error::Setting("--radius: give at least one radius".into()))?;
     Ok(Report {
         rows,
         device: gpu.describe(),
@@ -168,6 +174,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         reference_seconds,
         reference,
         noise,
+        pattern,
         ambient,
         default_radius,
         maps: map_files,

@@ -5,7 +5,7 @@ use crate::common;
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::reference::{Estimate, ReferenceScene, Surface, TraceSettings};
-use ssdo::render::{Mode, Variant};
+use ssdo::render::{Mode, SenderSky, Variant};
 use ssdo::report::{self, RadiusChoice, ReportOptions, TruthScene};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{LightRig, Material, PointLight, Scene, Skybox};
@@ -182,6 +182,42 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
             assert!(flip(Variant::Points) < flip(Variant::Classic), "{mode} {samples}: FLIP points vs classic");
         }
     }
+}
+
+/// The report renders the default single frame under each entry of the sample schedule: entry 0
+/// is the single-frame rows' own pattern (the same errors to the last bit as the default row's),
+/// and the entries differ, so the spread says how far two single frames differ by luck alone.
+#[test]
+fn the_report_measures_how_much_a_single_frames_error_owes_to_its_pattern() {
+    let Some((gpu, out)) = common::gpu_and_folder() else { return };
+    let options = ReportOptions {
+        on: TruthScene { lights: 2, ..TruthScene::named("cornell", (48, 36)) },
+        march: vec![(2, 16)],
+        ..tiny_report(out.path(), None, None)
+    };
+    let result = report::run(gpu, &options, &|_| {}).unwrap();
+    let row = result
+        .rows
+        .iter()
+        .find(|r| {
+            (r.mode, r.variant, r.samples, r.steps, r.accumulate) == (Mode::Both, Variant::March, 2, 16, 1)
+                && r.blur
+                && r.half_resolution
+                && !r.pyramid
+                && r.bounce == Some(SenderSky::LastFrame)
+        })
+        .expect("the default single-frame row");
+    let p = result.pattern;
+    assert_eq!(p.entries, 16);
+    assert_eq!(
+        (p.hdr.first, Some(p.directional.first), Some(p.ao.first)),
+        (row.hdr_rmse, row.do_rmse, row.ao_rmse),
+        "entry 0 is the single-frame row's pattern"
+    );
+    for (name, s) in [("HDR", p.hdr), ("DO", p.directional), ("AO", p.ao)] {
+        assert!(s.min <= s.first && s.first <= s.max && s.min < s.max, "{name}: {s:?}");
+    }
+    assert!(result.markdown(&options).contains("a single frame's sample pattern"));
 }
 
 #[test]
