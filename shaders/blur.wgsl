@@ -73,10 +73,10 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     var total = 0.0;
     // At half resolution a 3x3 tent (1 2 1 × 1 2 1) over the half-size samples: about the
     // footprint the 4x4 window has at full resolution (6 full-resolution pixels across).
+    // (Either way the window ends at +1: -2..1 at full resolution, -1..1 at half.)
     let lo = select(-2, -1, HALF_RES);
-    let hi = select(2, 2, HALF_RES);
-    for (var y = lo; y < hi; y += 1) {
-        for (var x = lo; x < hi; x += 1) {
+    for (var y = lo; y < 2; y += 1) {
+        for (var x = lo; x < 2; x += 1) {
             let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), size - 1);
             let at = surface_pixel(t);
             let d = load_depth(at);
