@@ -7,7 +7,8 @@ use glam::{Vec3, Vec4Swizzles};
 use rand::{rngs::StdRng, SeedableRng};
 use rayon::prelude::*;
 
-use super::place::SenderPlace;
+use super::layers::within_two_surfaces;
+use super::place::{Placement, SenderPlace};
 use super::scene::{point_lighting, ray_box, ReferenceScene, Surface, TraceSettings};
 use crate::scene::{LightRig, OrbitCamera, PointLight, Skybox};
 
@@ -29,8 +30,8 @@ pub struct Reference {
     /// Within-R sky and bounce (diagnostics), E/π.
     pub sky_near: Vec<Vec3>,
     pub bounce_near: Vec<Vec3>,
-    /// The bounce's luminance by where its sender lies for the camera ([`SenderPlace::ALL`]).
-    pub bounce_by_place: Vec<[f32; 4]>,
+    /// The bounce's luminance by where its sender lies for the camera ([`Placement::index`]).
+    pub bounce_by_place: Vec<[f32; Placement::COUNT]>,
     /// Direct point lighting (diffuse + specular), as displayed.
     pub direct: Vec<Vec3>,
     /// Mean Monte Carlo standard errors over the valid pixels.
@@ -54,7 +55,7 @@ struct PixelResult {
     open: f32,
     sky_near: Vec3,
     bounce_near: Vec3,
-    bounce_by_place: [f32; 4],
+    bounce_by_place: [f32; Placement::COUNT],
     direct: Vec3,
 }
 
@@ -168,7 +169,7 @@ impl Tracer<'_> {
             open: 1.0,
             sky_near: Vec3::ZERO,
             bounce_near: Vec3::ZERO,
-            bounce_by_place: [0.0; 4],
+            bounce_by_place: [0.0; Placement::COUNT],
             direct: Vec3::ZERO,
         };
         let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
@@ -207,8 +208,20 @@ impl Tracer<'_> {
 
     /// Where `sender` lies for this camera and its depth buffer: off screen (outside the view),
     /// facing away (the side that lights the receiver turned from the eye), seen (where the
-    /// depth buffer is, at its pixel), or hidden (behind what the depth buffer holds there).
-    fn place(&self, sender: &Surface) -> SenderPlace {
+    /// depth buffer is, at its pixel), or hidden (behind what the depth buffer holds there); and
+    /// for the hidden and the facing away, whether the first two surfaces on its eye ray hold it.
+    fn place(&self, sender: &Surface) -> Placement {
+        let place = self.place_alone(sender);
+        let in_two_layers = match place {
+            SenderPlace::Seen => true,
+            SenderPlace::OffScreen => false,
+            SenderPlace::Hidden | SenderPlace::FacingAway => within_two_surfaces(self.scene, self.eye, sender.position),
+        };
+        Placement { place, in_two_layers }
+    }
+
+    /// Where `sender` lies for this camera and its depth buffer, alone.
+    fn place_alone(&self, sender: &Surface) -> SenderPlace {
         let (w, h) = self.size;
         let view = self.world_to_view.transform_point3(sender.position);
         let clip = self.projection * view.extend(1.0);
@@ -300,7 +313,19 @@ impl Reference {
     /// The shares of the truth's bounce (its luminance over the measured pixels) by where its
     /// senders lie ([`SenderPlace::ALL`]); `None` where there is no bounce.
     pub fn bounce_shares(&self) -> Option<[f64; 4]> {
-        let mut sums = [0.0f64; 4];
+        self.placed_shares().map(|s| std::array::from_fn(|k| s[k] + s[k + SenderPlace::ALL.len()]))
+    }
+
+    /// The shares of the truth's bounce from senders of each place ([`SenderPlace::ALL`]) that
+    /// the first two surfaces on their eye ray hold ([`Placement`]): of the hidden and the
+    /// facing away, what a second depth layer could reach.
+    pub fn two_layer_shares(&self) -> Option<[f64; 4]> {
+        self.placed_shares().map(|s| std::array::from_fn(|k| s[k]))
+    }
+
+    /// The shares of the truth's bounce by [`Placement::index`].
+    fn placed_shares(&self) -> Option<[f64; Placement::COUNT]> {
+        let mut sums = [0.0f64; Placement::COUNT];
         for (by_place, _) in self.bounce_by_place.iter().zip(&self.valid).filter(|(_, v)| **v) {
             for (sum, b) in sums.iter_mut().zip(by_place) {
                 *sum += *b as f64;
@@ -312,8 +337,8 @@ impl Reference {
 
     /// The mean luminance of the truth's bounce from senders the camera sees, over `pixels`.
     pub fn seen_bounce(&self, pixels: &[usize]) -> f64 {
-        pixels.iter().map(|&i| self.bounce_by_place[i][SenderPlace::Seen as usize] as f64).sum::<f64>()
-            / pixels.len().max(1) as f64
+        let seen = Placement::seen().index();
+        pixels.iter().map(|&i| self.bounce_by_place[i][seen] as f64).sum::<f64>() / pixels.len().max(1) as f64
     }
 
     /// The mean of two independent traces of the same view (the truth with half the noise).

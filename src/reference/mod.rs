@@ -37,6 +37,7 @@
 //! mean, [`Reference::mean`]) and its noise floor (their difference).
 
 mod image;
+mod layers;
 mod place;
 mod scene;
 

@@ -9,7 +9,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rand::{rngs::StdRng, RngExt};
 
-use super::place::SenderPlace;
+use super::place::Placement;
 use crate::scene::model::NormalMap;
 use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
 
@@ -247,9 +247,9 @@ pub struct Estimate {
     pub sky_near: Vec3,
     /// One bounce from senders within the radius, E/π.
     pub bounce_near: Vec3,
-    /// The bounce's luminance by where its sender lies ([`SenderPlace`], in `ALL`'s order): they
-    /// add up to the bounce's.
-    pub bounce_by_place: [f32; 4],
+    /// The bounce's luminance by where its sender lies ([`Placement::index`]): they add up to
+    /// the bounce's.
+    pub bounce_by_place: [f32; Placement::COUNT],
 }
 
 impl ReferenceScene {
@@ -264,7 +264,7 @@ impl ReferenceScene {
         settings: &TraceSettings,
         rng: &mut StdRng,
     ) -> Estimate {
-        self.estimate_placed(surface, (lights, rig), sky, settings, rng, &|_| SenderPlace::Seen)
+        self.estimate_placed(surface, (lights, rig), sky, settings, rng, &|_| Placement::seen())
     }
 
     /// [`ReferenceScene::estimate`], with the bounce split by where `place` says each sender lies.
@@ -275,7 +275,7 @@ impl ReferenceScene {
         sky: &Skybox,
         settings: &TraceSettings,
         rng: &mut StdRng,
-        place: &dyn Fn(&Surface) -> SenderPlace,
+        place: &dyn Fn(&Surface) -> Placement,
     ) -> Estimate {
         let n = settings.samples_per_pixel.max(1);
         let origin = surface.position + surface.geometric * self.epsilon;
@@ -283,7 +283,7 @@ impl ReferenceScene {
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
         let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
-        let mut by_place = [0.0f32; 4];
+        let mut by_place = [0.0f32; Placement::COUNT];
         for _ in 0..n {
             let dir = Self::hemisphere_direction(surface, rng);
             match self.trace(origin, dir, f32::INFINITY) {
@@ -298,7 +298,7 @@ impl ReferenceScene {
                     let diffuse = self.sender_radiance(&sender, -dir, lights, rig, sky, settings, rng);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
-                    by_place[place(&sender) as usize] += luminance(diffuse);
+                    by_place[place(&sender).index()] += luminance(diffuse);
                     if sender.distance < settings.radius {
                         ao_sum += 1.0;
                         ao_sq += 1.0;

@@ -165,7 +165,8 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
     gpu.check()?;
     mark_pareto(&mut rows);
     rows.sort_by(|a, b| a.ms.total_cmp(&b.ms));
-    let (reference, noise, pattern) = kept.ok_or_else(|| Error::Setting("--radius: give at least one radius".into()))?;
+    let (reference, noise, pattern) =
+        kept.ok_or_else(|| Error::Setting("--radius: give at least one radius".into()))?;
     Ok(Report {
         rows,
         device: gpu.describe(),

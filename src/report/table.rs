@@ -159,7 +159,8 @@ impl Report {
              - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
              surfaces differ), {} under a light's cube\n\
              - the truth's bounce by where its senders lie for the camera: {}; \"bounce / seen\" is the estimate's \
-             bounce over the seen part, what screen space can reach\n\
+             bounce over the seen part, what screen space can reach; \"within two layers\": the sender is the first or \
+             the second surface on its pixel's eye ray, what a second depth layer could add\n\
              - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
              over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
              cost of one frame with the average running\n\
@@ -215,13 +216,19 @@ impl Report {
     }
 }
 
-/// The truth's bounce by where its senders lie, as the report's header says it.
+/// The truth's bounce by where its senders lie, as the report's header says it: for the hidden
+/// and the facing away, the part the first two surfaces on their eye ray hold beside it.
 fn bounce_places(r: &reference::Reference) -> String {
-    match r.bounce_shares() {
-        None => "no bounce".to_string(),
-        Some(shares) => (reference::SenderPlace::ALL.iter().zip(shares))
-            .map(|(place, share)| format!("{} {:.1}%", place.name(), 100.0 * share))
+    match (r.bounce_shares(), r.two_layer_shares()) {
+        (Some(shares), Some(layered)) => (reference::SenderPlace::ALL.iter().zip(shares).zip(layered))
+            .map(|((place, share), layered)| match place {
+                reference::SenderPlace::Hidden | reference::SenderPlace::FacingAway => {
+                    format!("{} {:.1}% ({:.1}% within two layers)", place.name(), 100.0 * share, 100.0 * layered)
+                }
+                _ => format!("{} {:.1}%", place.name(), 100.0 * share),
+            })
             .collect::<Vec<_>>()
             .join(", "),
+        _ => "no bounce".to_string(),
     }
 }

@@ -1,6 +1,7 @@
 //! The truth's bounce split by where its senders lie for the camera: a wall beside the view
 //! sends its whole bounce from off the screen, the same wall in view sends it from what the
-//! screen shows.
+//! screen shows; a fin's far face, whose light falls on the floor behind it, is the second
+//! surface on its eye ray, and behind a nearer fin it is deeper.
 
 use glam::Vec3;
 use ssdo::reference::{self, ReferenceScene, SenderPlace, TraceSettings};
@@ -24,6 +25,11 @@ fn floor_and_wall() -> ReferenceScene {
 /// The shares of the truth's bounce by place, seen from `camera`, with the depth buffer the
 /// truth's own first hits would give.
 fn shares(scene: &ReferenceScene, camera: &OrbitCamera) -> [f64; 4] {
+    placed(scene, camera).0
+}
+
+/// [`shares`], and the shares of each place the first two surfaces on the senders' eye rays hold.
+fn placed(scene: &ReferenceScene, camera: &OrbitCamera) -> ([f64; 4], [f64; 4]) {
     let (w, h) = SIZE;
     let projection = camera.view_to_clip(w as f32 / h as f32);
     let world_to_clip = projection * camera.world_to_view();
@@ -41,7 +47,8 @@ fn shares(scene: &ReferenceScene, camera: &OrbitCamera) -> [f64; 4] {
     let sky = Skybox::constant(Vec3::ONE);
     let truth = reference::trace(scene, &[], &rig, &sky, camera, SIZE, &depth, &settings, &|| {});
     assert!(truth.valid.iter().filter(|v| **v).count() > (w * h / 2) as usize, "the floor fills the view");
-    truth.bounce_shares().expect("the wall bounces light onto the floor")
+    let shares = truth.bounce_shares().expect("the wall bounces light onto the floor");
+    (shares, truth.two_layer_shares().expect("with its places"))
 }
 
 #[test]
@@ -72,4 +79,43 @@ fn a_wall_beside_the_view_sends_its_bounce_from_off_screen_and_in_view_from_the_
     let away = SenderPlace::FacingAway as usize;
     assert!(s[away] > 0.02 && s[SenderPlace::OffScreen as usize] == 0.0, "{s:?}");
     assert!((s.iter().sum::<f64>() - 1.0).abs() < 1e-9, "the shares add up: {s:?}");
+}
+
+/// A black floor and red closed fins 0.1 thick, 1.5 high and 2 wide, their near faces at each
+/// of `xs`.
+fn floor_and_fins(xs: &[f32]) -> ReferenceScene {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.0; 3]));
+    let fin = b.material(Material::plain("fin", [0.8, 0.1, 0.1]));
+    b.quad(floor, [v(-10.0, 0.0, 10.0), v(10.0, 0.0, 10.0), v(10.0, 0.0, -10.0), v(-10.0, 0.0, -10.0)]);
+    for &x in xs {
+        b.cuboid(fin, v(x, 0.0, -1.0), v(x + 0.1, 1.5, 1.0), false);
+    }
+    ReferenceScene::new(&b.build("fins").unwrap())
+}
+
+#[test]
+fn a_fins_far_face_is_within_two_layers_and_behind_a_nearer_fin_deeper() {
+    let away = SenderPlace::FacingAway as usize;
+    let camera = OrbitCamera {
+        target: Vec3::new(2.2, 0.3, 0.0),
+        yaw_deg: -90.0,
+        pitch_deg: 50.0,
+        distance: 4.0,
+        fov_y_deg: 45.0,
+        near: 0.01,
+        far: None,
+    };
+    // One fin: the floor behind it is lit by its far face, which the eye's ray meets second.
+    let (s, layered) = placed(&floor_and_fins(&[1.4]), &camera);
+    eprintln!("one fin: {s:?} {layered:?}");
+    assert!(s[away] > 0.1, "the far face sends a good part of the bounce: {s:?}");
+    assert!(layered[away] > 0.95 * s[away], "a second layer holds it: {s:?} {layered:?}");
+    // A second fin in front: the far face the floor behind the first sees lies behind the
+    // nearer fin's two faces where the eye looks through both.
+    let (s, layered) = placed(&floor_and_fins(&[1.0, 1.4]), &camera);
+    eprintln!("two fins: {s:?} {layered:?}");
+    assert!(s[away] - layered[away] > 0.05, "part of it (over 5% of the bounce) lies deeper: {s:?} {layered:?}");
+    assert!(layered.iter().zip(&s).all(|(l, s)| l <= s), "{s:?} {layered:?}");
 }
