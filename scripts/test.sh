@@ -53,6 +53,14 @@ fi
 # reorders adapters, which the renderer ranks itself (the binary sets the same switch).
 export NODEVICE_SELECT="${NODEVICE_SELECT:-1}"
 
+# The formatting first: a diff fails here in a second, not after minutes of building.
+if cargo fmt --version >/dev/null 2>&1; then
+    echo "scripts/test.sh: cargo fmt --check"
+    cargo fmt --check
+else
+    echo "scripts/test.sh: rustfmt is not installed (rustup component add rustfmt); formatting not checked" >&2
+fi
+
 # Everything on Vulkan (lavapipe without a GPU)...
 echo "scripts/test.sh: the whole suite on wgpu's Vulkan backend"
 WGPU_BACKEND=vulkan cargo test --locked "$@"
