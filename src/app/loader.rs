@@ -110,7 +110,8 @@ impl Loader {
 /// The skies under `skyboxes/`: its subfolders and the panorama images beside them (read anew
 /// each time the list is shown).
 pub fn skybox_folders() -> Vec<PathBuf> {
-    let mut list: Vec<PathBuf> = std::fs::read_dir(scene::SKYBOX_ROOT)
+    let root = scene::asset(scene::SKYBOX_ROOT).unwrap_or_else(|| PathBuf::from(scene::SKYBOX_ROOT));
+    let mut list: Vec<PathBuf> = std::fs::read_dir(root)
         .map(|entries| {
             entries.flatten().map(|e| e.path()).filter(|p| p.is_dir() || scene::panorama::is_image(p)).collect()
         })

@@ -12,13 +12,16 @@ use crate::{Error, Result};
 
 pub const NAMES: [&str; 5] = ["cornell", "crevices", "fence", "open", "stairs"];
 
+/// The sky `open` is seen under (the repository's; a run without it says so).
+const REDBLUE: &str = "skyboxes/redblue";
+
 /// A scene by name, with the sky folder it is meant to be seen under.
 pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
     match name {
         "cornell" => Ok((scene::load_model(None)?, None)),
         "crevices" => Ok((crevices()?, None)),
         "fence" => Ok((fence()?, None)),
-        "open" => Ok((open()?, Some(PathBuf::from("skyboxes/redblue")))),
+        "open" => Ok((open()?, Some(scene::asset(REDBLUE).unwrap_or_else(|| PathBuf::from(REDBLUE))))),
         "stairs" => Ok((stairs()?, None)),
         other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
     }

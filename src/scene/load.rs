@@ -1,7 +1,8 @@
-//! Which loader reads a file, the default model and sky (or, outside the repository, the same
-//! scenes built in memory), and the defaults a run starts from.
+//! Which loader reads a file, where the repository's own files are (the working folder, or the
+//! sources the binary was built from), the default model and sky (or, where neither has them,
+//! the same scenes built in memory), and the defaults a run starts from.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::model::Model;
 use super::skybox::Skybox;
@@ -16,6 +17,19 @@ pub const DEFAULT_SKYBOX: &str = "skyboxes/day";
 pub const SKYBOX_ROOT: &str = "skyboxes";
 /// The default number of point lights, as in the SSDO course project.
 pub const DEFAULT_LIGHTS: usize = 8;
+
+/// Where one of the repository's own files (`models/…`, `skyboxes/…`, relative to its root) is:
+/// in the working folder where it is there, else beside the sources this binary was built from,
+/// so a run from another folder of the same machine reads the same files (and measures the same
+/// figures); `None` where neither has it.
+pub fn asset(path: &str) -> Option<PathBuf> {
+    let here = Path::new(path);
+    if here.exists() {
+        return Some(here.to_path_buf());
+    }
+    let beside = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    beside.exists().then_some(beside)
+}
 
 /// Whether `path` names a model file this program loads (`files::MODEL_FORMATS`).
 pub fn is_model(path: &Path) -> bool {
@@ -39,8 +53,8 @@ pub fn load_model_file(path: &Path) -> Result<Model> {
     }
 }
 
-/// Loads the model at `path`, or the default scene. When the default file is not there (the
-/// binary run outside the repository) the same scene is built in memory instead.
+/// Loads the model at `path`, or the default scene. When the default file is not there
+/// ([`asset`]: a binary run away from its repository) the same scene is built in memory instead.
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
     load_or_builtin(path, DEFAULT_MODEL, load_model_file, || {
         log::info!("{DEFAULT_MODEL} not found; using the built-in default scene");
@@ -66,7 +80,9 @@ fn load_or_builtin<T>(
 ) -> Result<T> {
     match path {
         Some(p) => load(p),
-        None if Path::new(default).exists() => load(Path::new(default)),
-        None => builtin(),
+        None => match asset(default) {
+            Some(found) => load(&found),
+            None => builtin(),
+        },
     }
 }

@@ -28,7 +28,8 @@ pub use bounds::Bounds;
 pub use camera::OrbitCamera;
 pub use lights::{LightRig, PointLight};
 pub use load::{
-    is_model, load_model, load_model_file, load_skybox, DEFAULT_LIGHTS, DEFAULT_MODEL, DEFAULT_SKYBOX, SKYBOX_ROOT,
+    asset, is_model, load_model, load_model_file, load_skybox, DEFAULT_LIGHTS, DEFAULT_MODEL, DEFAULT_SKYBOX,
+    SKYBOX_ROOT,
 };
 pub use model::{Material, Model, Vertex};
 pub use room::Layout;

@@ -357,3 +357,27 @@ fn a_bad_preset_is_one_line_and_exit_3_everywhere() {
     refused(&["tune", "--out", out.to_str().unwrap()], 2, "give --budget-ms");
     assert!(!out.exists(), "nothing written on error");
 }
+
+/// From another folder the binary reads the repository's own model and skies (beside the
+/// sources it was built from), not their built-in stand-ins: the same files, the same figures;
+/// the report's `open` scene, whose sky is a folder, runs there too.
+#[test]
+fn a_run_from_another_folder_reads_the_repositorys_files() {
+    let Some(out) = common::folder_if_adapter() else { return };
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_ssdo"))
+            .args(args)
+            .current_dir(out.path())
+            .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+            .output()
+            .expect("the binary runs")
+    };
+    let result = run(&["capture", "--mode", "off", "--size", "32x24", "--out", "shots"]);
+    assert!(result.status.success(), "{}", stderr(&result));
+    assert!(!stderr(&result).contains("built-in"), "{}", stderr(&result));
+    assert!(out.path().join("shots/off.png").is_file());
+    let small = ["--size", "16x12", "--samples", "4", "--march", "1x4", "--spp", "2", "--frames", "1"];
+    let result = run(&[&["report", "--scene", "open", "--accumulate", "1", "--out", "r"], &small[..]].concat());
+    assert!(result.status.success(), "{}", stderr(&result));
+    assert!(out.path().join("r/report.md").is_file());
+}
