@@ -110,8 +110,7 @@ impl Loader {
 /// The skies under `skyboxes/`: its subfolders and the panorama images beside them (read anew
 /// each time the list is shown).
 pub fn skybox_folders() -> Vec<PathBuf> {
-    let root = scene::asset(scene::SKYBOX_ROOT).unwrap_or_else(|| PathBuf::from(scene::SKYBOX_ROOT));
-    let mut list: Vec<PathBuf> = std::fs::read_dir(root)
+    let mut list: Vec<PathBuf> = std::fs::read_dir(scene::asset(scene::SKYBOX_ROOT))
         .map(|entries| {
             entries.flatten().map(|e| e.path()).filter(|p| p.is_dir() || scene::panorama::is_image(p)).collect()
         })

@@ -158,7 +158,7 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         }
         if r_index == 0 {
             let pattern = pattern::measure(gpu, &mut renderer, &camera, (&truth, radius, ambient))?;
-            log::info!("{}", pattern.line().trim_start_matches("- "));
+            log::info!("{}", pattern.line());
             kept = Some((truth.reference, truth.noise, pattern));
         }
     }

@@ -50,10 +50,10 @@ pub struct PatternSpread {
 }
 
 impl PatternSpread {
-    /// The report's header line.
+    /// The report's header line (and the log's).
     pub fn line(&self) -> String {
         format!(
-            "- a single frame's sample pattern: the default SSAO+SSDO setting's single frame under each of the {} \
+            "a single frame's sample pattern: the default SSAO+SSDO setting's single frame under each of the {} \
              entries of the sample schedule a default average goes through (a view turning too fast to keep any \
              history shows a later entry every frame): HDR RMSE {}, DO RMSE {}, AO RMSE within R {} (in brackets \
              entry 0, the single-frame rows' pattern); single-frame rows closer than this differ by their patterns",

@@ -21,7 +21,7 @@ pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
         "cornell" => Ok((scene::load_model(None)?, None)),
         "crevices" => Ok((crevices()?, None)),
         "fence" => Ok((fence()?, None)),
-        "open" => Ok((open()?, Some(scene::asset(REDBLUE).unwrap_or_else(|| PathBuf::from(REDBLUE))))),
+        "open" => Ok((open()?, Some(scene::asset(REDBLUE)))),
         "stairs" => Ok((stairs()?, None)),
         other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
     }

@@ -155,7 +155,7 @@ impl Report {
              - scene: {}, {}x{}, {} lights (seed {}), constant ambient {}, default radius {:.4}\n\
              - truth: ray traced, exact visibility at any distance, one bounce from any surface (each sender lit by \
              its direct light: the point lights, and the sky and ambient it sees), the mean of two traces of {} rays per pixel ({:.1} s in all)\n\
-             - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n{}\n\
+             - the truth's noise floor (RMSE of the mean of two traces): HDR {:.4}, DO {:.4}, AO {:.4}\n- {}\n\
              - pixels measured: {} surface pixels; left out: {} background, {} silhouette (traced and rasterised \
              surfaces differ), {} under a light's cube\n\
              - the truth's bounce by where its senders lie for the camera: {}; \"bounce / seen\" is the estimate's \

@@ -18,17 +18,18 @@ pub const SKYBOX_ROOT: &str = "skyboxes";
 /// The default number of point lights, as in the SSDO course project.
 pub const DEFAULT_LIGHTS: usize = 8;
 
-/// Where one of the repository's own files (`models/…`, `skyboxes/…`, relative to its root) is:
-/// in the working folder where it is there, else beside the sources this binary was built from,
-/// so a run from another folder of the same machine reads the same files (and measures the same
-/// figures); `None` where neither has it.
-pub fn asset(path: &str) -> Option<PathBuf> {
-    let here = Path::new(path);
-    if here.exists() {
-        return Some(here.to_path_buf());
-    }
+/// The path to read one of the repository's own files (`models/…`, `skyboxes/…`, relative to
+/// its root) at: in the working folder where it is there, else beside the sources this binary
+/// was built from where it is there (so a run from another folder of the same machine reads the
+/// same files and measures the same figures), else `path` as given (whose absence a loader
+/// reports, or a built-in stands in for).
+pub fn asset(path: &str) -> PathBuf {
     let beside = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
-    beside.exists().then_some(beside)
+    if Path::new(path).exists() || !beside.exists() {
+        PathBuf::from(path)
+    } else {
+        beside
+    }
 }
 
 /// Whether `path` names a model file this program loads (`files::MODEL_FORMATS`).
@@ -81,8 +82,8 @@ fn load_or_builtin<T>(
     match path {
         Some(p) => load(p),
         None => match asset(default) {
-            Some(found) => load(&found),
-            None => builtin(),
+            found if found.exists() => load(&found),
+            _ => builtin(),
         },
     }
 }

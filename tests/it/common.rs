@@ -140,9 +140,14 @@ pub fn red_wall_view(sky: Vec3) -> (Scene, Skybox, OrbitCamera) {
 /// Runs the `ssdo` binary from the repository root with `args`, on the backend the test run asks
 /// for (`WGPU_BACKEND`, Vulkan by default).
 pub fn run_ssdo(args: &[&str]) -> std::process::Output {
+    run_ssdo_in(std::path::Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+/// [`run_ssdo`] from the folder `dir`.
+pub fn run_ssdo_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_ssdo"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(dir)
         .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
         .output()
         .expect("the binary runs")

@@ -364,14 +364,7 @@ fn a_bad_preset_is_one_line_and_exit_3_everywhere() {
 #[test]
 fn a_run_from_another_folder_reads_the_repositorys_files() {
     let Some(out) = common::folder_if_adapter() else { return };
-    let run = |args: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_ssdo"))
-            .args(args)
-            .current_dir(out.path())
-            .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
-            .output()
-            .expect("the binary runs")
-    };
+    let run = |args: &[&str]| common::run_ssdo_in(out.path(), args);
     let result = run(&["capture", "--mode", "off", "--size", "32x24", "--out", "shots"]);
     assert!(result.status.success(), "{}", stderr(&result));
     assert!(!stderr(&result).contains("built-in"), "{}", stderr(&result));
