@@ -186,3 +186,14 @@ fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessO
     let depth = (bitcast<u32>(in.clip.z) & ~THICKNESS_CODE_MASK) | code;
     return ThicknessOut(g.albedo, g.normal, depth);
 }
+
+// The far side layer (drawn by src/render/passes/far_side.rs with the faces towards the camera
+// culled, so each pixel holds the nearest surface turned away from the eye: a closed fin's or
+// box's far face, an underside, a sheet's other side): its normal as the mesh has it (away from
+// the eye) with its shininess bits, its albedo, and its depth's bits. The lighting pass lights it
+// as a sender (lighting.wgsl, `far_sender`).
+@fragment
+fn fs_far_side(in: VertexOut) -> @location(0) vec4<u32> {
+    let g = surface(in, true);
+    return vec4<u32>(g.normal, pack4x8unorm(vec4<f32>(g.albedo.rgb, 0.0)), bitcast<u32>(in.clip.z), 0u);
+}

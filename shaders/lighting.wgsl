@@ -21,6 +21,9 @@
 @group(1) @binding(3) var sender_sky: texture_2d<f32>;
 // The same as the last frame's sampling pass saw it (SENDER_SKY 4), at that pass's size.
 @group(1) @binding(4) var last_sky: texture_2d<f32>;
+// The far side layer (FAR_SIDE; gbuffer.wgsl `fs_far_side`): the nearest surface behind each
+// pixel turned from the eye, its packed normal, albedo and depth bits; a 1x1 stand-in otherwise.
+@group(1) @binding(5) var far_surface: texture_2d<u32>;
 
 // What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march, 3 march at
 // quarter resolution, 4 the last frame's march.
@@ -37,10 +40,14 @@ override LIGHTS: bool = true;
 // surface's own, from the depth buffer (`depth_normal`), not the map's, which leans away where
 // the surface faces the receiver. The light it sends keeps the mapped normal's.
 override NORMAL_MAPPED: bool = false;
+// The far side layer's surface is lit too (with the point lights: it is drawn only where there
+// are some), into the bounce's second pair.
+override FAR_SIDE: bool = false;
 
 struct LightingOut {
     @location(0) hdr: vec4<f32>,
-    // pack_sender (common/surface_pack.wgsl): the bounce radiance and the sender's normal.
+    // pack_sender (common/surface_pack.wgsl): the bounce radiance and the sender's normal (xy),
+    // and with FAR_SIDE the far side layer's sender (zw; zero where it holds none).
     @location(1) bounce: vec4<u32>,
 }
 
@@ -79,7 +86,25 @@ fn direct(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> LightingOu
         facing_bits = pack_normal(depth_normal_in(pixel, p, normal.xyz, c.projection, c.viewport));
     }
     out.bounce = vec4<u32>(pack_sender(bounce, facing_bits), 0u, 0u);
+    if FAR_SIDE && LIGHTS {
+        out.bounce = vec4<u32>(out.bounce.xy, far_sender(c, pixel, position));
+    }
     return out;
+}
+
+// The far side layer's surface at `pixel` as a sender: the diffuse light the point lights give
+// it, and its normal (away from the eye). Its sky is left out: no march sees it, and the sky's
+// unoccluded irradiance overstates it (an underside facing the floor took the ground's half of
+// the sky: cornell's SSDO error 0.0197 → 0.0264 against 0.0203 without; docs/accuracy.md).
+fn far_sender(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> vec2<u32> {
+    let far = textureLoad(far_surface, pixel, 0);
+    if far.z == 0u {
+        return vec2<u32>(0u);
+    }
+    let p = view_position_of(c, position, bitcast<f32>(far.z));
+    let albedo = unpack4x8unorm(far.y).rgb;
+    let light = point_lighting(c, p, unpack_normal(far.x), albedo, 0.0, 1.0).diffuse;
+    return pack_sender(light, far.x);
 }
 
 // The sky the surface at `pixel` saw in the last frame's march (rgb, with its open share in a):

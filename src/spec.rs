@@ -179,6 +179,11 @@ pub struct RenderArgs {
     /// ambient [default: last-frame]
     #[arg(long)]
     pub sender_sky: Option<SenderSky>,
+    /// A second geometry pass draws the surfaces turned from the eye (a fin's far face, an
+    /// underside), lit by the point lights, and SSDO's bounce takes their light where the surface
+    /// the screen shows faces away (scenes with point lights; see docs/accuracy.md)
+    #[arg(long)]
+    pub far_side: bool,
     /// Leave the AO/DO noise unfiltered
     #[arg(long)]
     pub no_blur: bool,
@@ -344,6 +349,7 @@ impl RenderArgs {
         k.half_resolution &= !self.full_res;
         k.accumulate = self.accumulate.unwrap_or(k.accumulate);
         k.sender_sky = self.sender_sky.unwrap_or(k.sender_sky);
+        k.far_side |= self.far_side;
         k.indirect_strength = self.indirect_strength.unwrap_or(k.indirect_strength);
         k
     }

@@ -193,6 +193,8 @@ fn lighting_section(ui: &mut egui::Ui, settings: &mut Settings) {
         })
         .response
         .on_hover_text("march: the sky each sender sees; irradiance: its unoccluded sky; off: point lights only");
+    ui.checkbox(&mut settings.far_side, knob_label("far_side"))
+        .on_hover_text("a second geometry pass: faces turned from the camera send their point lights' bounce");
     ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
     slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
     ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));

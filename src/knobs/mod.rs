@@ -51,6 +51,7 @@ impl Knobs {
             depth_pyramid: s.sampling.depth_pyramid,
             indirect_strength: s.indirect_strength,
             sender_sky: s.sender_sky,
+            far_side: s.far_side,
         }
     }
 
@@ -73,6 +74,7 @@ impl Knobs {
         s.half_resolution = self.half_resolution;
         s.accumulate = self.accumulate;
         s.sender_sky = self.sender_sky;
+        s.far_side = self.far_side;
         s.indirect_strength = self.indirect_strength;
     }
 
@@ -278,8 +280,8 @@ mod tests {
         let differs = |a: &Knobs, b: &Knobs| KNOBS.iter().filter(|x| (x.get)(a) != (x.get)(b)).count();
         assert!(n.iter().all(|m| differs(&k, m) == 1), "{n:?}");
         // Slices 1 and 3, steps 12 and 24, 4 frames, blur, resolution, 2 radii, pyramid, no
-        // bounce and four other senders.
-        assert_eq!(n.len(), 2 + 2 + 1 + 1 + 1 + 2 + 1 + 1 + 4);
+        // bounce, four other senders and the far side.
+        assert_eq!(n.len(), 2 + 2 + 1 + 1 + 1 + 2 + 1 + 1 + 4 + 1);
         // A count off the ladder steps onto it; the ends of a ladder have one neighbour there.
         let odd = Knobs { slices: 5, steps: 4, radius_scale: 2.0, ..k };
         let n = odd.neighbours(Mode::Ssdo);

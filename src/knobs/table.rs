@@ -27,6 +27,8 @@ pub struct Knobs {
     /// 0: no bounce.
     pub indirect_strength: f32,
     pub sender_sky: SenderSky,
+    /// The far side layer: the surfaces turned from the eye send their point lights' light.
+    pub far_side: bool,
 }
 
 /// One knob's value.
@@ -164,7 +166,7 @@ pub(super) fn choice<T: std::str::FromStr>(v: Value) -> T {
 
 /// Every knob, in the order tune steps them and a preset writes them (the variant first: the
 /// others' defaults are its own).
-pub const KNOBS: [Knob; 12] = [
+pub const KNOBS: [Knob; 13] = [
     Knob {
         key: "variant",
         flag: "variant",
@@ -302,6 +304,20 @@ pub const KNOBS: [Knob; 12] = [
         scope: Scope::Bounce,
         get: |k| Value::Choice(k.sender_sky.name()),
         set: |k, v| k.sender_sky = choice(v),
+    },
+    Knob {
+        key: "far_side",
+        flag: "far-side",
+        label: "far sides send bounce",
+        help: "A second geometry pass draws the surfaces turned from the eye (a fin's far face, an \
+               underside), lit by the point lights, and the bounce takes their light where the surface the \
+               screen shows faces away (scenes with point lights)",
+        kind: Kind::Switch,
+        rungs: Rungs::Toggle,
+        cost: Cost::Rises,
+        scope: Scope::Bounce,
+        get: |k| Value::Switch(k.far_side),
+        set: |k, v| k.far_side = switch(v),
     },
     Knob {
         key: "indirect_strength",

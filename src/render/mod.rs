@@ -212,6 +212,7 @@ impl Renderer {
             half_resolution: settings.half_resolution,
             material_thickness: settings.sampling.material_thickness()
                 && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
+            far_side: settings.far_side,
         };
         Plan::new(settings.mode, features, options)
     }

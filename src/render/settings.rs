@@ -171,6 +171,10 @@ pub struct Settings {
     pub indirect_strength: f32,
     /// What lights the bounce's senders besides the point lights.
     pub sender_sky: SenderSky,
+    /// The far side layer: a second geometry pass draws the surfaces turned from the eye, lit by
+    /// the point lights, and the bounce takes their light where the surface the screen shows
+    /// faces away from the receiver (off by default: docs/accuracy.md).
+    pub far_side: bool,
     /// Denoise the sampling output.
     pub blur: bool,
     /// The sampling pass runs at half width and height, and so do the blur and the average over
@@ -201,6 +205,7 @@ impl Default for Settings {
             sky_strength: 1.0,
             indirect_strength: 1.0,
             sender_sky: SenderSky::LastFrame,
+            far_side: false,
             blur: true,
             half_resolution: true,
             accumulate: ACCUMULATE.default,

@@ -120,6 +120,10 @@ pub const HDR: TargetId = TargetId::new("hdr_color", HDR_FORMAT, Place::Screen);
 /// the march's gather reads a sender in one 8-byte load instead of two.
 pub const BOUNCE: TargetId = TargetId::new("bounce_radiance", BOUNCE_FORMAT, Place::Screen);
 pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
+/// [`BOUNCE`] with, in its second pair, the sender the far side layer holds behind each pixel
+/// (`--far-side`; none: zero), lit the same way: a march step reads both in one 16-byte load.
+pub const BOUNCE_WITH_FAR: TargetId =
+    TargetId::new("bounce_radiance_with_far", wgpu::TextureFormat::Rgba32Uint, Place::Screen);
 /// What the frame is drawn into.
 pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Output);
 

@@ -195,6 +195,8 @@ impl Bench<'_> {
             samples: config.samples(),
             steps: config.steps(),
             pyramid: config.pyramid(),
+            // (Drawn only where the scene has point lights to light it.)
+            far_side: config.far_side() && renderer.plan().far_side,
             blur: config.knobs.blur,
             // What lit the senders (the variants that do not march take `march` for `last-frame`).
             bounce: if mode.declaration().directional_occlusion {

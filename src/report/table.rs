@@ -24,13 +24,18 @@ impl Row {
     }
 
     /// What lit the bounce's senders: "march", "irradiance", "lights" (the point lights only),
-    /// "none" (no bounce), "—" (no DO).
-    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>) -> &'static str {
-        match (mode, bounce) {
+    /// "none" (no bounce), "—" (no DO); " + far side" where the far side layer sends too.
+    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>, far_side: bool) -> String {
+        let senders = match (mode, bounce) {
             (Mode::Off | Mode::Ssao, _) => "—",
             (_, Some(SenderSky::Off)) => "lights",
             (_, Some(other)) => other.name(),
             (_, None) => "none",
+        };
+        if far_side {
+            format!("{senders} + far side")
+        } else {
+            senders.to_string()
         }
     }
 
@@ -62,7 +67,7 @@ impl Row {
             self.mode.name(),
             self.variant,
             if off { "—".to_string() } else { self.label() },
-            Row::bounce_label(self.mode, self.bounce),
+            Row::bounce_label(self.mode, self.bounce, self.far_side),
             if off { "—".to_string() } else { format!("{:.3}", self.radius) },
             self.frames_label(),
             self.ms,
@@ -123,7 +128,7 @@ impl Report {
                 r.steps.to_string(),
                 r.pyramid.to_string(),
                 r.blur.to_string(),
-                Row::bounce_label(r.mode, r.bounce).to_string(),
+                Row::bounce_label(r.mode, r.bounce, r.far_side),
                 format!("{:.5}", r.radius),
                 r.accumulate.to_string(),
                 r.orbit.to_string(),

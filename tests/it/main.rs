@@ -32,6 +32,7 @@ mod cpu {
 
 mod gpu {
     mod display;
+    mod far_side;
     mod march;
     mod occlusion;
     mod reference;

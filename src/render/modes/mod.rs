@@ -43,7 +43,7 @@ pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
 use super::settings::SenderSky;
-use super::targets::{Place, Stage, TargetId, DO_FORMAT};
+use super::targets::{Place, Stage, TargetId, BOUNCE, BOUNCE_WITH_FAR, DO_FORMAT};
 use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 
 /// What the scene brings that changes the plan.
@@ -91,6 +91,8 @@ pub struct PlanOptions {
     /// given, and a mode that samples or the thickness view): the G-buffer writes the thickness
     /// layer where the scene has a thin material.
     pub material_thickness: bool,
+    /// The far side layer: the nearest surfaces turned away from the eye, lit, for the bounce.
+    pub far_side: bool,
 }
 
 impl Default for PlanOptions {
@@ -107,6 +109,7 @@ impl Default for PlanOptions {
             half_resolution: true,
             accumulate: true,
             material_thickness: true,
+            far_side: false,
         }
     }
 }
@@ -228,6 +231,9 @@ pub struct Plan {
     /// The G-buffer writes the thickness layer (depth with each surface's thickness code), which
     /// the marches and the thickness view read: a thin material, and the options allow it.
     pub thickness_layer: bool,
+    /// A pass draws the far side layer (the surfaces turned from the eye, lit as senders), which
+    /// the march's bounce reads.
+    pub far_side: bool,
     pub steps: Vec<Step>,
     /// The targets kept across frames (see `history.rs`): the temporal pass's, where it runs.
     pub history: Vec<HistorySpec>,
@@ -259,6 +265,16 @@ impl Plan {
     /// lights), which the composite then adds instead of running the light loop.
     pub fn lighting_writes_direct(&self) -> bool {
         self.lighting && self.features.lights > 0
+    }
+
+    /// The target the lighting pass writes the bounce's senders into: with the far side
+    /// layer's beside them where the plan draws it.
+    pub fn bounce_target(&self) -> TargetId {
+        if self.far_side {
+            BOUNCE_WITH_FAR
+        } else {
+            BOUNCE
+        }
     }
 
     pub fn has(&self, step: Step) -> bool {

@@ -10,6 +10,7 @@
 //! moved (reprojecting) and for a still one. A frame with no last frame (the first after a
 //! reset) reads this frame's sender-sky march, as `--sender-sky march` does.
 
+use super::far_side::FAR_SURFACE;
 use super::sampling::{last_sky_held, LAST_SKY};
 use super::sender_sky;
 use crate::render::graph::io::{PassIo, Read};
@@ -17,7 +18,7 @@ use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_FORMAT, DEPTH, HDR, HDR_FORMAT, NORMAL};
+use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_WITH_FAR, DEPTH, HDR, HDR_FORMAT, NORMAL};
 use crate::Result;
 
 impl Step {
@@ -47,6 +48,8 @@ struct Key {
     reproject: bool,
     /// The model has normal maps: a sender's facing comes from the depth buffer's plane.
     normal_mapped: bool,
+    /// The far side layer's surfaces are lit too, into the bounce target's second pair.
+    far_side: bool,
 }
 
 impl Key {
@@ -60,7 +63,13 @@ impl Key {
             half_resolution: plan.half_resolution,
             reproject: false,
             normal_mapped: plan.features.normal_mapped,
+            far_side: plan.far_side,
         }
+    }
+
+    fn bounce_format(self) -> wgpu::TextureFormat {
+        let target = if self.far_side { BOUNCE_WITH_FAR } else { BOUNCE };
+        target.format
     }
 
     fn spec(self) -> PipelineSpec {
@@ -71,10 +80,11 @@ impl Key {
             ("HALF_RES", flag(self.half_resolution)),
             ("REPROJECT", flag(self.reproject)),
             ("NORMAL_MAPPED", flag(self.normal_mapped)),
+            ("FAR_SIDE", flag(self.far_side)),
         ];
         PipelineSpec {
             entry: if self.lights { "fs_main" } else { "fs_bounce" },
-            targets: hdr.into_iter().map(Some).chain([Some(BOUNCE_FORMAT.into())]).collect(),
+            targets: hdr.into_iter().map(Some).chain([Some(self.bounce_format().into())]).collect(),
             constants: constants.into_iter().chain(self.light_reads.constants()).collect(),
         }
     }
@@ -111,9 +121,10 @@ impl LightingPass {
             Read::Target(DEPTH),
             Read::target_if(plan.sender_march, sender_sky::target(plan)),
             Read::target_if(plan.sender_sky == SenderSky::LastFrame, LAST_SKY),
+            Read::target_if(plan.far_side, FAR_SURFACE),
         ];
         let direct = plan.lighting_writes_direct().then_some(HDR);
-        PassIo { reads, attached: vec![], writes: direct.into_iter().chain([BOUNCE]).collect() }
+        PassIo { reads, attached: vec![], writes: direct.into_iter().chain([plan.bounce_target()]).collect() }
     }
 }
 

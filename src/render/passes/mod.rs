@@ -8,6 +8,7 @@
 pub mod blur;
 pub mod composite;
 pub mod depth_pyramid;
+pub mod far_side;
 pub mod gbuffer;
 pub mod light_cubes;
 pub mod lighting;
@@ -28,9 +29,11 @@ use crate::scene::Model;
 use crate::Result;
 
 /// Every pass, in the order a frame runs them.
-pub const PASSES: [Entry; 12] = [
+pub const PASSES: [Entry; 13] = [
     // Geometry once: albedo, normal, depth.
     gbuffer::ENTRY,
+    // The nearest surfaces turned away from the eye, lit as senders (`--far-side`).
+    far_side::ENTRY,
     // The closest depth per block, for the march's far steps.
     depth_pyramid::ENTRY,
     // The sky each sender sees, at half resolution.
@@ -105,6 +108,7 @@ impl Plan {
             pyramid: has(Step::DEPTH_PYRAMID),
             sender_march: has(Step::SENDER_SKY),
             thickness_layer: features.thin_materials && o.material_thickness,
+            far_side: has(Step::FAR_SIDE),
             steps,
             history,
         }
@@ -180,7 +184,14 @@ impl PassSet {
 
     /// Uploads `model` through the pass that draws it, with its materials' thickness codes.
     pub fn upload_scene(&mut self, gpu: &Gpu, model: &Model, thickness: &[u32]) -> SceneGpu {
-        let uploaded = self.passes.iter_mut().find_map(|(_, p)| p.upload_scene(gpu, model, thickness));
+        // Every pass sees the model (the far side builds its pipelines for its materials); the
+        // G-buffer pass uploads it.
+        let mut uploaded = None;
+        for (_, pass) in &mut self.passes {
+            if let Some(scene) = pass.upload_scene(gpu, model, thickness) {
+                uploaded.get_or_insert(scene);
+            }
+        }
         uploaded.expect("the G-buffer pass draws the scene")
     }
 }

@@ -13,7 +13,7 @@ use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{Plan, PlanFacts, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, BOUNCE, DEPTH, DO_FORMAT, NORMAL, THICKNESS};
+use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, DEPTH, DO_FORMAT, NORMAL, THICKNESS};
 use crate::render::variant::{Estimator, Sampler};
 use crate::{shaders, Result};
 
@@ -100,6 +100,9 @@ struct Key {
     last_sky: bool,
     /// The march reads each sample's thickness from the thickness layer.
     thickness_layer: bool,
+    /// The march takes the far side layer's sender (the bounce target's second pair) where the
+    /// near one faces away.
+    far_side: bool,
 }
 
 impl Key {
@@ -116,6 +119,7 @@ impl Key {
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
             list.push(("THICKNESS_LAYER", f(self.thickness_layer)));
+            list.push(("FAR_SIDE", f(self.far_side)));
         } else {
             list.push(("CLASSIC", f(self.classic)));
         }
@@ -144,7 +148,7 @@ impl SamplingPass {
             Read::Target(NORMAL),
             Read::Target(DEPTH),
             Read::Sampling,
-            Read::target_if(bounce, BOUNCE),
+            Read::target_if(bounce, plan.bounce_target()),
             Read::target_if(plan.pyramid, PYRAMID),
             Read::target_if(plan.thickness_layer, THICKNESS),
         ]
@@ -177,6 +181,7 @@ impl Pass for SamplingPass {
             normal_mapped: plan.features.normal_mapped,
             last_sky: plan.sender_sky == SenderSky::LastFrame,
             thickness_layer: plan.thickness_layer,
+            far_side: plan.far_side && Outputs::of(plan).indirect,
         };
 
         let march_module = &self.march_module;

@@ -43,6 +43,7 @@ fn preset() -> Preset {
             half_resolution: true,
             accumulate: 8,
             sender_sky: SenderSky::Irradiance,
+            far_side: true,
             indirect_strength: 0.0,
         },
         measured: Some(measured()),

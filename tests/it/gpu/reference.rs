@@ -205,6 +205,7 @@ fn the_report_measures_how_much_a_single_frames_error_owes_to_its_pattern() {
                 && r.half_resolution
                 && !r.pyramid
                 && r.bounce == Some(SenderSky::LastFrame)
+                && !r.far_side
         })
         .expect("the default single-frame row");
     let p = result.pattern;

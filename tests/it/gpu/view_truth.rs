@@ -53,6 +53,7 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
                     && r.variant == Variant::default()
                     && r.blur
                     && !r.pyramid
+                    && !r.far_side
                     && r.half_resolution == base.half_resolution
                     && r.accumulate == base.accumulate
                     && (mode == Mode::Ssao || r.bounce == Some(base.sender_sky))

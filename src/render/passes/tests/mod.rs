@@ -5,7 +5,7 @@ use super::*;
 use crate::render::graph::io::{Kind, Read};
 use crate::render::modes::{MODES, SURFACE_HISTORY};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{Stage, BOUNCE, HDR, OUTPUT};
+use crate::render::targets::{Stage, BOUNCE, BOUNCE_WITH_FAR, HDR, OUTPUT};
 use depth_pyramid::PYRAMID;
 use sampling::LAST_SKY;
 use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
@@ -30,7 +30,7 @@ fn set(plan: &Plan) -> Set {
     let has = |id| plan.allocates(id);
     Set {
         hdr: has(HDR),
-        bounce: has(BOUNCE),
+        bounce: has(BOUNCE) || has(BOUNCE_WITH_FAR),
         // What the sampling pass writes: at full size, or at half size with an upsample after it.
         ao: [Stage::Raw, Stage::Half].into_iter().any(|s| has(s.target(false))),
         directional: [Stage::Raw, Stage::Half].into_iter().any(|s| has(s.target(true))),
@@ -48,12 +48,20 @@ fn all_plans() -> Vec<Plan> {
     let mut plans = Vec::new();
     for mode in Mode::ALL {
         for lights in [0, 8] {
-            for bits in 0..128u32 {
+            for bits in 0..256u32 {
                 for sender_sky in SenderSky::ALL {
                     // Every switch both ways over the default (its material thickness on).
                     let mut o = PlanOptions { sender_sky, ..PlanOptions::default() };
-                    [o.blur, o.pyramid, o.display, o.indirect, o.accumulate, o.half_resolution, o.bilateral] =
-                        [0, 1, 2, 3, 4, 5, 6].map(|b| bits & (1 << b) != 0);
+                    [
+                        o.blur,
+                        o.pyramid,
+                        o.display,
+                        o.indirect,
+                        o.accumulate,
+                        o.half_resolution,
+                        o.bilateral,
+                        o.far_side,
+                    ] = [0, 1, 2, 3, 4, 5, 6, 7].map(|b| bits & (1 << b) != 0);
                     plans.push(Plan::new(mode, SceneFeatures::lit(lights), o));
                 }
             }

@@ -1,0 +1,105 @@
+//! The far side layer (`--far-side`): the surfaces turned from the eye send their point lights'
+//! light in SSDO's bounce, measured against the CPU truth where only such a surface can send it;
+//! the pass runs only where it is asked for, the mode bounces and there are lights.
+
+use crate::common;
+
+use common::{gpu, looking, renderer, shoot, H, W};
+use glam::Vec3;
+use rand::{rngs::StdRng, SeedableRng};
+use ssdo::headless::readback::read_rgba16f;
+use ssdo::reference::{ReferenceScene, TraceSettings};
+use ssdo::render::{Mode, Sampling, Settings, Variant, View};
+use ssdo::scene::builtin::MeshBuilder;
+use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};
+
+/// A red block (1.2 wide, 0.25 tall, 0.4 deep: thicker than the march's slab) on a white floor,
+/// and one light behind it, low: it lights the block's far face, which faces the floor behind
+/// the block and is turned from a camera in front.
+fn block_lit_from_behind() -> Scene {
+    let v = Vec3::new;
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", [0.8; 3]));
+    let block = b.material(Material::plain("block", [0.8, 0.1, 0.1]));
+    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    b.cuboid(block, v(-0.6, 0.0, -0.2), v(0.6, 0.25, 0.2), false);
+    let mut scene = Scene::new(b.build("block").unwrap(), 0, 1);
+    scene.lights = vec![PointLight { position: v(0.0, 0.12, -0.8), color: Vec3::ONE, intensity: 0.5 }];
+    scene
+}
+
+/// SSDO under a black sky with no ambient, from the default march with more slices: its DO is
+/// the bounce alone.
+fn bounce_only(far_side: bool, indirect_strength: f32) -> Settings {
+    Settings {
+        mode: Mode::Ssdo,
+        sampling: Sampling { variant: Variant::March, slices: 8, steps: 16, ..Default::default() },
+        ambient: 0.0,
+        indirect_strength,
+        far_side,
+        view: View::Final,
+        ..Settings::default()
+    }
+}
+
+/// The march's mean bounce over `at` (its DO less the same frame's with the bounce off).
+fn march_bounce(
+    gpu: &ssdo::gpu::Gpu,
+    scene: &Scene,
+    camera: &OrbitCamera,
+    far_side: bool,
+    at: &[(usize, usize)],
+) -> Vec3 {
+    let directional = |indirect_strength: f32| {
+        let settings = bounce_only(far_side, indirect_strength);
+        let mut r = renderer(gpu, scene, &Skybox::constant(Vec3::ZERO), (W, H), settings);
+        assert_eq!(r.plan().far_side, far_side && indirect_strength > 0.0, "the far side pass runs where asked");
+        shoot(gpu, &mut r, camera);
+        read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap()
+    };
+    let (with, without) = (directional(1.0), directional(0.0));
+    let texel = |d: &[[f32; 4]], (x, y): (usize, usize)| Vec3::from_slice(&d[y * W as usize + x][..3]);
+    at.iter().map(|&pixel| texel(&with, pixel) - texel(&without, pixel)).sum::<Vec3>() / at.len() as f32
+}
+
+#[test]
+fn the_floor_behind_a_block_gets_the_bounce_of_its_far_face() {
+    let Some(gpu) = gpu() else { return };
+    let scene = block_lit_from_behind();
+    let truth = ReferenceScene::new(&scene.model);
+    let camera = looking(Vec3::new(0.0, 0.0, -0.45), 0.0, 50.0, 3.0);
+    // The floor behind the block that the camera sees over it, the width of its middle: the block's face that faces it
+    // is the one the camera cannot see.
+    let mut at = Vec::new();
+    for y in 0..H as usize {
+        for x in 0..W as usize {
+            let (eye, dir) = common::eye_ray_in(&camera, (W, H), (x, y));
+            let Some(s) = truth.trace(eye, dir, 1e4) else { continue };
+            let p = s.position;
+            if s.normal.y > 0.99 && p.y.abs() < 1e-3 && (-0.7..-0.45).contains(&p.z) && p.x.abs() < 0.4 {
+                at.push(((x, y), s));
+            }
+        }
+    }
+    assert!(at.len() >= 20, "only {} floor pixels behind the block", at.len());
+    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
+    let mut rng = StdRng::seed_from_u64(5);
+    let sky = Skybox::constant(Vec3::ZERO);
+    let truth_bounce = at
+        .iter()
+        .map(|(_, s)| truth.estimate(s, &scene.lights, &scene.rig, &sky, &settings, &mut rng).bounce)
+        .sum::<Vec3>()
+        / at.len() as f32;
+    let pixels: Vec<_> = at.iter().map(|&(pixel, _)| pixel).collect();
+    let near_only = march_bounce(gpu, &scene, &camera, false, &pixels);
+    let far_side = march_bounce(gpu, &scene, &camera, true, &pixels);
+    eprintln!(
+        "bounce on the floor behind the block ({} pixels): truth {truth_bounce}, near side only {near_only}, far side {far_side}",
+        at.len()
+    );
+    // The red comes from the block's far face, lit from behind.
+    assert!(truth_bounce.x > 3.0 * truth_bounce.z, "the truth's bounce is the block's: {truth_bounce}");
+    let (before, after) = (near_only.x / truth_bounce.x, far_side.x / truth_bounce.x);
+    assert!(before < 0.3, "the near side, facing away, sends little: {before:.2} of the truth's red");
+    assert!((0.5..=1.5).contains(&after), "the far side sends the truth's red: {after:.2} of it");
+}
