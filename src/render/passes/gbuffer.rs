@@ -94,9 +94,7 @@ impl GBufferPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
         let (device, frame_layout) = (cx.device, cx.frame_layout);
         let module = shaders::module(device, "gbuffer.wgsl")?;
-        let map = |binding| texture_entry(binding, true, wgpu::TextureViewDimension::D2);
-        let material_entries = [uniform_entry(0), map(1), map(2), sampler_entry(3), map(4), map(5)];
-        let material_layout = cx.layout("gbuffer_material_layout", &material_entries);
+        let material_layout = cx.layout("gbuffer_material_layout", &material_entries());
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer_pipeline_layout"),
             bind_group_layouts: &[Some(frame_layout), Some(&material_layout)],
@@ -142,15 +140,7 @@ impl GBufferPass {
         features: Features,
         culled: Option<wgpu::Face>,
     ) -> wgpu::RenderPipeline {
-        let flag = |on: bool| if on { 1.0 } else { 0.0 };
-        let constants = [
-            ("TEXTURED", flag(features.textured)),
-            ("SPECULAR_MAP", features.specular.shader_code()),
-            ("NORMAL_MAPPED", flag(features.normal_mapped)),
-            ("CUT_OUT", flag(features.cut_out)),
-            ("THIN", flag(features.thin)),
-        ];
-        let (entry, targets) = if features.thickness_layer {
+        let fragment = if features.thickness_layer {
             (
                 "fs_thickness",
                 &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into()), Some(THICKNESS_FORMAT.into())][..],
@@ -158,47 +148,7 @@ impl GBufferPass {
         } else {
             ("fs_main", &[Some(ALBEDO_FORMAT.into()), Some(NORMAL_FORMAT.into())][..])
         };
-        let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
-        let vertex = wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<Vertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
-        };
-        let tangent = wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<[f32; 4]>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![3 => Float32x4],
-        };
-        let buffers = [Some(vertex), Some(tangent)];
-        let buffers = if features.normal_mapped { &buffers[..] } else { &buffers[..1] };
-        let label = format!("gbuffer_pipeline_{features:?}_{culled:?}_culled");
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&label),
-            layout: Some(layout),
-            vertex: wgpu::VertexState {
-                module,
-                entry_point: Some(if features.normal_mapped { "vs_mapped" } else { "vs_main" }),
-                compilation_options: options.clone(),
-                buffers,
-            },
-            primitive: wgpu::PrimitiveState { cull_mode: culled, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module,
-                entry_point: Some(entry),
-                compilation_options: options,
-                targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
+        model_pipeline(device, layout, module, features, culled, fragment)
     }
 
     /// Uploads `model` and builds its material bind groups (and the pipelines its materials need
@@ -294,6 +244,104 @@ impl GBufferPass {
     }
 }
 
+/// The layout of a material's bind group (`gbuffer.wgsl` group 1): its parameters, its maps and
+/// their sampler. The far side layer binds the scene's material groups too.
+pub(super) fn material_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
+    let map = |binding| texture_entry(binding, true, wgpu::TextureViewDimension::D2);
+    [uniform_entry(0), map(1), map(2), sampler_entry(3), map(4), map(5)]
+}
+
+/// A pipeline that draws the faces of a material with `features` (`gbuffer.wgsl`'s vertex
+/// stages) through the fragment entry and targets of `fragment`, behind the reverse-Z depth
+/// test, culling the faces whose `culled` side is towards the camera: the G-buffer's pipelines
+/// and the far side layer's.
+pub(super) fn model_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    features: Features,
+    culled: Option<wgpu::Face>,
+    (entry, targets): (&str, &[Option<wgpu::ColorTargetState>]),
+) -> wgpu::RenderPipeline {
+    let flag = |on: bool| if on { 1.0 } else { 0.0 };
+    let constants = [
+        ("TEXTURED", flag(features.textured)),
+        ("SPECULAR_MAP", features.specular.shader_code()),
+        ("NORMAL_MAPPED", flag(features.normal_mapped)),
+        ("CUT_OUT", flag(features.cut_out)),
+        ("THIN", flag(features.thin)),
+    ];
+    let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+    let vertex = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+    };
+    let tangent = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<[f32; 4]>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![3 => Float32x4],
+    };
+    let buffers = [Some(vertex), Some(tangent)];
+    let buffers = if features.normal_mapped { &buffers[..] } else { &buffers[..1] };
+    let label = format!("{entry}_pipeline_{features:?}_{culled:?}_culled");
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(&label),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(if features.normal_mapped { "vs_mapped" } else { "vs_main" }),
+            compilation_options: options.clone(),
+            buffers,
+        },
+        primitive: wgpu::PrimitiveState { cull_mode: culled, ..Default::default() },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Greater),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState { module, entry_point: Some(entry), compilation_options: options, targets }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// A render pass that draws the model into `colors` and the depth target of `depth` (cleared to
+/// the far plane, then stored or not), with the frame's bind group and the model's buffers set:
+/// the G-buffer's, and the far side layer's.
+pub(super) fn begin_model_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    colors: &[Option<wgpu::RenderPassColorAttachment<'_>>],
+    (depth, store): (&wgpu::TextureView, wgpu::StoreOp),
+    timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    frame: &wgpu::BindGroup,
+    scene: &SceneGpu,
+) -> wgpu::RenderPass<'e> {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: colors,
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: timestamps,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_bind_group(0, frame, &[]);
+    pass.set_vertex_buffer(0, scene.vertices.slice(..));
+    if let Some(tangents) = &scene.tangents {
+        pass.set_vertex_buffer(1, tangents.slice(..));
+    }
+    pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+    pass
+}
+
 impl Pass for GBufferPass {
     fn upload_scene(&mut self, gpu: &Gpu, model: &Model, thickness: &[u32]) -> Option<SceneGpu> {
         Some(self.upload(gpu, model, thickness))
@@ -303,27 +351,10 @@ impl Pass for GBufferPass {
         let Recording { encoder, timestamps, targets, frame, scene, plan, sky, .. } = rec;
         let attachment = crate::render::graph::io::color_attachment;
         let layer = plan.thickness_layer.then(|| attachment(&targets.expect(THICKNESS).view, true));
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gbuffer_pass"),
-            color_attachments: &[attachment(&targets.albedo().view, true), attachment(&targets.normal().view, true)]
-                .into_iter()
-                .chain(layer)
-                .collect::<Vec<_>>(),
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth().view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: timestamps,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_vertex_buffer(0, scene.vertices.slice(..));
-        if let Some(tangents) = &scene.tangents {
-            pass.set_vertex_buffer(1, tangents.slice(..));
-        }
-        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+        let colors = [attachment(&targets.albedo().view, true), attachment(&targets.normal().view, true)];
+        let colors: Vec<_> = colors.into_iter().chain(layer).collect();
+        let depth = (&targets.depth().view, wgpu::StoreOp::Store);
+        let mut pass = begin_model_pass(encoder, "gbuffer_pass", &colors, depth, timestamps, frame, scene);
         // Two rounds (`Sides`): every material's faces seen from the front (a plain material's
         // every face), then the faces of those that read maps seen from behind.
         for second in [false, true] {
