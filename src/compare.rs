@@ -23,7 +23,10 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
             s.sampling.count_label()
         ));
     }
-    lines.push(format!("sky {sky}, {lights} lights, ambient {}", s.ambient));
+    // The far side layer, where it is drawn (a bounce of the point lights' light).
+    let bounces = s.mode.declaration().directional_occlusion && s.indirect_strength > 0.0;
+    let far = if s.far_side && bounces && lights > 0 { ", far side" } else { "" };
+    lines.push(format!("sky {sky}, {lights} lights, ambient {}{far}", s.ambient));
     lines
 }
 

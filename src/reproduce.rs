@@ -75,6 +75,7 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
     let switches = [
         (view.no_surface_maps, "--no-surface-maps"),
         (s.sampling.depth_pyramid, "--depth-pyramid"),
+        (s.far_side, "--far-side"),
         (!s.blur, "--no-blur"),
         (!s.half_resolution, "--full-res"),
     ];

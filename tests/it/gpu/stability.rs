@@ -165,6 +165,10 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     c.size = (1, 1);
     c.settings.sampling.depth_pyramid = true;
     list.push(c);
+    let mut c = base("far side layer, 37x23", "--far-side --size 37x23");
+    c.size = (37, 23);
+    c.settings.far_side = true;
+    list.push(c);
     let max = gpu.device.limits().max_texture_dimension_2d;
     let mut c = base("largest 2D size (width)", "--size <max>x2");
     c.size = (max, 2);
