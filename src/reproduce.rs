@@ -34,8 +34,8 @@ pub struct ViewDescription<'a> {
 pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
     let mut args: Vec<String> = vec!["capture".into()];
     let mut flag = |name: &str, value: String| args.extend([format!("--{name}"), value]);
-    if view.layout == Layout::Room {
-        flag("scene", "room".into());
+    if view.layout != Layout::Model {
+        flag("scene", view.layout.name().into());
     }
     if let Some(triangles) = view.triangles {
         flag("triangles", triangles.to_string());

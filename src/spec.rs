@@ -18,7 +18,9 @@ use crate::{Error, Result};
 #[derive(Args)]
 pub struct SceneArgs {
     /// model: the model framed by the orbit camera; room: the model lying on the floor of a closed
-    /// room that fills the screen, seen by a fixed camera (the classic SSAO chapter's set-up)
+    /// room that fills the screen, seen by a fixed camera (the classic SSAO chapter's set-up);
+    /// crevices, fence, open, stairs: the report's scenes, framed as the report sees them (open
+    /// under skyboxes/redblue unless --skybox is given)
     #[arg(long = "scene", default_value = "model")]
     pub layout: scene::Layout,
     /// With --scene room and no --model: the built-in figure's triangle count [default: 50000]
@@ -239,9 +241,12 @@ impl SceneArgs {
         Ok(model)
     }
 
-    /// The sky folder, or the default sky.
+    /// The sky folder, or the scene's own (open's), or the default sky.
     pub fn load_sky(&self) -> Result<scene::Skybox> {
-        scene::load_skybox(self.skybox.as_deref())
+        match (&self.skybox, self.layout.sky()) {
+            (None, Some(own)) => scene::Skybox::load(&own),
+            (given, _) => scene::load_skybox(given.as_deref()),
+        }
     }
 
     /// `model` with this run's lights.

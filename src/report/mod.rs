@@ -21,7 +21,7 @@ mod options;
 mod pattern;
 mod plot;
 mod row;
-pub mod scenes;
+pub use crate::scene::named as scenes;
 pub mod sweep;
 mod table;
 

@@ -13,6 +13,7 @@ pub mod irradiance;
 pub mod lights;
 pub mod load;
 pub mod model;
+pub mod named;
 pub mod obj_model;
 pub mod obj_text;
 pub mod panorama;

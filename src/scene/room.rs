@@ -25,22 +25,43 @@ const MODEL_CENTER_Z: f32 = -2.0;
 /// The chapter's room albedo.
 const ROOM_ALBEDO: [f32; 3] = [0.95, 0.95, 0.95];
 
-/// How the loaded model is placed: as it is (framed by the orbit camera) or in the room.
+/// How the loaded model is placed: as it is (framed by the orbit camera) or in the room; or one
+/// of the report's named scenes (`super::named`), framed as the model is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Layout {
     #[default]
     Model,
     Room,
+    Crevices,
+    Fence,
+    Open,
+    Stairs,
 }
 
 impl Layout {
-    pub const ALL: [Layout; 2] = [Layout::Model, Layout::Room];
+    pub const ALL: [Layout; 6] =
+        [Layout::Model, Layout::Room, Layout::Crevices, Layout::Fence, Layout::Open, Layout::Stairs];
 
     pub fn name(self) -> &'static str {
         match self {
             Layout::Model => "model",
             Layout::Room => "room",
+            Layout::Crevices => "crevices",
+            Layout::Fence => "fence",
+            Layout::Open => "open",
+            Layout::Stairs => "stairs",
         }
+    }
+
+    /// Whether the layout is a named scene, which builds its own model.
+    fn named(self) -> bool {
+        !matches!(self, Layout::Model | Layout::Room)
+    }
+
+    /// The sky the layout is meant to be seen under, where it is not the default (open's
+    /// red-blue sky).
+    pub fn sky(self) -> Option<std::path::PathBuf> {
+        super::named::sky_of(self.name())
     }
 }
 
@@ -71,6 +92,14 @@ impl Layout {
         }
         let model = match (self, path) {
             (Self::Room, None) => figure(triangles.unwrap_or(DEFAULT_FIGURE_TRIANGLES))?,
+            (named, Some(path)) if named.named() => {
+                return Err(Error::Setting(format!(
+                    "--model {}: --scene {} builds its own model; --model goes with --scene model or room",
+                    path.display(),
+                    named.name()
+                )))
+            }
+            (named, None) if named.named() => super::named::by_name(named.name())?.0,
             (_, path) => super::load::load_model(path)?,
         };
         self.arrange(model.scaled(scale))
@@ -78,15 +107,15 @@ impl Layout {
 
     pub fn arrange(self, model: Model) -> Result<Model> {
         match self {
-            Self::Model => Ok(model),
             Self::Room => in_room(model),
+            _ => Ok(model),
         }
     }
 
-    /// The camera before the command line's flags: the model framed, or the room's fixed view.
+    /// The camera before the command line's flags: the model framed (the report's view of a
+    /// named scene too), or the room's fixed view.
     pub fn camera(self, bounds: &Bounds) -> OrbitCamera {
         match self {
-            Self::Model => OrbitCamera::framing(bounds),
             Self::Room => OrbitCamera {
                 target: Vec3::ZERO,
                 yaw_deg: 0.0,
@@ -96,6 +125,7 @@ impl Layout {
                 near: 0.1,
                 far: Some(50.0),
             },
+            _ => OrbitCamera::framing(bounds),
         }
     }
 }

@@ -160,6 +160,29 @@ fn the_room_benches_on_both_paths_and_its_flags_are_checked() {
     }
 }
 
+/// The report's scenes are scenes of every command: captured as the report frames them, open
+/// under its own red-blue sky; a named scene takes no model file.
+#[test]
+fn the_reports_scenes_capture_as_the_report_sees_them() {
+    refused(
+        &["capture", "--scene", "fence", "--model", "models/cornell/cornell.obj"],
+        2,
+        "--model models/cornell/cornell.obj: --scene fence builds its own model",
+    );
+    let Some(out) = common::folder_if_adapter() else { return };
+    for scene in ["crevices", "fence", "open", "stairs"] {
+        let dir = out.path().join(scene);
+        let args = ["capture", "--scene", scene, "--mode", "ssdo", "--size", "64x48", "--far-side"];
+        let result = ssdo(&[&args[..], &["--out", dir.to_str().unwrap()]].concat());
+        assert!(result.status.success(), "{scene}: {}", stderr(&result));
+        assert!(dir.join("ssdo.png").is_file(), "{scene}");
+    }
+    // Open's sky is red below the horizon: the background below the floor is red.
+    let image = image::open(out.path().join("open/ssdo.png")).unwrap().to_rgb8();
+    let below = image.get_pixel(32, 47).0;
+    assert!(below[0] > 2 * below[2], "open's sky below the floor is red: {below:?}");
+}
+
 #[test]
 fn viewer_refuses_bad_input_before_opening_a_window() {
     let result = ssdo(&["view", "--model", "no/such/model.obj"]);

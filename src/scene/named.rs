@@ -1,13 +1,14 @@
-//! Named scenes for the report: the default scene, three that stress the screen-space methods
-//! (deep crevices, thin fins, a checker-cut fence), and a held-out one (`stairs`) that no estimator
-//! or default was tuned on.
+//! Named scenes, for the report (`ssdo report --scene`) and for every command (`--scene`): the
+//! default scene, three that stress the screen-space methods (deep crevices, thin fins, a
+//! checker-cut fence), an open one under the red-blue sky, and a held-out one (`stairs`) that no
+//! estimator or default was tuned on.
 
 use std::path::PathBuf;
 
 use glam::Vec3;
 
-use crate::scene::builtin::{self, MeshBuilder};
-use crate::scene::{self, Material, Model};
+use super::builtin::{self, MeshBuilder};
+use super::model::{self, Material, Model};
 use crate::{Error, Result};
 
 pub const NAMES: [&str; 5] = ["cornell", "crevices", "fence", "open", "stairs"];
@@ -18,13 +19,18 @@ const REDBLUE: &str = "skyboxes/redblue";
 /// A scene by name, with the sky folder it is meant to be seen under.
 pub fn by_name(name: &str) -> Result<(Model, Option<PathBuf>)> {
     match name {
-        "cornell" => Ok((scene::load_model(None)?, None)),
+        "cornell" => Ok((super::load::load_model(None)?, None)),
         "crevices" => Ok((crevices()?, None)),
         "fence" => Ok((fence()?, None)),
-        "open" => Ok((open()?, Some(scene::asset(REDBLUE)))),
+        "open" => Ok((open()?, sky_of(name))),
         "stairs" => Ok((stairs()?, None)),
         other => Err(Error::Setting(format!("unknown scene '{other}' (expected one of {})", NAMES.join(", ")))),
     }
+}
+
+/// The sky the scene `name` is meant to be seen under, where it is not the default.
+pub fn sky_of(name: &str) -> Option<PathBuf> {
+    (name == "open").then(|| super::load::asset(REDBLUE))
 }
 
 /// Thin features and deep crevices: a comb of thin fins with narrow slots between them, a deep
@@ -65,9 +71,9 @@ pub fn fence() -> Result<Model> {
             [150, 110, 70, if open { 0 } else { 255 }]
         })
         .collect();
-    let mask = crate::scene::texture::TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba) };
+    let mask = super::texture::TextureImage { width: w, height: h, rgba: std::sync::Arc::new(rgba) };
     let mut slats = Material::plain("fence", [0.6, 0.45, 0.3]);
-    slats.cutout = Some(scene::model::Cutout { mask: Some(mask), factor: 1.0, cutoff: 0.5 });
+    slats.cutout = Some(model::Cutout { mask: Some(mask), factor: 1.0, cutoff: 0.5 });
     let fence = b.material(slats);
     let block = b.material(Material::plain("block", [0.3, 0.6, 0.8]));
     b.quad(floor, [v(-2.5, 0.0, 2.5), v(2.5, 0.0, 2.5), v(2.5, 0.0, -2.5), v(-2.5, 0.0, -2.5)]);
