@@ -145,7 +145,8 @@ impl Knobs {
         let bounce = if self.indirect_strength == 0.0 {
             "no bounce".to_string()
         } else {
-            format!("senders {}", self.sender_sky)
+            let far = if self.far_side { " + far side" } else { "" };
+            format!("senders {}{far}", self.sender_sky)
         };
         let marches = self.variant.decl().marched_lengths;
         format!(

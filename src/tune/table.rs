@@ -189,12 +189,15 @@ impl Tune {
         })
     }
 
-    /// The pick as a command that renders it, or `None` without a pick. A named scene built into
-    /// the report (crevices, open, stairs) has no file to load: the command then names what it
-    /// leaves out.
+    /// The pick as a command that renders it, or `None` without a pick: on the model file, or on
+    /// the named scene (`--scene`, which every command takes).
     pub fn capture_command(&self, options: &TuneOptions) -> Option<String> {
         let knobs = self.picked()?.knobs?;
-        let mut words = vec!["capture".to_string(), "--mode".into(), options.mode.name().into()];
+        let mut words = vec!["capture".to_string()];
+        if options.on.model.is_none() && options.on.scene != "cornell" {
+            words.extend(["--scene".into(), options.on.scene.clone()]);
+        }
+        words.extend(["--mode".into(), options.mode.name().into()]);
         words.extend(["--size".into(), format!("{}x{}", options.on.size.0, options.on.size.1)]);
         if let Some(model) = &options.on.model {
             words.extend(["--model".into(), model.display().to_string()]);
@@ -212,11 +215,7 @@ impl Tune {
             words.extend(["--seed".into(), options.on.seed.to_string()]);
         }
         words.extend(knobs.flags(self.default_radius));
-        let mut line = crate::reproduce::shell_line(&words);
-        if options.on.model.is_none() && options.on.scene != "cornell" {
-            let _ = write!(line, "   # the settings; scene '{}' is built into report and tune only", options.on.scene);
-        }
-        Some(line)
+        Some(crate::reproduce::shell_line(&words))
     }
 
     /// Writes front.csv, tune.md and (with a pick) preset.json into the output folder, together.
@@ -307,13 +306,11 @@ mod tests {
         let table = t.markdown(&o);
         assert!(table.contains("median of 6 frames"), "{table}");
         assert!(table.contains("the most accurate setting within 15.00 ms (3.0× Off)"), "{table}");
-        // No preset and no command without a pick; a built-in scene says the command renders
-        // the settings only.
+        // No preset and no command without a pick; a named scene is the command's `--scene`.
         let none = tune(None, Verdict::BelowCheapest, 2.0);
         assert!(none.preset(&o).is_none() && none.capture_command(&o).is_none());
         let command = t.capture_command(&o).unwrap();
-        assert!(command.starts_with("ssdo capture --mode ssdo --size 320x240 --slices 1"), "{command}");
-        assert!(command.contains("scene 'open' is built into report and tune only"), "{command}");
+        assert!(command.starts_with("ssdo capture --scene open --mode ssdo --size 320x240 --slices 1"), "{command}");
     }
 
     #[test]
