@@ -189,9 +189,9 @@ fn fs_thickness(in: VertexOut, @builtin(front_facing) front: bool) -> ThicknessO
 
 // The far side layer (drawn by src/render/passes/far_side.rs with the faces towards the camera
 // culled, so each pixel holds the nearest surface turned away from the eye: a closed fin's or
-// box's far face, an underside, a sheet's other side): its normal as the mesh has it (away from
-// the eye) with its shininess bits, its albedo, and its depth's bits. The lighting pass lights it
-// as a sender (lighting.wgsl, `far_sender`).
+// box's far face, an underside, the other side of a sheet seen from behind): its normal as the
+// mesh has it (away from the eye) with its shininess bits, its albedo, and its depth's bits. The
+// lighting pass lights it as a sender (lighting.wgsl, `far_sender`).
 @fragment
 fn fs_far_side(in: VertexOut) -> @location(0) vec4<u32> {
     let g = surface(in, true);

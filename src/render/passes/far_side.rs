@@ -1,7 +1,7 @@
 //! The far side layer (`--far-side`): a second geometry pass that draws the model with the faces
 //! towards the camera culled, so each pixel holds the nearest surface turned away from the eye —
-//! a closed fin's or box's far face, an underside, a sheet's other side (`gbuffer.wgsl`,
-//! `fs_far_side`): its normal, albedo and depth. The lighting pass lights it as a sender of SSDO's
+//! a closed fin's or box's far face, an underside, the other side of a sheet seen from behind
+//! (`gbuffer.wgsl`, `fs_far_side`): its normal, albedo and depth. The lighting pass lights it as a sender of SSDO's
 //! bounce beside the surface the screen shows, and the march takes its light where that surface
 //! faces away from the receiver: the senders the G-buffer cannot hold because they face away
 //! from the camera. Its fragments only store: lit here, the point lights' loop ran for every
