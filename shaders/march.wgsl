@@ -40,8 +40,7 @@ override USE_PYRAMID: bool = false;
 // read in place of the depth where the plan has it (THICKNESS_LAYER); a 1x1 stand-in otherwise.
 @group(1) @binding(6) var thickness_layer: texture_2d<u32>;
 override THICKNESS_LAYER: bool = false;
-// The bounce target holds, beside each sender, the far side layer's (lighting.wgsl
-// `far_sender`): the nearest surface behind it turned from the eye, lit.
+// The bounce target's second pair holds the far side layer's senders (lighting.wgsl).
 override FAR_SIDE: bool = false;
 
 #include "common/sectors.wgsl"
@@ -178,24 +177,17 @@ fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSampl
 }
 
 // The bounce the sender at `texel` (at `front` from the receiver) sends into the sectors
-// `fresh` it is the first to occlude: only a sender facing the receiver sends its light this way.
-// Where the surface the screen shows faces away, the bounce target's second pair (FAR_SIDE) holds
-// the far side layer's sender, the nearest surface behind it turned from the eye (a fin's or a
-// box's far face, an underside): it is taken to be what those sectors see, and sends its own
-// light if it faces the receiver. (Only where it lay within the sample's span was measured too:
-// stairs' SSDO error 0.0232 → 0.0279, open's 0.0223 → 0.0242, cornell's 0.0203 → 0.0201.)
-// Otherwise a sheet (`sheet`: the thickness
-// layer's class of a cut-out or a thin surface), whose far side faces the receiver where its near
-// side does not, is taken to send what its near side does: the two sides of a fence or of a fin
-// between slots see much the same light (scaling it by the sky's irradiance on each side cost the
-// sampling pass 7% and moved the report's rows by under 2%; docs/accuracy.md).
+// `fresh` it is the first to occlude: a sender facing the receiver sends its light. Where the
+// one the screen shows faces away, the far side layer's sender behind it (FAR_SIDE: a fin's or
+// box's far face, an underside) sends its own if it faces the receiver; else a sheet (a cut-out
+// or thin class) sends its near side's light from its far side, as the two sides of a fence see
+// much the same light (the candidates measured for both: docs/accuracy.md).
 fn bounce_from(texel: vec2<i32>, front: vec3<f32>, fresh: u32, weights: vec4<f32>, sheet: bool) -> vec3<f32> {
     let senders = textureLoad(bounce_map, texel, 0);
     var sender = senders.xy;
     var sends = dot(sender_normal(sender), -front) > 0.0;
     if FAR_SIDE {
-        // (Its facing tested from the near surface's point: the layer keeps no depth for it. A
-        // select, not a branch, for the reason below.)
+        // Faces tested from the near point (no far depth is kept); a select, as below.
         let far = !sends && any(senders.zw != vec2<u32>(0u)) && dot(sender_normal(senders.zw), -front) > 0.0;
         sender = select(sender, senders.zw, far);
         sends = sends || far;

@@ -4,11 +4,12 @@
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgba, RgbaImage};
 
-use crate::render::Settings;
+use crate::render::Renderer;
 
-/// The caption of one mode's panel: the mode and its key, then the settings that shaped it.
-pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Vec<String> {
-    let s = settings;
+/// The caption of the panel `renderer` just rendered: the mode and its key, then the settings and
+/// the plan that shaped it.
+pub fn caption(renderer: &Renderer, sky: &str, lights: usize) -> Vec<String> {
+    let (s, radius) = (&renderer.settings, renderer.radius());
     let mut lines = vec![format!("{}  [{}]", s.mode.title(), s.mode.key())];
     if !s.mode.declaration().runs_sampling() {
         let light = s.sampling.variant.decl().composite.label();
@@ -23,9 +24,8 @@ pub fn caption(settings: &Settings, radius: f32, sky: &str, lights: usize) -> Ve
             s.sampling.count_label()
         ));
     }
-    // The far side layer, where it is drawn (a bounce of the point lights' light).
-    let bounces = s.mode.declaration().directional_occlusion && s.indirect_strength > 0.0;
-    let far = if s.far_side && bounces && lights > 0 { ", far side" } else { "" };
+    // The far side layer, where the plan draws it.
+    let far = if renderer.plan().far_side { ", far side" } else { "" };
     lines.push(format!("sky {sky}, {lights} lights, ambient {}{far}", s.ambient));
     lines
 }

@@ -125,7 +125,7 @@ fn run_capture(args: &CaptureArgs) -> Result<()> {
             batch.stage(&exr, &output::exr_bytes(&exr, &ssdo::headless::stats::hdr_image(&gpu, &renderer)?)?)?;
         }
         log::info!("{mode}: {}x{} in {:.0} ms", size.0, size.1, started.elapsed().as_secs_f64() * 1e3);
-        panels.push((compare::caption(&renderer.settings, renderer.radius(), &sky.name, scene.lights.len()), image));
+        panels.push((compare::caption(&renderer, &sky.name, scene.lights.len()), image));
     }
     if let Some(truth) = &truth {
         let image = &panels[panels.len() - 1].1;

@@ -148,12 +148,7 @@ impl Viewer {
             if let Some(truth) = self.truth_for_compare() {
                 errors.push(truth.measure(&self.gpu, &self.renderer, m, &image)?);
             }
-            let caption = compare::caption(
-                &self.renderer.settings,
-                self.renderer.radius(),
-                &self.panel.sky_name,
-                self.scene.lights.len(),
-            );
+            let caption = compare::caption(&self.renderer, &self.panel.sky_name, self.scene.lights.len());
             panels.push((caption, image));
         }
         if let Some(truth) = self.truth_for_compare() {

@@ -124,6 +124,15 @@ pub const BOUNCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// (`--far-side`; none: zero), lit the same way: a march step reads both in one 16-byte load.
 pub const BOUNCE_WITH_FAR: TargetId =
     TargetId::new("bounce_radiance_with_far", wgpu::TextureFormat::Rgba32Uint, Place::Screen);
+
+/// The bounce's senders' target: with the far side layer's beside them where `far_side`.
+pub fn bounce_target(far_side: bool) -> TargetId {
+    if far_side {
+        BOUNCE_WITH_FAR
+    } else {
+        BOUNCE
+    }
+}
 /// What the frame is drawn into.
 pub const OUTPUT: TargetId = TargetId::new("output", ALBEDO_FORMAT, Place::Output);
 

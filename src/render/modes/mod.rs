@@ -43,7 +43,7 @@ pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
 use super::settings::SenderSky;
-use super::targets::{Place, Stage, TargetId, BOUNCE, BOUNCE_WITH_FAR, DO_FORMAT};
+use super::targets::{Place, Stage, TargetId, DO_FORMAT};
 use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 
 /// What the scene brings that changes the plan.
@@ -270,11 +270,7 @@ impl Plan {
     /// The target the lighting pass writes the bounce's senders into: with the far side
     /// layer's beside them where the plan draws it.
     pub fn bounce_target(&self) -> TargetId {
-        if self.far_side {
-            BOUNCE_WITH_FAR
-        } else {
-            BOUNCE
-        }
+        super::targets::bounce_target(self.far_side)
     }
 
     pub fn has(&self, step: Step) -> bool {

@@ -1,11 +1,12 @@
 //! The far side layer (`--far-side`): a second geometry pass that draws the model with the faces
 //! towards the camera culled, so each pixel holds the nearest surface turned away from the eye —
 //! a closed fin's or box's far face, an underside, the other side of a sheet seen from behind
-//! (`gbuffer.wgsl`, `fs_far_side`): its normal, albedo and depth. The lighting pass lights it as a sender of SSDO's
-//! bounce beside the surface the screen shows, and the march takes its light where that surface
-//! faces away from the receiver: the senders the G-buffer cannot hold because they face away
-//! from the camera. Its fragments only store: lit here, the point lights' loop ran for every
-//! face drawn over another (25.6 ms against 9.1 for the pass in the room at 800x600, lavapipe).
+//! (`gbuffer.wgsl`, `fs_far_side`): its normal, albedo and depth. The lighting pass lights it as
+//! a sender of SSDO's bounce beside the surface the screen shows, and the march takes its light
+//! where that surface faces away from the receiver: the senders the G-buffer cannot hold because
+//! they face away from the camera. Its fragments only store: lit here, the point lights' loop
+//! ran for every face drawn over another (25.6 ms against 9.1 for the pass in the room at
+//! 800x600, lavapipe).
 
 use super::gbuffer::{begin_model_pass, material_entries, model_pipeline};
 use crate::gpu::Gpu;

@@ -18,7 +18,7 @@ use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{ALBEDO, BOUNCE, BOUNCE_WITH_FAR, DEPTH, HDR, HDR_FORMAT, NORMAL};
+use crate::render::targets::{bounce_target, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL};
 use crate::Result;
 
 impl Step {
@@ -67,11 +67,6 @@ impl Key {
         }
     }
 
-    fn bounce_format(self) -> wgpu::TextureFormat {
-        let target = if self.far_side { BOUNCE_WITH_FAR } else { BOUNCE };
-        target.format
-    }
-
     fn spec(self) -> PipelineSpec {
         let hdr = self.lights.then(|| HDR_FORMAT.into());
         let constants = [
@@ -84,7 +79,7 @@ impl Key {
         ];
         PipelineSpec {
             entry: if self.lights { "fs_main" } else { "fs_bounce" },
-            targets: hdr.into_iter().map(Some).chain([Some(self.bounce_format().into())]).collect(),
+            targets: hdr.into_iter().map(Some).chain([Some(bounce_target(self.far_side).format.into())]).collect(),
             constants: constants.into_iter().chain(self.light_reads.constants()).collect(),
         }
     }

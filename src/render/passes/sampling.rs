@@ -181,7 +181,7 @@ impl Pass for SamplingPass {
             normal_mapped: plan.features.normal_mapped,
             last_sky: plan.sender_sky == SenderSky::LastFrame,
             thickness_layer: plan.thickness_layer,
-            far_side: plan.far_side && Outputs::of(plan).indirect,
+            far_side: plan.far_side,
         };
 
         let march_module = &self.march_module;
