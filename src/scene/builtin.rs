@@ -36,6 +36,12 @@ impl MeshBuilder {
         }
     }
 
+    /// A square floor at y = 0, `half` either way from the origin, facing up.
+    pub fn floor(&mut self, material: usize, half: f32) {
+        let v = |x: f32, z: f32| Vec3::new(x, 0.0, z);
+        self.quad(material, [v(-half, half), v(half, half), v(half, -half), v(-half, -half)]);
+    }
+
     /// An axis-aligned box with outward faces; `bottom` false leaves the face on the floor out.
     pub fn cuboid(&mut self, material: usize, min: Vec3, max: Vec3, bottom: bool) {
         let v = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
@@ -93,7 +99,7 @@ pub fn cornell() -> Result<Model> {
     let blue = b.material(Material::plain("blue_wall", BLUE));
     let object =
         b.material(Material { specular: [0.35; 3], shininess: 48.0, ..Material::plain("object", [0.72, 0.7, 0.66]) });
-    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    b.floor(floor, 2.0);
     b.quad(red, [v(-2.0, 0.0, -2.0), v(-2.0, 0.0, 2.0), v(-2.0, 2.2, 2.0), v(-2.0, 2.2, -2.0)]);
     b.quad(blue, [v(-2.0, 0.0, -2.0), v(-2.0, 2.2, -2.0), v(2.0, 2.2, -2.0), v(2.0, 0.0, -2.0)]);
     // Arch: two pillars under an overhanging slab.

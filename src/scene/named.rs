@@ -41,7 +41,7 @@ pub fn crevices() -> Result<Model> {
     let floor = b.material(Material::plain("floor", builtin::WHITE));
     let fins = b.material(Material::plain("fins", [0.8, 0.55, 0.3]));
     let block = b.material(Material::plain("block", [0.3, 0.6, 0.8]));
-    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    b.floor(floor, 2.0);
     for k in 0..8 {
         let x = -1.6 + 0.2 * k as f32;
         b.cuboid(fins, v(x, 0.0, -1.2), v(x + 0.04, 1.0, 0.2), false);
@@ -76,7 +76,7 @@ pub fn fence() -> Result<Model> {
     slats.cutout = Some(model::Cutout { mask: Some(mask), factor: 1.0, cutoff: 0.5 });
     let fence = b.material(slats);
     let block = b.material(Material::plain("block", [0.3, 0.6, 0.8]));
-    b.quad(floor, [v(-2.5, 0.0, 2.5), v(2.5, 0.0, 2.5), v(2.5, 0.0, -2.5), v(-2.5, 0.0, -2.5)]);
+    b.floor(floor, 2.5);
     b.quad(fence, [v(-1.5, 0.0, 0.0), v(1.5, 0.0, 0.0), v(1.5, 1.2, 0.0), v(-1.5, 1.2, 0.0)]);
     b.cuboid(block, v(-1.2, 0.0, -1.4), v(-0.2, 0.5, -0.8), false);
     b.cuboid(block, v(1.5, 0.0, -0.08), v(1.66, 1.3, 0.08), false);
@@ -89,7 +89,7 @@ pub fn open() -> Result<Model> {
     let mut b = MeshBuilder::default();
     let floor = b.material(Material::plain("floor", builtin::WHITE));
     let balls = b.material(Material::plain("balls", [0.8, 0.8, 0.75]));
-    b.quad(floor, [v(-4.0, 0.0, 4.0), v(4.0, 0.0, 4.0), v(4.0, 0.0, -4.0), v(-4.0, 0.0, -4.0)]);
+    b.floor(floor, 4.0);
     b.sphere(balls, v(-1.0, 0.6, 0.0), 0.6, 32, 16);
     b.sphere(balls, v(0.6, 0.35, 0.8), 0.35, 24, 12);
     b.sphere(balls, v(1.0, 0.9, -1.0), 0.9, 32, 16);

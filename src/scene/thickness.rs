@@ -243,7 +243,7 @@ mod tests {
         let floor = b.material(Material::plain("floor", [1.0; 3]));
         let fins = b.material(Material::plain("fins", [1.0; 3]));
         let block = b.material(Material::plain("block", [1.0; 3]));
-        b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+        b.floor(floor, 2.0);
         for k in 0..4 {
             let x = 0.2 * k as f32;
             b.cuboid(fins, v(x, 0.0, -1.0), v(x + 0.04, 1.0, 0.0), false);

@@ -122,6 +122,16 @@ pub fn project_to(camera: &OrbitCamera, size: (u32, u32), p: Vec3) -> (usize, us
     (((ndc.x * 0.5 + 0.5) * w) as usize, ((0.5 - ndc.y * 0.5) * h) as usize)
 }
 
+/// A builder holding a square floor of `floor`'s albedo (`half` either way from the origin) and
+/// a second material, `name` of `albedo`, for what stands on it; the second's index.
+pub fn on_floor(floor: [f32; 3], half: f32, name: &str, albedo: [f32; 3]) -> (MeshBuilder, usize) {
+    let mut b = MeshBuilder::default();
+    let floor = b.material(Material::plain("floor", floor));
+    let other = b.material(Material::plain(name, albedo));
+    b.floor(floor, half);
+    (b, other)
+}
+
 /// A white floor beside a red wall (the plane x = 0) lit by one white light, under a constant sky
 /// of `sky`, and a camera facing the wall (their corner a horizontal line across the middle of
 /// the view): the colour-bleeding scene.

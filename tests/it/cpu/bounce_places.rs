@@ -5,8 +5,7 @@
 
 use glam::Vec3;
 use ssdo::reference::{self, ReferenceScene, SenderPlace, TraceSettings};
-use ssdo::scene::builtin::MeshBuilder;
-use ssdo::scene::{LightRig, Material, OrbitCamera, Skybox};
+use ssdo::scene::{LightRig, OrbitCamera, Skybox};
 
 const SIZE: (u32, u32) = (64, 48);
 
@@ -14,10 +13,7 @@ const SIZE: (u32, u32) = (64, 48);
 /// wide and 1.5 high facing -x.
 fn floor_and_wall() -> ReferenceScene {
     let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let floor = b.material(Material::plain("floor", [0.0; 3]));
-    let wall = b.material(Material::plain("wall", [0.8, 0.1, 0.1]));
-    b.quad(floor, [v(-10.0, 0.0, 10.0), v(10.0, 0.0, 10.0), v(10.0, 0.0, -10.0), v(-10.0, 0.0, -10.0)]);
+    let (mut b, wall) = crate::common::on_floor([0.0; 3], 10.0, "wall", [0.8, 0.1, 0.1]);
     b.quad(wall, [v(1.5, 0.0, 1.0), v(1.5, 0.0, -1.0), v(1.5, 1.5, -1.0), v(1.5, 1.5, 1.0)]);
     ReferenceScene::new(&b.build("wall").unwrap())
 }
@@ -85,10 +81,7 @@ fn a_wall_beside_the_view_sends_its_bounce_from_off_screen_and_in_view_from_the_
 /// of `xs`.
 fn floor_and_fins(xs: &[f32]) -> ReferenceScene {
     let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let floor = b.material(Material::plain("floor", [0.0; 3]));
-    let fin = b.material(Material::plain("fin", [0.8, 0.1, 0.1]));
-    b.quad(floor, [v(-10.0, 0.0, 10.0), v(10.0, 0.0, 10.0), v(10.0, 0.0, -10.0), v(-10.0, 0.0, -10.0)]);
+    let (mut b, fin) = crate::common::on_floor([0.0; 3], 10.0, "fin", [0.8, 0.1, 0.1]);
     for &x in xs {
         b.cuboid(fin, v(x, 0.0, -1.0), v(x + 0.1, 1.5, 1.0), false);
     }

@@ -10,18 +10,14 @@ use rand::{rngs::StdRng, SeedableRng};
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::reference::{ReferenceScene, TraceSettings};
 use ssdo::render::{Mode, Sampling, Settings, Variant, View};
-use ssdo::scene::builtin::MeshBuilder;
-use ssdo::scene::{Material, OrbitCamera, PointLight, Scene, Skybox};
+use ssdo::scene::{OrbitCamera, PointLight, Scene, Skybox};
 
 /// A red block (1.2 wide, 0.25 tall, 0.4 deep: thicker than the march's slab) on a white floor,
 /// and one light behind it, low: it lights the block's far face, which faces the floor behind
 /// the block and is turned from a camera in front.
 fn block_lit_from_behind() -> Scene {
     let v = Vec3::new;
-    let mut b = MeshBuilder::default();
-    let floor = b.material(Material::plain("floor", [0.8; 3]));
-    let block = b.material(Material::plain("block", [0.8, 0.1, 0.1]));
-    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    let (mut b, block) = common::on_floor([0.8; 3], 2.0, "block", [0.8, 0.1, 0.1]);
     b.cuboid(block, v(-0.6, 0.0, -0.2), v(0.6, 0.25, 0.2), false);
     let mut scene = Scene::new(b.build("block").unwrap(), 0, 1);
     scene.lights = vec![PointLight { position: v(0.0, 0.12, -0.8), color: Vec3::ONE, intensity: 0.5 }];

@@ -362,7 +362,7 @@ fn blur_does_not_bleed_across_silhouettes() {
     let mut b = MeshBuilder::default();
     let floor = b.material(Material::plain("floor", [0.8; 3]));
     let block = b.material(Material::plain("block", [0.8; 3]));
-    b.quad(floor, [v(-50.0, 0.0, 50.0), v(50.0, 0.0, 50.0), v(50.0, 0.0, -50.0), v(-50.0, 0.0, -50.0)]);
+    b.floor(floor, 50.0);
     b.cuboid(block, v(-0.5, 0.0, -0.5), v(0.5, 1.5, 0.5), false);
     let model: Model = b.build("block").unwrap();
     let scene = Scene::new(model, 0, 1);

@@ -77,7 +77,7 @@ fn a_lit_wall_sends_its_diffuse_radiance_as_the_bounce() {
     let mut b = MeshBuilder::default();
     let floor = b.material(Material::plain("floor", [0.8; 3]));
     let wall = b.material(Material::plain("wall", [0.9, 0.05, 0.05]));
-    b.quad(floor, [v(-100.0, 0.0, 100.0), v(100.0, 0.0, 100.0), v(100.0, 0.0, -100.0), v(-100.0, 0.0, -100.0)]);
+    b.floor(floor, 100.0);
     b.quad(wall, [v(0.0, 0.0, -100.0), v(0.0, 0.0, 100.0), v(0.0, 100.0, 100.0), v(0.0, 100.0, -100.0)]);
     let scene = ReferenceScene::new(&b.build("wall").unwrap());
     let lights = [PointLight { position: v(1.0, 1.0, 0.0), color: Vec3::ONE, intensity: 1.0 }];

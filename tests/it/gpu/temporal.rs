@@ -450,7 +450,7 @@ fn pillar_scene() -> (Scene, Skybox, OrbitCamera) {
     let floor = b.material(Material::plain("floor", [0.8; 3]));
     let wall = b.material(Material::plain("wall", [0.2, 0.4, 0.9]));
     let pillar = b.material(Material::plain("pillar", [0.9, 0.3, 0.1]));
-    b.quad(floor, [v(-3.0, 0.0, 3.0), v(3.0, 0.0, 3.0), v(3.0, 0.0, -3.0), v(-3.0, 0.0, -3.0)]);
+    b.floor(floor, 3.0);
     b.quad(wall, [v(-3.0, 0.0, -3.0), v(3.0, 0.0, -3.0), v(3.0, 1.2, -3.0), v(-3.0, 1.2, -3.0)]);
     b.cuboid(pillar, v(-0.3, 0.0, -0.3), v(0.3, 1.8, 0.3), false);
     let model = b.build("pillar").unwrap();

@@ -162,7 +162,7 @@ fn fins() -> Model {
     let mut b = MeshBuilder::default();
     let floor = b.material(Material::plain("floor", [0.8; 3]));
     let fins = b.material(Material::plain("fins", [0.8; 3]));
-    b.quad(floor, [v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]);
+    b.floor(floor, 2.0);
     for k in 0..3 {
         let x = -1.0 + 0.9 * k as f32;
         b.cuboid(fins, v(x, 0.0, -0.015), v(x + 0.2, 0.8, 0.015), false);
