@@ -74,8 +74,7 @@ fn resizes_and_sky_swaps_leave_memory_flat() {
 fn a_history_survives_re_plans_that_do_not_concern_it_and_is_dropped_on_resize() {
     use ssdo::render::history::{History, HistorySpec};
     let Some(gpu) = common::gpu() else { return };
-    let spec =
-        HistorySpec { name: "accumulated", format: wgpu::TextureFormat::Rgba16Float, half_resolution: false, key: 7 };
+    let spec = HistorySpec { name: "accumulated", format: wgpu::TextureFormat::Rgba16Float, key: 7 };
     let other = HistorySpec { name: "other", key: 1, ..spec };
     let mut history = History::default();
     history.ensure(&gpu.device, (32, 24), &[spec]);
@@ -112,12 +111,6 @@ fn a_history_survives_re_plans_that_do_not_concern_it_and_is_dropped_on_resize()
     let resized = get(&history);
     assert!(resized.0 != rekeyed.0 && resized.1 == 0, "dropped on resize: {resized:?}");
     assert_eq!(history.get("accumulated").unwrap().size, (33, 24));
-    // A history that follows half-resolution samples is half the screen, rounded up; made anew
-    // when the same name switches between the two sizes.
-    history.ensure(&gpu.device, (33, 24), &[HistorySpec { half_resolution: true, key: 8, ..spec }]);
-    let halved = get(&history);
-    assert!(halved.0 != resized.0 && halved.1 == 0, "made anew at half size: {halved:?}");
-    assert_eq!(history.bytes(), 2 * 17 * 12 * 8, "two 17x12 Rgba16Float textures");
     history.ensure(&gpu.device, (33, 24), &[]);
     assert_eq!((history.bytes(), history.all().count()), (0, 0));
 }

@@ -10,7 +10,7 @@
 //! every pair at the end of a frame and resets them when the view jumps or the scene changes.
 //! A plan that asks for none allocates none.
 
-use super::targets::{half_size, texel_bytes, Target};
+use super::targets::{texel_bytes, Target};
 use crate::scene::OrbitCamera;
 
 /// What a history is, and what it is valid for.
@@ -19,35 +19,23 @@ pub struct HistorySpec {
     /// Its target's name (`modes::OCCLUSION_HISTORY`, ...).
     pub name: &'static str,
     pub format: wgpu::TextureFormat,
-    /// It has half the screen's width and height (rounded up, as `targets::half_size`): it
-    /// follows samples taken there.
-    pub half_resolution: bool,
     /// A digest of the inputs whose change makes the history meaningless (the settings it
     /// accumulates under, the model, the sky, the lights): another key drops it.
     pub key: u64,
 }
 
 impl HistorySpec {
-    /// Its texture's size for a screen of `screen`.
-    pub fn size(&self, screen: (u32, u32)) -> (u32, u32) {
-        if self.half_resolution {
-            half_size(screen)
-        } else {
-            screen
-        }
-    }
-
-    /// The bytes of its pair of textures for a screen of `screen`.
-    pub fn bytes(&self, screen: (u32, u32)) -> u64 {
-        2 * texel_bytes(self.size(screen), self.format)
+    /// The bytes of its pair of textures of `size` ([`Plan::history_size`](super::Plan::history_size)).
+    pub fn bytes(&self, size: (u32, u32)) -> u64 {
+        2 * texel_bytes(size, self.format)
     }
 }
 
 /// One history: the texture this frame reads (the last frame's result) and the one it writes.
 pub struct PingPong {
     pub spec: HistorySpec,
-    /// The screen's size it was made for (its textures are `spec.size(size)`): another screen
-    /// size drops it.
+    /// Its textures' size (where the samples are, [`Plan::history_size`](super::Plan::history_size)):
+    /// another size drops it.
     pub size: (u32, u32),
     targets: [Target; 2],
     /// Which of the two this frame writes.
@@ -98,15 +86,15 @@ pub struct History {
 }
 
 impl History {
-    /// Keeps each history of `specs` that exists for a screen of `size` under the same key,
-    /// makes the ones that do not (with no frames), and drops the histories no spec names any
-    /// more.
+    /// Keeps each history of `specs` that exists at `size` under the same key, makes the ones
+    /// that do not (with no frames), and drops the histories no spec names any more. Every
+    /// history follows the samples: `size` is the plan's `history_size`.
     pub fn ensure(&mut self, device: &wgpu::Device, size: (u32, u32), specs: &[HistorySpec]) {
         self.pairs.retain(|p| specs.contains(&p.spec) && p.size == size);
         for spec in specs {
             if !self.pairs.iter().any(|p| p.spec.name == spec.name) {
                 self.made += 1;
-                let target = || Target::new(device, spec.name, spec.size(size), spec.format);
+                let target = || Target::new(device, spec.name, size, spec.format);
                 let targets = [target(), target()];
                 self.pairs.push(PingPong { spec: *spec, size, targets, written: 0, frames: 0, generation: self.made });
             }

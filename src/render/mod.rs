@@ -123,7 +123,7 @@ impl Renderer {
         let sky_layout = sky_layout(device);
         let targets = Targets::new(device, size, &plan.targets());
         let mut history = History::default();
-        history.ensure(device, size, &plan.history);
+        history.ensure(device, plan.history_size(size), &plan.history);
         let mut passes = PassSet::new(gpu, &frame.layout, &sky_layout, output)?;
         let scene_gpu = passes.upload_scene(gpu, &scene.model, &thickness);
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
@@ -233,7 +233,7 @@ impl Renderer {
     fn rebuild_targets(&mut self, gpu: &Gpu) {
         self.targets = Targets::new(&gpu.device, self.targets.size, &self.plan.targets());
         // A history outlives the re-plan unless its size or its own inputs changed.
-        self.history.ensure(&gpu.device, self.targets.size, &self.plan.history);
+        self.history.ensure(&gpu.device, self.plan.history_size(self.targets.size), &self.plan.history);
         self.prepare_passes(gpu);
         self.timer = self.timer.as_ref().map(|_| GpuTimer::new(gpu, &self.plan));
     }
@@ -298,7 +298,7 @@ impl Renderer {
             let plan = Self::plan_for(&Settings { mode, ..*settings }, features, keep_hdr);
             // The 8-bit output and its readback; with the HDR image kept, its f32 readback too.
             let output = pixels * (8 + if keep_hdr { 16 } else { 0 });
-            let history: u64 = plan.history.iter().map(|h| h.bytes(size)).sum();
+            let history: u64 = plan.history.iter().map(|h| h.bytes(plan.history_size(size))).sum();
             let bytes = Targets::bytes_for(size, &plan.targets()) + history + output;
             budget::check(Share::Targets, bytes, || format!("{}x{} in {}", size.0, size.1, mode.title()))
                 .map_err(Error::Setting)?;

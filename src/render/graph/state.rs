@@ -14,18 +14,26 @@ use crate::render::modes::{Plan, Step};
 use crate::render::targets::TargetId;
 use crate::{shaders, Result};
 
+/// Override constants, by name (booleans as 0 or 1).
+pub type Constants = Vec<(&'static str, f64)>;
+
 /// What a pass's pipeline for one key is: its fragment entry point, colour targets and override
 /// constants (booleans as 0 or 1).
 pub struct PipelineSpec {
     pub entry: &'static str,
     pub targets: Vec<Option<wgpu::ColorTargetState>>,
-    pub constants: Vec<(&'static str, f64)>,
+    pub constants: Constants,
 }
 
 /// An override constant's value for a flag.
 pub fn flag(b: bool) -> f64 {
     b as u8 as f64
 }
+
+/// The override the framework sets from the plan in every pipeline whose shader declares it, so
+/// no pass's key carries it: the sampling chain runs at half width and height
+/// (`common/half_res.wgsl`).
+const SAMPLE_SCALE: &str = "HALF_RES";
 
 pub struct PassState<K> {
     /// The pass's name: its labels and its messages.
@@ -39,7 +47,10 @@ pub struct PassState<K> {
     frame_layout: wgpu::BindGroupLayout,
     /// Group 2, the sky, for the passes that read it.
     sky_layout: Option<wgpu::BindGroupLayout>,
-    pub pipeline: KeyedPipeline<K>,
+    /// The pipeline for a key, and the plan's `SAMPLE_SCALE` it was built with.
+    pub pipeline: KeyedPipeline<(K, bool)>,
+    /// The shader declares `SAMPLE_SCALE`.
+    scaled: bool,
     pub bind_group: Option<wgpu::BindGroup>,
     /// The targets the pass writes in the plan it was last bound for, so a frame's `record`
     /// does not build its declaration again.
@@ -65,6 +76,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             name,
             pass_label: format!("{name}_pass"),
             module: shaders::module(cx.device, shader)?,
+            scaled: shaders::resolve(shader)?.contains(&format!("override {SAMPLE_SCALE}")),
             layout: None,
             frame_layout: cx.frame_layout.clone(),
             sky_layout: sky.then(|| cx.sky_layout.clone()),
@@ -95,6 +107,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             name,
             pass_label: format!("{name}_pass"),
             module: self.module.clone(),
+            scaled: self.scaled,
             layout: self.layout.clone(),
             frame_layout: self.frame_layout.clone(),
             sky_layout: self.sky_layout.clone(),
@@ -144,13 +157,15 @@ impl<K: PartialEq + Copy> PassState<K> {
         self.bind_group = Some(self.group(device, io, inputs, 0));
     }
 
-    /// The pipeline for `key`: `build` makes it (from the key, the shader and groups 0, 1 and,
-    /// with the sky, 2) when the current one is for another key. Group 1's layout comes from
-    /// the pass's reads: bind them first.
+    /// The pipeline for `key` in `plan`: `build` makes it (from the key, the shader, groups 0, 1
+    /// and, with the sky, 2, and the constants the framework sets from the plan, which it adds to
+    /// its own) when the current one is for another key or plan. Group 1's layout comes from the
+    /// pass's reads: bind them first.
     pub fn ensure(
         &mut self,
+        plan: &Plan,
         key: K,
-        build: impl FnOnce(K, &wgpu::ShaderModule, &[Option<&wgpu::BindGroupLayout>]) -> wgpu::RenderPipeline,
+        build: impl FnOnce(K, &wgpu::ShaderModule, &[Option<&wgpu::BindGroupLayout>], Constants) -> wgpu::RenderPipeline,
     ) {
         let Some((_, own)) = &self.layout else {
             unreachable!("the {} pass built a pipeline before binding its reads", self.name)
@@ -158,15 +173,23 @@ impl<K: PartialEq + Copy> PassState<K> {
         let mut layouts = vec![Some(&self.frame_layout), Some(own)];
         layouts.extend(self.sky_layout.as_ref().map(Some));
         let module = &self.module;
-        self.pipeline.ensure(key, |key| build(key, module, &layouts));
+        let scaled = plan.half_resolution && self.scaled;
+        let shared = self.scaled.then_some((SAMPLE_SCALE, flag(scaled)));
+        self.pipeline.ensure((key, scaled), |(key, _)| build(key, module, &layouts, shared.into_iter().collect()));
     }
 
     /// [`PassState::ensure`] for the usual case: a full-screen pipeline of this pass's own shader
     /// and groups, labelled after the pass, with what `spec` gives for the key.
-    pub fn ensure_fullscreen(&mut self, device: &wgpu::Device, key: K, spec: impl FnOnce(K) -> PipelineSpec) {
+    pub fn ensure_fullscreen(
+        &mut self,
+        device: &wgpu::Device,
+        plan: &Plan,
+        key: K,
+        spec: impl FnOnce(K) -> PipelineSpec,
+    ) {
         let label = format!("{}_pipeline", self.name);
         let depth = self.surfaces_only.then(|| fullscreen_depth_test(wgpu::CompareFunction::Less));
-        self.ensure(key, |key, module, layouts| {
+        self.ensure(plan, key, |key, module, layouts, shared| {
             let spec = spec(key);
             let desc = FullscreenDesc {
                 label: &label,
@@ -175,7 +198,7 @@ impl<K: PartialEq + Copy> PassState<K> {
                 bind_group_layouts: layouts,
                 targets: &spec.targets,
                 depth,
-                constants: &spec.constants,
+                constants: &[spec.constants, shared].concat(),
             };
             fullscreen_pipeline(device, &desc)
         });
@@ -195,7 +218,7 @@ impl<K: PartialEq + Copy> PassState<K> {
             return;
         }
         self.bind(device, &io(p.plan), &p.inputs);
-        self.ensure_fullscreen(device, key(), spec);
+        self.ensure_fullscreen(device, p.plan, key(), spec);
     }
 
     /// Drops the pipeline and bind group: the plan has no step for this pass.
@@ -291,7 +314,7 @@ impl<K: PartialEq + Copy> PassState<K> {
     /// plan without it, is a bug, and says so.
     pub fn ready(&self) -> (&K, &wgpu::RenderPipeline, &wgpu::BindGroup) {
         match (self.pipeline.get(), &self.bind_group) {
-            (Some((key, pipeline)), Some(group)) => (key, pipeline, group),
+            (Some(((key, _), pipeline)), Some(group)) => (key, pipeline, group),
             _ => unreachable!("the {} pass recorded before `prepare`, or in a plan without it", self.name),
         }
     }

@@ -43,7 +43,7 @@ pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
 use super::settings::SenderSky;
-use super::targets::{Place, Stage, TargetId, DO_FORMAT};
+use super::targets::{half_size, Place, Stage, TargetId, DO_FORMAT};
 use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 
 /// What the scene brings that changes the plan.
@@ -249,6 +249,22 @@ impl Plan {
     /// half-resolution plan) or at full size (the upsample's copy, or the samples themselves).
     pub fn chain_end(&self, half: bool) -> Stage {
         Stage::last(self.accumulates, self.blur, half)
+    }
+
+    /// The stage of the chain, where the samples are (at half size in a half-resolution plan),
+    /// that holds them averaged over frames (`accumulated`), else blurred (`blurred`), else as
+    /// they were taken.
+    pub fn sampled(&self, accumulated: bool, blurred: bool) -> Stage {
+        Stage::last(accumulated, blurred, self.half_resolution)
+    }
+
+    /// The size of the histories' textures for a screen of `screen`: where the samples are.
+    pub fn history_size(&self, screen: (u32, u32)) -> (u32, u32) {
+        if self.half_resolution {
+            half_size(screen)
+        } else {
+            screen
+        }
     }
 
     /// The names of the steps, in order.

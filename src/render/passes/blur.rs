@@ -11,7 +11,6 @@ use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
-use crate::render::targets::Stage;
 use crate::render::variant::Blur;
 use crate::Result;
 
@@ -32,8 +31,6 @@ pub const ENTRY: Entry = Entry::new(
 struct Key {
     outputs: Outputs,
     bilateral: bool,
-    /// On the half-size samples (the G-buffer read at the pixels they were taken at).
-    half_resolution: bool,
 }
 
 pub struct BlurPass {
@@ -50,29 +47,18 @@ impl BlurPass {
     /// The G-buffer, the parameters and the sampling output; the output blurred (at half size
     /// where the samples are, for the upsample).
     pub fn io(plan: &Plan) -> PassIo {
-        match plan.half_resolution {
-            true => filter_io(plan, Stage::Half, Stage::HalfBlurred),
-            false => filter_io(plan, Stage::Raw, Stage::Blurred),
-        }
+        filter_io(plan, plan.sampled(false, false), plan.sampled(false, true))
     }
 }
 
 impl Pass for BlurPass {
     /// Builds what the plan needs (nothing when it does not blur).
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || Key {
-            outputs: Outputs::of(p.plan),
-            bilateral: p.variant.decl().blur == Blur::Bilateral,
-            half_resolution: p.plan.half_resolution,
-        };
+        let key = || Key { outputs: Outputs::of(p.plan), bilateral: p.variant.decl().blur == Blur::Bilateral };
         self.state.prepare_fullscreen(device, p, (Step::BLUR, Self::io), key, |key| PipelineSpec {
             entry: "fs_main",
             targets: vec![Some(key.outputs.format().into())],
-            constants: vec![
-                ("BILATERAL", flag(key.bilateral)),
-                ("HAS_DO", flag(key.outputs.directional)),
-                ("HALF_RES", flag(key.half_resolution)),
-            ],
+            constants: vec![("BILATERAL", flag(key.bilateral)), ("HAS_DO", flag(key.outputs.directional))],
         });
     }
 

@@ -37,8 +37,6 @@ struct Key {
     classic: bool,
     white_albedo: bool,
     display: bool,
-    /// The sampling chain's last stage is at half size.
-    half_resolution: bool,
     /// ... and is the temporal pass's average, whose surfaces its surface history holds.
     guide: bool,
 }
@@ -54,7 +52,6 @@ impl Key {
             classic: variant.decl().composite == Composite::ClassicAmbient,
             white_albedo,
             display: plan.display,
-            half_resolution: plan.half_resolution,
             guide: guided(plan),
         }
     }
@@ -87,7 +84,7 @@ impl CompositePass {
     /// wrote this frame; HDR, or in a display plan the output.
     pub fn io(plan: &Plan) -> PassIo {
         let mut reads = vec![Read::Target(ALBEDO), Read::Target(NORMAL), Read::Target(DEPTH), Read::Filter];
-        let stage = plan.chain_end(plan.half_resolution);
+        let stage = plan.sampled(plan.accumulates, plan.blur);
         reads.push(Read::target_if(plan.decl.runs_sampling(), stage.target(plan.decl.directional_occlusion)));
         reads.push(Read::target_if(plan.display && plan.lighting_writes_direct(), HDR));
         reads.push(if guided(plan) { Read::Written(SURFACE_HISTORY) } else { Read::Absent(SURFACE_HISTORY) });
@@ -106,7 +103,7 @@ impl Pass for CompositePass {
         let white_albedo = view == View::LightingOnly;
         let key = Key::of(plan, variant, white_albedo);
         let output = self.output;
-        self.state.ensure(key, |key, module, layouts| {
+        self.state.ensure(plan, key, |key, module, layouts, shared| {
             let f = |b: bool| b as u8 as f64;
             let blend = (key.additive && !key.display).then_some(wgpu::BlendState {
                 color: wgpu::BlendComponent {
@@ -125,11 +122,11 @@ impl Pass for CompositePass {
                 ("DISPLAY", f(key.display)),
                 ("OUTPUT_SRGB", f(output.is_srgb())),
                 ("DIRECT_INPUT", f(key.display && key.additive)),
-                ("HALF_RES", f(key.half_resolution)),
                 ("GUIDE_INPUT", f(key.guide)),
             ]
             .into_iter()
             .chain(key.lights.constants())
+            .chain(shared)
             .collect();
             fullscreen_pipeline(
                 device,

@@ -42,8 +42,6 @@ struct Key {
     lights: bool,
     light_reads: LightReads,
     sender_sky: SenderSky,
-    /// The sampling pass (whose sky the last frame's senders read) runs at half size.
-    half_resolution: bool,
     /// The camera moved since the last frame (only with the sky from the last frame).
     reproject: bool,
     /// The model has normal maps: a sender's facing comes from the depth buffer's plane.
@@ -60,7 +58,6 @@ impl Key {
             lights: plan.lighting_writes_direct(),
             light_reads: plan.light_reads(),
             sender_sky: plan.sender_sky.without_march(),
-            half_resolution: plan.half_resolution,
             reproject: false,
             normal_mapped: plan.features.normal_mapped,
             far_side: plan.far_side,
@@ -72,7 +69,6 @@ impl Key {
         let constants = [
             ("LIGHTS", flag(self.lights)),
             ("SENDER_SKY", self.sender_sky.shader_code()),
-            ("HALF_RES", flag(self.half_resolution)),
             ("REPROJECT", flag(self.reproject)),
             ("NORMAL_MAPPED", flag(self.normal_mapped)),
             ("FAR_SIDE", flag(self.far_side)),
@@ -139,7 +135,7 @@ impl Pass for LightingPass {
         for (state, reproject) in [(&mut self.still, false), (&mut self.moved, true)] {
             state.layout_for(device, &io);
             let key = Key { sender_sky: SenderSky::LastFrame, reproject, ..key };
-            state.ensure_fullscreen(device, key, Key::spec);
+            state.ensure_fullscreen(device, plan, key, Key::spec);
         }
     }
 

@@ -36,7 +36,7 @@ pub const LAST_SKY: TargetId = TargetId::new("history_sender_sky", DO_FORMAT, Pl
 /// the samples' size, meaning one thing in every DO mode (the key is the format's alone).
 pub fn last_sky_history(facts: &PlanFacts) -> Vec<HistorySpec> {
     let wanted = facts.sender_sky() == SenderSky::LastFrame;
-    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, half_resolution: facts.half_resolution(), key: 0 };
+    let spec = HistorySpec { name: LAST_SKY.name, format: DO_FORMAT, key: 0 };
     wanted.then_some(spec).into_iter().collect()
 }
 
@@ -92,8 +92,6 @@ struct Key {
     march: bool,
     /// The march's far steps read the depth pyramid.
     pyramid: bool,
-    /// Half width and height (an upsample follows).
-    half_resolution: bool,
     /// The G-buffer holds mapped normals: the geometry's come from the depth.
     normal_mapped: bool,
     /// The march writes the sky each pixel sees for the next frame's senders.
@@ -113,7 +111,6 @@ impl Key {
             ("HAS_AO", f(o.ao)),
             ("HAS_DO", f(o.directional)),
             ("INDIRECT", f(o.indirect)),
-            ("HALF_RES", f(self.half_resolution)),
             ("NORMAL_MAPPED", f(self.normal_mapped)),
         ];
         if self.march {
@@ -157,7 +154,7 @@ impl SamplingPass {
     /// The sampling reads with the bounce where a lighting pass writes it; AO or DO + AO, at
     /// half size when an upsample follows, and the sky for the next frame's senders.
     pub fn io(plan: &Plan) -> PassIo {
-        let stage = if plan.half_resolution { Stage::Half } else { Stage::Raw };
+        let stage = plan.sampled(false, false);
         let last_sky = (plan.sender_sky == SenderSky::LastFrame).then_some(LAST_SKY);
         let writes = [stage.target(plan.decl.directional_occlusion)].into_iter().chain(last_sky).collect();
         PassIo { reads: Self::reads(plan, plan.lighting), attached: vec![], writes }
@@ -177,7 +174,6 @@ impl Pass for SamplingPass {
             classic: variant.decl().estimator == Estimator::Classic,
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.pyramid,
-            half_resolution: plan.half_resolution,
             normal_mapped: plan.features.normal_mapped,
             last_sky: plan.sender_sky == SenderSky::LastFrame,
             thickness_layer: plan.thickness_layer,
@@ -185,7 +181,7 @@ impl Pass for SamplingPass {
         };
 
         let march_module = &self.march_module;
-        self.state.ensure(key, |key, points_module, layouts| {
+        self.state.ensure(plan, key, |key, points_module, layouts, shared| {
             let entry = match (key.outputs.directional, key.last_sky) {
                 (false, _) => "fs_ao",
                 (true, false) => "fs_do",
@@ -202,7 +198,7 @@ impl Pass for SamplingPass {
                     bind_group_layouts: layouts,
                     targets: &[format].into_iter().chain(sky).collect::<Vec<_>>(),
                     depth: None,
-                    constants: &key.constants(),
+                    constants: &[key.constants(), shared].concat(),
                 },
             )
         });

@@ -36,12 +36,11 @@ pub const ENTRY: Entry = Entry::new(
 .keeping(TemporalPass::histories)
 .role(Role::Denoise);
 
-/// What distinguishes one temporal pipeline from another: what the sampling pass produces,
-/// whether it runs at half size (over half-size samples), and whether it blurs them.
+/// What distinguishes one temporal pipeline from another: what the sampling pass produces and
+/// whether it blurs them (the framework keys it by the samples' size too).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Key {
     outputs: Outputs,
-    half_resolution: bool,
     blur: bool,
 }
 
@@ -81,10 +80,10 @@ impl TemporalPass {
     /// raw ones.
     fn io_reading(plan: &Plan, blurred: bool) -> PassIo {
         let d = plan.decl.directional_occlusion;
-        let filtered = Stage::last(false, blurred, plan.half_resolution).target(d);
+        let filtered = plan.sampled(false, blurred).target(d);
         let reads = [ALBEDO, NORMAL, DEPTH].map(Read::Target).into_iter().chain([Read::Filter]);
         let reads = reads.chain([filtered, OCCLUSION_HISTORY, SURFACE_HISTORY].map(Read::Target)).collect();
-        let average = Stage::last(true, blurred, plan.half_resolution).target(d);
+        let average = plan.sampled(true, blurred).target(d);
         PassIo { reads, attached: vec![], writes: vec![average, OCCLUSION_HISTORY, SURFACE_HISTORY] }
     }
 
@@ -94,10 +93,9 @@ impl TemporalPass {
     pub fn histories(facts: &PlanFacts) -> Vec<HistorySpec> {
         let format = Stage::Raw.target(facts.decl.directional_occlusion).format;
         let key = facts.decl.mode as u64;
-        let half_resolution = facts.half_resolution();
         vec![
-            HistorySpec { name: OCCLUSION_HISTORY.name, format, half_resolution, key },
-            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, half_resolution, key },
+            HistorySpec { name: OCCLUSION_HISTORY.name, format, key },
+            HistorySpec { name: SURFACE_HISTORY.name, format: SURFACE_HISTORY_FORMAT, key },
         ]
     }
 }
@@ -127,8 +125,8 @@ impl Pass for TemporalPass {
             self.still_blurring.clear();
         }
         for (state, moved, blur) in states {
-            let key = Key { outputs: Outputs::of(plan), half_resolution: plan.half_resolution, blur };
-            state.ensure_fullscreen(device, key, |key| PipelineSpec {
+            let key = Key { outputs: Outputs::of(plan), blur };
+            state.ensure_fullscreen(device, plan, key, |key| PipelineSpec {
                 entry: "fs_main",
                 targets: vec![
                     Some(key.outputs.format().into()),
@@ -137,7 +135,6 @@ impl Pass for TemporalPass {
                 ],
                 constants: vec![
                     ("CAMERA_MOVED", flag(moved)),
-                    ("HALF_RES", flag(key.half_resolution)),
                     ("BLUR", flag(key.blur)),
                     ("MAX_HISTORY_TURN", f64::from(MAX_HISTORY_TURN_DEG)),
                 ],
