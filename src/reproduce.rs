@@ -71,19 +71,12 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
         // capture --truth takes at least 2 rays a trace.
         flag("spp", rays.max(2).to_string());
     }
-    let s = view.settings;
-    let switches = [
-        (view.no_surface_maps, "--no-surface-maps"),
-        (s.sampling.depth_pyramid, "--depth-pyramid"),
-        (s.far_side, "--far-side"),
-        (!s.blur, "--no-blur"),
-        (!s.half_resolution, "--full-res"),
-    ];
-    for (on, name) in switches {
-        if on {
-            args.push(name.into());
-        }
+    if view.no_surface_maps {
+        args.push("--no-surface-maps".into());
     }
+    // The switches turned from their defaults, each by its flag.
+    let turned = crate::knobs::switches().filter(|k| k.is_on(view.settings) != k.default_switch());
+    args.extend(turned.map(|k| format!("--{}", k.flag)));
     if view.truth_rays.is_some() {
         args.push("--truth".into());
     }

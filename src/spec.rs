@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::knobs::{Knobs, KNOBS};
+use crate::knobs::{Knobs, SwitchFlags, KNOBS};
 use crate::preset::Preset;
 use crate::render::sampling::DEFAULT_BIAS;
 use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View};
@@ -153,9 +153,6 @@ pub struct RenderArgs {
     /// The march's surface thickness, in model units [default: 1 radius, or the preset's multiple of it]
     #[arg(long, allow_hyphen_values = true)]
     pub thickness: Option<f32>,
-    /// The march's far steps read a closest-depth pyramid (off: it over-occludes, see docs/accuracy.md)
-    #[arg(long)]
-    pub depth_pyramid: bool,
     /// Sampling radius in model units [default: a tenth of the scene's bounding radius]
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f32>,
@@ -181,18 +178,10 @@ pub struct RenderArgs {
     /// ambient [default: last-frame]
     #[arg(long)]
     pub sender_sky: Option<SenderSky>,
-    /// A second geometry pass draws the surfaces turned from the eye (a fin's far face, an
-    /// underside), lit by the point lights, and SSDO's bounce takes their light where the surface
-    /// the screen shows faces away (scenes with point lights; see docs/accuracy.md)
-    #[arg(long)]
-    pub far_side: bool,
-    /// Leave the AO/DO noise unfiltered
-    #[arg(long)]
-    pub no_blur: bool,
-    /// Sample AO/DO at full resolution (the default samples at half width and height and
-    /// upsamples by depth and normal)
-    #[arg(long)]
-    pub full_res: bool,
+    /// The switches (`--no-blur`, `--full-res`, `--depth-pyramid`, `--far-side`), declared by
+    /// their knobs (`knobs::switches`)
+    #[command(flatten)]
+    pub switches: SwitchFlags,
     /// Frames averaged with the camera still (range: `render::ACCUMULATE`; 1: none): headless
     /// commands render this many frames of the still camera and keep the last
     #[arg(long)]
@@ -349,12 +338,9 @@ impl RenderArgs {
         k.samples = self.samples.unwrap_or(k.samples);
         k.slices = self.slices.unwrap_or(k.slices);
         k.steps = self.steps.unwrap_or(k.steps);
-        k.depth_pyramid |= self.depth_pyramid;
-        k.blur &= !self.no_blur;
-        k.half_resolution &= !self.full_res;
+        self.switches.apply(&mut k);
         k.accumulate = self.accumulate.unwrap_or(k.accumulate);
         k.sender_sky = self.sender_sky.unwrap_or(k.sender_sky);
-        k.far_side |= self.far_side;
         k.indirect_strength = self.indirect_strength.unwrap_or(k.indirect_strength);
         k
     }

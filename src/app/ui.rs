@@ -155,12 +155,16 @@ fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Se
         length(ui, &mut settings.sampling.reach, now.reach, (defaults.reach * 4.0).max(now.reach), "reach");
         let thickness = (defaults.thickness * 10.0).max(now.thickness);
         length(ui, &mut settings.sampling.thickness, now.thickness, thickness, "thickness");
-        ui.checkbox(&mut settings.sampling.depth_pyramid, knob_label("depth_pyramid"));
     }
     slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
-    ui.checkbox(&mut settings.blur, knob_label("blur"));
-    ui.checkbox(&mut settings.half_resolution, knob_label("half_resolution"))
-        .on_hover_text("sample at half width and height, then upsample by depth and normal");
+    // The switches, from their knobs: those that mean anything for this variant and mode.
+    let (knobs, mode) = (crate::knobs::Knobs::from_settings(settings), settings.mode);
+    for knob in crate::knobs::switches().filter(|k| k.applies(&knobs, Some(mode))) {
+        let mut on = knob.is_on(settings);
+        if ui.checkbox(&mut on, knob.label).on_hover_text(knob.help).changed() {
+            knob.turn(settings, on);
+        }
+    }
     // Accumulation: on with the last count it had, off as 1 frame.
     let mut on = settings.accumulates();
     ui.horizontal(|ui| {
@@ -193,8 +197,6 @@ fn lighting_section(ui: &mut egui::Ui, settings: &mut Settings) {
         })
         .response
         .on_hover_text("march: the sky each sender sees; irradiance: its unoccluded sky; off: point lights only");
-    ui.checkbox(&mut settings.far_side, knob_label("far_side"))
-        .on_hover_text("a second geometry pass: faces turned from the camera send their point lights' bounce");
     ui.add(egui::Slider::new(&mut settings.exposure, 0.05..=16.0).logarithmic(true).text("exposure"));
     slider(ui, &mut settings.ambient, 0.0..=1.0, "ambient");
     ui.add(egui::Slider::new(&mut settings.sky_scale, 0.0..=16.0).text("sky scale"));

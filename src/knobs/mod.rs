@@ -4,7 +4,8 @@
 //! moves a frame's cost, and the variants and modes it means anything in. A preset's JSON (read
 //! and written), its range checks, its flags, tune's search space (its neighbours and which of
 //! two is dearer), tune's CSV columns, the render flags' checks and the counts' help are all read
-//! from the table, so a new knob is its row and its field in [`Knobs`] (`table.rs`), its two lines
+//! from the table, and so are a switch's flag, panel checkbox and reproducing flag
+//! (`switches.rs`); a new knob is its row and its field in [`Knobs`] (`table.rs`), its two lines
 //! in [`Knobs::from_settings`] and [`Knobs::apply`], its field in [`crate::render::Settings`], and
 //! its way to the shader.
 //!
@@ -13,11 +14,13 @@
 //! the renderer makes them lengths for the scene it draws.
 
 mod knob;
+mod switches;
 mod table;
 
 use serde_json::{Map, Value as Json};
 
 use crate::render::{Mode, Settings, Variant};
+pub use switches::{switches, SwitchFlags};
 use table::choice;
 pub use table::{
     keys, Cost, Kind, Knob, Knobs, Rungs, Scope, Value, ACCUMULATE_RUNGS, BOUNCE_RUNGS, KNOBS, RADIUS_RUNGS,

@@ -108,8 +108,8 @@ pub struct Knob {
     pub flag: &'static str,
     /// Its name in the panel.
     pub label: &'static str,
-    /// What it does, as `--help` says it (a count's range and defaults are added from its
-    /// declaration).
+    /// What it does, as `--help` and the panel say it (a count's range and defaults are added
+    /// from its declaration, a switch's default and what its flag does).
     pub help: &'static str,
     pub kind: Kind,
     pub rungs: Rungs,
@@ -282,7 +282,7 @@ pub const KNOBS: [Knob; 13] = [
         key: "depth_pyramid",
         flag: "depth-pyramid",
         label: "depth pyramid for far steps",
-        help: "The march's far steps read a closest-depth pyramid",
+        help: "The march's far steps read a closest-depth pyramid (it over-occludes: docs/accuracy.md)",
         kind: Kind::Switch,
         rungs: Rungs::Toggle,
         cost: Cost::Same,
@@ -311,7 +311,7 @@ pub const KNOBS: [Knob; 13] = [
         label: "far sides send bounce",
         help: "A second geometry pass draws the surfaces turned from the eye (a fin's far face, an \
                underside), lit by the point lights, and the bounce takes their light where the surface the \
-               screen shows faces away (scenes with point lights)",
+               screen shows faces away (scenes with point lights; docs/accuracy.md)",
         kind: Kind::Switch,
         rungs: Rungs::Toggle,
         cost: Cost::Rises,
