@@ -6,7 +6,7 @@
 //    does not cross silhouettes or creases (no halos).
 //  * otherwise the classic 4x4 box blur of the classic SSAO chapter.
 // Neighbours on the sky or holding non-finite values are left out.
-// With HALF_RES the blur runs on the half-resolution samples, before the upsample: its pixel
+// With HALF_RESOLUTION the blur runs on the half-resolution samples, before the upsample: its pixel
 // (x, y) is the sample taken at the full-resolution pixel (2x, 2y), whose G-buffer it reads, and
 // its 4x4 window is the rotation tile the samples were taken with (sampling_params.wgsl).
 
@@ -21,8 +21,8 @@
 @group(1) @binding(4) var input: texture_2d<f32>;
 
 override BILATERAL: bool = true;
-// On the half-resolution samples (HALF_RES).
-#include "common/half_res.wgsl"
+// On the half-resolution samples (HALF_RESOLUTION).
+#include "common/half_resolution.wgsl"
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;
 
@@ -74,7 +74,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
     // At half resolution a 3x3 tent (1 2 1 × 1 2 1) over the half-size samples: about the
     // footprint the 4x4 window has at full resolution (6 full-resolution pixels across).
     // (Either way the window ends at +1: -2..1 at full resolution, -1..1 at half.)
-    let lo = select(-2, -1, HALF_RES);
+    let lo = select(-2, -1, HALF_RESOLUTION);
     for (var y = lo; y < 2; y += 1) {
         for (var x = lo; x < 2; x += 1) {
             let t = clamp(pixel + vec2<i32>(x, y), vec2<i32>(0), size - 1);
@@ -84,7 +84,7 @@ fn blur(position: vec2<f32>) -> vec4<f32> {
                 continue;
             }
             var w = 1.0;
-            if HALF_RES {
+            if HALF_RESOLUTION {
                 w = f32((2 - abs(x)) * (2 - abs(y)));
             }
             if BILATERAL {

@@ -27,10 +27,10 @@
 #include "common/tone_curve.wgsl"
 #include "common/filter_params.wgsl"
 
-// The upsample's tolerances (HALF_RES).
+// The upsample's tolerances (HALF_RESOLUTION).
 @group(1) @binding(3) var<uniform> params: FilterParams;
 // The sampling chain's last stage: AO alone in r (SSAO), or DO in rgb and AO in a (SSDO,
-// SSAO+SSDO); at half size with HALF_RES.
+// SSAO+SSDO); at half size with HALF_RESOLUTION.
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
 @group(1) @binding(5) var direct_map: texture_2d<f32>;
@@ -55,8 +55,8 @@ override DISPLAY: bool = false;
 override OUTPUT_SRGB: bool = true;
 // DISPLAY after a lighting pass: read its direct light from `direct_map`.
 override DIRECT_INPUT: bool = false;
-// `current` holds half-size samples: upsampled here as they are read (HALF_RES).
-#include "common/half_res.wgsl"
+// `current` holds half-size samples: upsampled here as they are read (HALF_RESOLUTION).
+#include "common/half_resolution.wgsl"
 // ... the temporal pass's average: the samples' surfaces are read from `surface_guide`, one load
 // a tap instead of the G-buffer's depth and normal.
 override GUIDE_INPUT: bool = false;
@@ -110,17 +110,17 @@ fn radiance(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32,
     }
     // The surface, where a term needs it: its packed normal and its view-space position.
     var bits = 0u;
-    if LIGHT_LOOP || (!CLASSIC && !HAS_DO) || HALF_RES {
+    if LIGHT_LOOP || (!CLASSIC && !HAS_DO) || HALF_RESOLUTION {
         bits = textureLoad(g_normal, pixel, 0).r;
     }
     var p = vec3<f32>(0.0);
-    if LIGHT_LOOP || HALF_RES {
+    if LIGHT_LOOP || HALF_RESOLUTION {
         p = view_position_of(c, position, depth);
     }
     // The sampling chain's value here: AO in r, or DO + AO.
     var occlusion = unoccluded_value();
     if HAS_AO || HAS_DO {
-        if HALF_RES {
+        if HALF_RESOLUTION {
             occlusion = upsample_surface(pixel, p, bits, c.projection, c.viewport);
         } else {
             occlusion = textureLoad(current, pixel, 0);

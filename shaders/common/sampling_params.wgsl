@@ -40,11 +40,11 @@ struct SamplingParams {
 
 // At half resolution a sampling pass's pixel (x, y) samples the full-resolution pixel (2x, 2y),
 // with the rotation tile of its own pixel.
-#include "common/half_res.wgsl"
+#include "common/half_resolution.wgsl"
 
 // The full-resolution pixel centre a sampling pass's fragment at `frag` samples.
 fn sampled_position(frag: vec2<f32>) -> vec2<f32> {
-    if HALF_RES {
+    if HALF_RESOLUTION {
         return vec2<f32>(surface_pixel(vec2<i32>(frag))) + 0.5;
     }
     return frag;
