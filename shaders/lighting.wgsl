@@ -43,6 +43,10 @@ override NORMAL_MAPPED: bool = false;
 // The far side layer's surface is lit too (with the point lights: it is drawn only where there
 // are some), into the bounce's second pair.
 override FAR_SIDE: bool = false;
+// FAR_SIDE: the G-buffer's thickness layer, whose codes say which surfaces are sheets.
+@group(1) @binding(6) var thickness_layer: texture_2d<u32>;
+override THICKNESS_LAYER: bool = false;
+#include "common/thickness.wgsl"
 
 struct LightingOut {
     @location(0) hdr: vec4<f32>,
@@ -129,6 +133,50 @@ fn last_frame_sky(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth
     let last = vec2<i32>(textureDimensions(last_sky)) - vec2<i32>(1);
     let texel = select(was, was >> vec2<u32>(1u), HALF_RESOLUTION);
     return textureLoad(last_sky, min(texel, last), 0);
+}
+
+// FAR_SIDE: the depth at `pixel` with the extent of its surface for the march (EXTENT_CODE_MASK in
+// common/thickness.wgsl): where the far side layer holds a face behind a surface that is no sheet,
+// the distance to it along the view ray (a closed solid's own thickness there); elsewhere the
+// thickness layer's code, or the scene's default slab.
+fn extent_layer(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> u32 {
+    let depth = load_depth(pixel);
+    var code = DEFAULT_THICKNESS_CLASS;
+    if THICKNESS_LAYER {
+        code = textureLoad(thickness_layer, pixel, 0).r & THICKNESS_CODE_MASK;
+    }
+    let far = textureLoad(far_surface, pixel, 0).z;
+    let sheet = (code & 7u) == 0u;
+    if far != 0u && bitcast<f32>(far) < depth && !sheet {
+        let near = length(view_position_of(c, position, depth));
+        code = extent_code(length(view_position_of(c, position, bitcast<f32>(far))) - near, frame.default_thickness);
+    }
+    return (bitcast<u32>(depth) & ~EXTENT_CODE_MASK) | code;
+}
+
+struct LightingFarOut {
+    @location(0) hdr: vec4<f32>,
+    @location(1) bounce: vec4<u32>,
+    @location(2) extent: u32,
+}
+
+struct BounceFarOut {
+    @location(0) bounce: vec4<u32>,
+    @location(1) extent: u32,
+}
+
+// FAR_SIDE: fs_main and fs_bounce with the depth and extents the march reads.
+@fragment
+fn fs_main_far(in: FrameVaryings) -> LightingFarOut {
+    let pixel = vec2<i32>(in.position.xy);
+    let lit = direct(in, pixel, in.position.xy);
+    return LightingFarOut(lit.hdr, lit.bounce, extent_layer(in, pixel, in.position.xy));
+}
+
+@fragment
+fn fs_bounce_far(in: FrameVaryings) -> BounceFarOut {
+    let pixel = vec2<i32>(in.position.xy);
+    return BounceFarOut(direct(in, pixel, in.position.xy).bounce, extent_layer(in, pixel, in.position.xy));
 }
 
 @fragment

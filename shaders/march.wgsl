@@ -40,6 +40,10 @@ override USE_PYRAMID: bool = false;
 // read in place of the depth where the plan has it (THICKNESS_LAYER); a 1x1 stand-in otherwise.
 @group(1) @binding(6) var thickness_layer: texture_2d<u32>;
 override THICKNESS_LAYER: bool = false;
+// The layer is the lighting pass's depth with each surface's extent (common/thickness.wgsl
+// EXTENT_CODE_MASK: there is a far side), which the thickness layer's codes stand in where a
+// surface has no face behind it.
+override EXTENT_CODES: bool = false;
 // The bounce target's second pair holds the far side layer's senders (lighting.wgsl).
 override FAR_SIDE: bool = false;
 
@@ -152,6 +156,9 @@ fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, spacing: f32
     if !THICKNESS_LAYER {
         return r.thickness;
     }
+    if EXTENT_CODES && (sample.code & EXTENT_FLAG) != 0u {
+        return extent_of(sample.code, frame.default_thickness);
+    }
     let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), frame.default_thickness);
     return min(r.thickness, extent);
 }
@@ -165,7 +172,7 @@ fn step_depth(r: Receiver, i: u32, texel: vec2<i32>, spacing: f32) -> DepthSampl
     if !USE_PYRAMID || i < r.near_steps || level < 0 {
         if THICKNESS_LAYER {
             let bits = textureLoad(thickness_layer, texel, 0).r;
-            return DepthSample(bitcast<f32>(bits), bits & THICKNESS_CODE_MASK);
+            return DepthSample(bitcast<f32>(bits), bits & select(THICKNESS_CODE_MASK, EXTENT_CODE_MASK, EXTENT_CODES));
         }
         return DepthSample(load_depth(texel), DEFAULT_THICKNESS_CLASS);
     }
@@ -266,7 +273,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
             (*taken).near_mask |= bits;
         }
         if HAS_DO && INDIRECT && fresh != 0u {
-            let sheet = THICKNESS_LAYER && is_thin(sample.code);
+            let sheet = THICKNESS_LAYER && (sample.code & EXTENT_FLAG) == 0u && is_thin(sample.code);
             (*sums).indirect += bounce_from(texel, front, fresh, s.weights, sheet);
         }
     }

@@ -234,6 +234,10 @@ pub struct Plan {
     /// A pass draws the far side layer (the surfaces turned from the eye, lit as senders), which
     /// the march's bounce reads.
     pub far_side: bool,
+    /// With the far side, and no thickness given: the lighting pass writes the depth with each
+    /// surface's extent behind it (to the far side's face there), which the march reads in place
+    /// of the thickness layer.
+    pub extent_layer: bool,
     pub steps: Vec<Step>,
     /// The targets kept across frames (see `history.rs`): the temporal pass's, where it runs.
     pub history: Vec<HistorySpec>,

@@ -33,6 +33,12 @@ pub fn runs(f: &PlanFacts) -> bool {
 /// The far side's surfaces: the packed normal and shininess as the G-buffer packs them (x), the
 /// albedo (y, four 8-bit channels) and the depth's bits (z; 0 where there is none).
 pub const FAR_SURFACE: TargetId = TargetId::new("far_surface", wgpu::TextureFormat::Rgba32Uint, Place::Screen);
+/// The depth the sampling pass marches where there is a far side (written by the lighting pass):
+/// the G-buffer's depth bits, the low nine replaced by each surface's extent behind it, the
+/// distance to the far side's face behind it where there is one (`common/thickness.wgsl`
+/// `extent_code`), else its thickness layer's code.
+pub const EXTENT_LAYER: TargetId =
+    TargetId::new("depth_extent", crate::render::targets::THICKNESS_FORMAT, Place::Screen);
 /// The far side's own depth test (reverse-Z: the nearest of the faces turned away wins).
 pub const FAR_DEPTH: TargetId = TargetId::new("far_side_depth", DEPTH_FORMAT, Place::Screen);
 

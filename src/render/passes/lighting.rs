@@ -10,7 +10,7 @@
 //! moved (reprojecting) and for a still one. A frame with no last frame (the first after a
 //! reset) reads this frame's sender-sky march, as `--sender-sky march` does.
 
-use super::far_side::FAR_SURFACE;
+use super::far_side::{EXTENT_LAYER, FAR_SURFACE};
 use super::sampling::{last_sky_held, LAST_SKY};
 use super::sender_sky;
 use crate::render::graph::io::{PassIo, Read};
@@ -18,7 +18,7 @@ use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
 use crate::render::settings::SenderSky;
-use crate::render::targets::{bounce_target, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL};
+use crate::render::targets::{bounce_target, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, THICKNESS};
 use crate::Result;
 
 impl Step {
@@ -48,6 +48,10 @@ struct Key {
     normal_mapped: bool,
     /// The far side layer's surfaces are lit too, into the bounce target's second pair.
     far_side: bool,
+    /// The march's depth with each surface's extent behind it is written.
+    extent_layer: bool,
+    /// ... from the G-buffer's thickness layer where it holds a sheet.
+    thickness_layer: bool,
 }
 
 impl Key {
@@ -61,6 +65,8 @@ impl Key {
             reproject: false,
             normal_mapped: plan.features.normal_mapped,
             far_side: plan.far_side,
+            extent_layer: plan.extent_layer,
+            thickness_layer: plan.thickness_layer,
         }
     }
 
@@ -72,10 +78,22 @@ impl Key {
             ("REPROJECT", flag(self.reproject)),
             ("NORMAL_MAPPED", flag(self.normal_mapped)),
             ("FAR_SIDE", flag(self.far_side)),
+            ("THICKNESS_LAYER", flag(self.extent_layer && self.thickness_layer)),
         ];
+        let extent = self.extent_layer.then(|| EXTENT_LAYER.format.into());
         PipelineSpec {
-            entry: if self.lights { "fs_main" } else { "fs_bounce" },
-            targets: hdr.into_iter().map(Some).chain([Some(bounce_target(self.far_side).format.into())]).collect(),
+            entry: match (self.lights, self.extent_layer) {
+                (true, false) => "fs_main",
+                (false, false) => "fs_bounce",
+                (true, true) => "fs_main_far",
+                (false, true) => "fs_bounce_far",
+            },
+            targets: hdr
+                .into_iter()
+                .chain([bounce_target(self.far_side).format.into()])
+                .chain(extent)
+                .map(Some)
+                .collect(),
             constants: constants.into_iter().chain(self.light_reads.constants()).collect(),
         }
     }
@@ -113,9 +131,15 @@ impl LightingPass {
             Read::target_if(plan.sender_march, sender_sky::target(plan)),
             Read::target_if(plan.sender_sky == SenderSky::LastFrame, LAST_SKY),
             Read::target_if(plan.far_side, FAR_SURFACE),
+            Read::target_if(plan.extent_layer && plan.thickness_layer, THICKNESS),
         ];
         let direct = plan.lighting_writes_direct().then_some(HDR);
-        PassIo { reads, attached: vec![], writes: direct.into_iter().chain([plan.bounce_target()]).collect() }
+        let extent = plan.extent_layer.then_some(EXTENT_LAYER);
+        PassIo {
+            reads,
+            attached: vec![],
+            writes: direct.into_iter().chain([plan.bounce_target()]).chain(extent).collect(),
+        }
     }
 }
 

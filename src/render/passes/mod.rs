@@ -109,6 +109,7 @@ impl Plan {
             sender_march: has(Step::SENDER_SKY),
             thickness_layer: features.thin_materials && o.material_thickness,
             far_side: has(Step::FAR_SIDE),
+            extent_layer: has(Step::FAR_SIDE) && o.material_thickness,
             steps,
             history,
         }

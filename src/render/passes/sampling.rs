@@ -101,6 +101,8 @@ struct Key {
     /// The march takes the far side layer's sender (the bounce target's second pair) where the
     /// near one faces away.
     far_side: bool,
+    /// The march reads the lighting pass's depth with each surface's extent.
+    extent_layer: bool,
 }
 
 impl Key {
@@ -115,7 +117,8 @@ impl Key {
         ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
-            list.push(("THICKNESS_LAYER", f(self.thickness_layer)));
+            list.push(("THICKNESS_LAYER", f(self.thickness_layer || self.extent_layer)));
+            list.push(("EXTENT_CODES", f(self.extent_layer)));
             list.push(("FAR_SIDE", f(self.far_side)));
         } else {
             list.push(("CLASSIC", f(self.classic)));
@@ -137,9 +140,14 @@ impl SamplingPass {
     }
 
     /// The sampling passes' reads (this one's and the sender-sky march's): the G-buffer, the
-    /// parameters, the bounce source where `bounce` says it is read, the depth pyramid and the
-    /// thickness layer.
+    /// parameters, the bounce source where `bounce` says it is read (and then, with the far side,
+    /// the depth with each surface's extent that the lighting pass writes beside it, in place of
+    /// the thickness layer), the depth pyramid and the thickness layer.
     pub fn reads(plan: &Plan, bounce: bool) -> Vec<Read> {
+        let layer = match bounce && plan.extent_layer {
+            true => Read::Target(super::far_side::EXTENT_LAYER),
+            false => Read::target_if(plan.thickness_layer, THICKNESS),
+        };
         vec![
             Read::Target(ALBEDO),
             Read::Target(NORMAL),
@@ -147,7 +155,7 @@ impl SamplingPass {
             Read::Sampling,
             Read::target_if(bounce, plan.bounce_target()),
             Read::target_if(plan.pyramid, PYRAMID),
-            Read::target_if(plan.thickness_layer, THICKNESS),
+            layer,
         ]
     }
 
@@ -178,6 +186,7 @@ impl Pass for SamplingPass {
             last_sky: plan.sender_sky == SenderSky::LastFrame,
             thickness_layer: plan.thickness_layer,
             far_side: plan.far_side,
+            extent_layer: plan.extent_layer,
         };
 
         let march_module = &self.march_module;

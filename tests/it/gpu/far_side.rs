@@ -99,3 +99,67 @@ fn the_floor_behind_a_block_gets_the_bounce_of_its_far_face() {
     assert!(before < 0.3, "the near side, facing away, sends little: {before:.2} of the truth's red");
     assert!((0.5..=1.5).contains(&after), "the far side sends the truth's red: {after:.2} of it");
 }
+
+/// A deep block (0.5 wide, 0.8 tall, 2.4 long, closed) on a white floor, and one light (the far
+/// side is drawn where there are point lights).
+fn deep_block() -> Scene {
+    let v = Vec3::new;
+    let (mut b, block) = common::on_floor([0.8; 3], 3.0, "block", [0.8; 3]);
+    b.cuboid(block, v(-0.25, 0.0, -1.2), v(0.25, 0.8, 1.2), true);
+    let mut scene = Scene::new(b.build("deep block").unwrap(), 0, 1);
+    scene.lights = vec![PointLight { position: v(-1.5, 1.5, 1.5), color: Vec3::ONE, intensity: 0.2 }];
+    scene
+}
+
+/// The march's mean sky light (white sky) over `at`, one frame of 8 slices.
+fn march_sky(gpu: &ssdo::gpu::Gpu, scene: &Scene, camera: &OrbitCamera, far_side: bool, at: &[(usize, usize)]) -> f32 {
+    let settings = Settings { view: View::DoDirect, ..bounce_only(far_side, 1.0) };
+    let mut r = renderer(gpu, scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+    assert_eq!(r.plan().far_side, far_side);
+    shoot(gpu, &mut r, camera);
+    let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
+    at.iter().map(|&(x, y)| d[y * W as usize + x][0]).sum::<f32>() / at.len() as f32
+}
+
+#[test]
+fn the_floor_beside_a_deep_block_is_shaded_by_its_depth_not_a_slab() {
+    let Some(gpu) = gpu() else { return };
+    let scene = deep_block();
+    let truth = ReferenceScene::new(&scene.model);
+    // From in front and above: the block's top and front show, its sides are turned away (the far
+    // side layer holds them); the floor beside it, within a radius, sees the sky past the block.
+    let camera = looking(Vec3::new(0.0, 0.3, 0.2), 0.0, 45.0, 3.0);
+    let mut at = Vec::new();
+    for y in 0..H as usize {
+        for x in 0..W as usize {
+            let (eye, dir) = common::eye_ray_in(&camera, (W, H), (x, y));
+            let Some(s) = truth.trace(eye, dir, 1e4) else { continue };
+            let p = s.position;
+            if s.normal.y > 0.99 && p.y.abs() < 1e-3 && (0.3..0.55).contains(&p.x.abs()) && (-0.9..0.6).contains(&p.z) {
+                at.push(((x, y), s));
+            }
+        }
+    }
+    assert!(at.len() >= 40, "only {} floor pixels beside the block", at.len());
+    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
+    let mut rng = StdRng::seed_from_u64(5);
+    let sky = Skybox::constant(Vec3::ONE);
+    let truth_sky =
+        at.iter().map(|(_, s)| truth.estimate(s, &[], &scene.rig, &sky, &settings, &mut rng).sky.x).sum::<f32>()
+            / at.len() as f32;
+    let pixels: Vec<_> = at.iter().map(|&(pixel, _)| pixel).collect();
+    let slab = march_sky(gpu, &scene, &camera, false, &pixels);
+    let extent = march_sky(gpu, &scene, &camera, true, &pixels);
+    eprintln!(
+        "sky on the floor beside a deep block ({} pixels): truth {truth_sky:.4}, slab {slab:.4}, far side {extent:.4}",
+        at.len()
+    );
+    let error = |x: f32| (x - truth_sky).abs() / truth_sky;
+    assert!(error(slab) > 0.05, "a slab lets the sky through the block: {:.3}", error(slab));
+    assert!(
+        error(extent) <= 0.5 * error(slab),
+        "the far side's depth closes it: {:.3} against {:.3}",
+        error(extent),
+        error(slab)
+    );
+}

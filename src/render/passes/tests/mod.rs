@@ -127,6 +127,12 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         let quarter = plan.sender_sky == SenderSky::MarchQuarter;
         assert!(!plan.allocates(SENDER_SKY) || !quarter, "{:?}", plan.steps);
         assert!(!plan.allocates(SENDER_SKY_QUARTER) || quarter, "{:?}", plan.steps);
+        // With the far side (and no thickness given) the lighting pass writes the depth with each
+        // surface's extent, and the march reads it in place of the thickness layer.
+        let extent = crate::render::passes::far_side::EXTENT_LAYER;
+        assert_eq!(plan.extent_layer, plan.has(Step::FAR_SIDE), "{:?}", plan.steps);
+        assert_eq!(Step::LIGHTING.io(&plan).writes.contains(&extent), plan.extent_layer);
+        assert_eq!(Step::SAMPLING.io(&plan).reads.contains(&extent), plan.extent_layer);
     }
 }
 
