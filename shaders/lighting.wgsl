@@ -149,7 +149,7 @@ fn extent_layer(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> u32 
     let sheet = (code & 7u) == 0u;
     if far != 0u && bitcast<f32>(far) < depth && !sheet {
         let near = length(view_position_of(c, position, depth));
-        code = extent_code(length(view_position_of(c, position, bitcast<f32>(far))) - near, frame.default_thickness);
+        code = extent_code(length(view_position_of(c, position, bitcast<f32>(far))) - near, near);
     }
     return (bitcast<u32>(depth) & ~EXTENT_CODE_MASK) | code;
 }

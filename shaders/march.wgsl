@@ -157,7 +157,7 @@ fn sample_thickness(r: Receiver, sample: DepthSample, p: vec3<f32>, spacing: f32
         return r.thickness;
     }
     if EXTENT_CODES && (sample.code & EXTENT_FLAG) != 0u {
-        return extent_of(sample.code, frame.default_thickness);
+        return extent_of(sample.code, length(p));
     }
     let extent = depth_extent(sample.code, pixel_footprint(spacing, p.z), frame.default_thickness);
     return min(r.thickness, extent);

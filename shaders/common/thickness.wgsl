@@ -66,19 +66,20 @@ fn pixel_footprint(pixels: f32, z: f32) -> f32 {
 
 // The depth with each surface's extent behind it (far_side.rs EXTENT_LAYER, written by the
 // lighting pass where there is a far side): the depth's bits with their low nine replaced. Bit 8
-// set: bits 0-7 code the distance along the view ray to the far side's face behind the surface,
-// 2^((c − 128) / 16) default thicknesses (1/256 to 250, in steps of 4.4%); clear: bits 0-7 are
-// the thickness layer's code (a sheet, a surface with nothing behind it).
+// set: bits 0-7 code the distance along the view ray to the far side's face behind the surface
+// as a share of the surface's own distance from the eye, 2^((c − 192) / 16) (1/4096 to 15, in
+// steps of 4.4%: relative, so the lighting pass needs no scene length); clear: bits 0-7 are the
+// thickness layer's code (a sheet, a surface with nothing behind it).
 const EXTENT_CODE_MASK: u32 = 511u;
 const EXTENT_FLAG: u32 = 256u;
 
-// The extent code of a distance `t` behind the surface, for a scene of `default_thickness`.
-fn extent_code(t: f32, default_thickness: f32) -> u32 {
-    let octaves = log2(max(t, 1e-30) / default_thickness);
-    return EXTENT_FLAG | u32(clamp(round(16.0 * octaves) + 128.0, 0.0, 255.0));
+// The extent code of a distance `t` behind a surface `distance` from the eye.
+fn extent_code(t: f32, distance: f32) -> u32 {
+    let octaves = log2(max(t, 1e-30) / max(distance, 1e-30));
+    return EXTENT_FLAG | u32(clamp(round(16.0 * octaves) + 192.0, 0.0, 255.0));
 }
 
-// The distance an extent code (EXTENT_FLAG set) stands for.
-fn extent_of(code: u32, default_thickness: f32) -> f32 {
-    return default_thickness * exp2((f32(code & 255u) - 128.0) / 16.0);
+// The distance an extent code (EXTENT_FLAG set) stands for behind a surface `distance` from the eye.
+fn extent_of(code: u32, distance: f32) -> f32 {
+    return distance * exp2((f32(code & 255u) - 192.0) / 16.0);
 }
