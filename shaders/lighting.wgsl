@@ -46,6 +46,10 @@ override FAR_SIDE: bool = false;
 // FAR_SIDE: the G-buffer's thickness layer, whose codes say which surfaces are sheets.
 @group(1) @binding(6) var thickness_layer: texture_2d<u32>;
 override THICKNESS_LAYER: bool = false;
+// FAR_SKY: the sky the far side's surfaces see and their open share (far_sky.rs), at a quarter
+// of the width and height.
+@group(1) @binding(7) var far_sky: texture_2d<f32>;
+override FAR_SKY: bool = false;
 #include "common/thickness.wgsl"
 
 struct LightingOut {
@@ -90,16 +94,16 @@ fn direct(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> LightingOu
         facing_bits = pack_normal(depth_normal_in(pixel, p, normal.xyz, c.projection, c.viewport));
     }
     out.bounce = vec4<u32>(pack_sender(bounce, facing_bits), 0u, 0u);
-    if FAR_SIDE && LIGHTS {
+    if FAR_SIDE {
         out.bounce = vec4<u32>(out.bounce.xy, far_sender(c, pixel, position));
     }
     return out;
 }
 
 // The far side layer's surface at `pixel` as a sender: the diffuse light the point lights give
-// it, and its normal (away from the eye). Its sky is left out: no march sees it, and the sky's
-// unoccluded irradiance overstates it (an underside facing the floor took the ground's half of
-// the sky: cornell's SSDO error 0.0197 → 0.0264 against 0.0203 without; docs/accuracy.md).
+// it and, with FAR_SKY, the sky and ambient its own march saw (the sky's unoccluded irradiance
+// overstates it: an underside facing the floor took the ground's half of the sky, cornell's SSDO
+// error 0.0197 → 0.0264; docs/accuracy.md), and its normal (away from the eye).
 fn far_sender(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> vec2<u32> {
     let far = textureLoad(far_surface, pixel, 0);
     if far.z == 0u {
@@ -107,7 +111,15 @@ fn far_sender(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>) -> vec2<u
     }
     let p = view_position_of(c, position, bitcast<f32>(far.z));
     let albedo = unpack4x8unorm(far.y).rgb;
-    let light = point_lighting(c, p, unpack_normal(far.x), albedo, 0.0, 1.0).diffuse;
+    var light = vec3<f32>(0.0);
+    if LIGHTS {
+        light = point_lighting(c, p, unpack_normal(far.x), albedo, 0.0, 1.0).diffuse;
+    }
+    if FAR_SKY {
+        let last = vec2<i32>(textureDimensions(far_sky)) - vec2<i32>(1);
+        let seen = textureLoad(far_sky, min(pixel >> vec2<u32>(2u), last), 0);
+        light += albedo * (seen.rgb + c.ambient.rgb * seen.a);
+    }
     return pack_sender(light, far.x);
 }
 

@@ -89,17 +89,29 @@ struct Receiver {
 // The receiver at pixel centre `position` (of `pixel`, whose depth is `depth`), with the
 // rotation and jitter of the 4x4 tile at `tile`.
 fn receiver_at(position: vec2<f32>, pixel: vec2<i32>, depth: f32, tile: vec2<i32>) -> Receiver {
+    let n = load_normal(pixel);
+    let surface = view_position(position, depth);
+    var n_g = n;
+    if NORMAL_MAPPED {
+        n_g = depth_normal(pixel, surface, n);
+    }
+    return receiver_of(position, surface, n, n_g, tile, false);
+}
+
+// The receiver at view point `surface` (pixel centre `position`) with shading normal `n` and
+// plane normal `n_g`; `away`: a surface turned from the eye, whose hemisphere is measured about
+// the view ray's continuation (the slices' angles from the direction away from the eye).
+fn receiver_of(position: vec2<f32>, surface: vec3<f32>, n: vec3<f32>, n_g: vec3<f32>, tile: vec2<i32>, away: bool) -> Receiver {
     var r: Receiver;
     r.position = position;
-    r.n = load_normal(pixel);
-    let surface = view_position(position, depth);
-    r.n_g = r.n;
-    if NORMAL_MAPPED {
-        r.n_g = depth_normal(pixel, surface, r.n);
-    }
+    r.n = n;
+    r.n_g = n_g;
     r.radius = occ.radius;
     r.p = surface + r.n_g * occ.bias_length;
     r.v = safe_normalize(-r.p, vec3<f32>(0.0, 0.0, 1.0));
+    if away {
+        r.v = -r.v;
+    }
     r.v_world = (frame.view_to_world * vec4<f32>(r.v, 0.0)).xyz;
     let steps = max(occ.steps, 1u);
     let reach = max(occ.reach, r.radius);
@@ -233,7 +245,7 @@ fn march_side(r: Receiver, s: Slice, sign: f32, taken: ptr<function, Taken>, sum
         }
         let p = view_position(vec2<f32>(texel) + 0.5, sample.depth);
         let front = p - r.p;
-        let thickness = sample_thickness(r, sample, p, spacing);
+        let thickness = far_extent(texel, sample, p, sample_thickness(r, sample, p, spacing));
         let back = front - safe_normalize(-p, r.v) * thickness;
         let a_front = slice_angle(front, r.v, s.t);
         let a_back = slice_angle(back, r.v, s.t);
@@ -323,7 +335,14 @@ fn evaluate(position: vec2<f32>, slice_count: u32, tile: vec2<i32>) -> Occlusion
     if depth <= 0.0 {
         return out;
     }
-    let r = receiver_at(position, pixel, depth, tile);
+    return march_receiver(receiver_at(position, pixel, depth, tile), slice_count);
+}
+
+// The march about receiver `r` with `slice_count` slices.
+fn march_receiver(r: Receiver, slice_count: u32) -> Occlusion {
+    var out: Occlusion;
+    out.ao = 1.0;
+    out.open = 1.0;
     let slices = max(slice_count, 1u);
     var sums: Sums;
     for (var slice = 0u; slice < slices; slice += 1u) {
@@ -404,4 +423,62 @@ fn fs_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
     let cell = vec2<i32>(in.position.xy);
     let scale = 1 << SENDER_SHIFT;
     return sender_value(evaluate(vec2<f32>(scale * cell + (scale / 2 - 1)) + 0.5, 1u, cell));
+}
+
+// The far side layer's surfaces (far_side.rs FAR_SURFACE: x the packed normal, z the depth's
+// bits, 0 where there is none), read by the far-sky pass alone.
+@group(1) @binding(7) var far_surface: texture_2d<u32>;
+// The far-sky pass: each depth sample spans to the far side's face behind it, read here (the
+// lighting pass, which writes that extent for the sampling pass, runs after this one).
+override FAR_EXTENT: bool = false;
+
+// `thickness`, or with FAR_EXTENT the distance from the sample at `p` to the far side's face
+// behind it, where there is one and the sample is no sheet (as lighting.wgsl `extent_layer`).
+fn far_extent(texel: vec2<i32>, sample: DepthSample, p: vec3<f32>, thickness: f32) -> f32 {
+    if !FAR_EXTENT || (THICKNESS_LAYER && (sample.code & 7u) == 0u) {
+        return thickness;
+    }
+    let far = textureLoad(far_surface, texel, 0).z;
+    if far == 0u || bitcast<f32>(far) >= sample.depth {
+        return thickness;
+    }
+    return length(view_position(vec2<f32>(texel) + 0.5, bitcast<f32>(far))) - length(p);
+}
+
+// The far-sky pass (far_sky.rs, at a quarter of the width and height, as fs_sender with
+// SENDER_SHIFT 2): the sky the far side layer's surface at this cell's pixel sees through one
+// slice, and its open share. It faces away from the eye, so its hemisphere's angles are measured
+// about its eye ray's continuation: the depth samples behind it on the screen occlude it, those
+// in front (its own solid's near side) lie below its plane.
+@fragment
+fn fs_far_sender(in: FullscreenOut) -> @location(0) vec4<f32> {
+    let cell = vec2<i32>(in.position.xy);
+    let scale = 1 << SENDER_SHIFT;
+    // The first pixel of the cell's block that holds a far surface, from its middle out: a cell
+    // at a far surface's edge still measures it for the pixels of its block that hold it.
+    let block = vec2<i32>(scale * cell);
+    let last = vec2<i32>(frame.viewport.xy) - 1;
+    var pixel = vec2<i32>(-1);
+    var far = vec4<u32>(0u);
+    // From the middle out: offsets 1, 2, 0, 3 on each axis (a 2-wide block's 1, 0 among them).
+    var middle_out = array<i32, 4>(1, 2, 0, 3);
+    if scale == 2 {
+        middle_out = array<i32, 4>(1, 0, 1, 0);
+    }
+    for (var k = 0; k < scale * scale && pixel.x < 0; k += 1) {
+        let order = vec2<i32>(middle_out[k % scale], middle_out[k / scale]);
+        let at = min(block + order, last);
+        let f = textureLoad(far_surface, at, 0);
+        if f.z != 0u {
+            pixel = at;
+            far = f;
+        }
+    }
+    if pixel.x < 0 {
+        return vec4<f32>(0.0);
+    }
+    let position = vec2<f32>(pixel) + 0.5;
+    let surface = view_position(position, bitcast<f32>(far.z));
+    let n = unpack_normal(far.x);
+    return sender_value(march_receiver(receiver_of(position, surface, n, n, cell, true), 1u));
 }

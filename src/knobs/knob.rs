@@ -32,6 +32,7 @@ impl Knob {
             Scope::MarchDirectional => marches && directional,
             Scope::Directional => directional,
             Scope::Bounce => directional && knobs.indirect_strength > 0.0,
+            Scope::FarSide => directional && knobs.indirect_strength > 0.0 && knobs.far_side,
         }
     }
 

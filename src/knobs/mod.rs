@@ -55,6 +55,7 @@ impl Knobs {
             indirect_strength: s.indirect_strength,
             sender_sky: s.sender_sky,
             far_side: s.far_side,
+            far_sky: s.far_sky,
         }
     }
 
@@ -78,6 +79,7 @@ impl Knobs {
         s.accumulate = self.accumulate;
         s.sender_sky = self.sender_sky;
         s.far_side = self.far_side;
+        s.far_sky = self.far_sky;
         s.indirect_strength = self.indirect_strength;
     }
 

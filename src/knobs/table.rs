@@ -29,6 +29,8 @@ pub struct Knobs {
     pub sender_sky: SenderSky,
     /// The far side layer: the surfaces turned from the eye send their point lights' light.
     pub far_side: bool,
+    /// ... and the sky each sees, from a march of its own.
+    pub far_sky: bool,
 }
 
 /// One knob's value.
@@ -98,6 +100,8 @@ pub enum Scope {
     Directional,
     /// The modes with DO, with a bounce (what lights the senders).
     Bounce,
+    /// The modes with DO, with a bounce and the far side layer (what lights its senders).
+    FarSide,
 }
 
 /// One knob's declaration.
@@ -166,7 +170,7 @@ pub(super) fn choice<T: std::str::FromStr>(v: Value) -> T {
 
 /// Every knob, in the order tune steps them and a preset writes them (the variant first: the
 /// others' defaults are its own).
-pub const KNOBS: [Knob; 13] = [
+pub const KNOBS: [Knob; 14] = [
     Knob {
         key: "variant",
         flag: "variant",
@@ -318,6 +322,20 @@ pub const KNOBS: [Knob; 13] = [
         scope: Scope::Bounce,
         get: |k| Value::Switch(k.far_side),
         set: |k, v| k.far_side = switch(v),
+    },
+    Knob {
+        key: "far_sky",
+        flag: "far-sky",
+        label: "far sides see the sky",
+        help: "With --far-side: a quarter-resolution march from each far side surface measures the sky it \
+               sees, which it sends beside its point lights' light (so the far side is drawn under a sky \
+               alone too; docs/accuracy.md)",
+        kind: Kind::Switch,
+        rungs: Rungs::Toggle,
+        cost: Cost::Rises,
+        scope: Scope::FarSide,
+        get: |k| Value::Switch(k.far_sky),
+        set: |k, v| k.far_sky = switch(v),
     },
     Knob {
         key: "indirect_strength",

@@ -213,6 +213,7 @@ impl Renderer {
             material_thickness: settings.sampling.material_thickness()
                 && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
             far_side: settings.far_side,
+            far_sky: settings.far_sky,
         };
         Plan::new(settings.mode, features, options)
     }

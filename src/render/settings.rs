@@ -175,6 +175,9 @@ pub struct Settings {
     /// the point lights, and the bounce takes their light where the surface the screen shows
     /// faces away from the receiver (off by default: docs/accuracy.md).
     pub far_side: bool,
+    /// With the far side: a quarter-resolution march from each far side surface measures the sky
+    /// it sees, which it sends beside its point lights' light (off by default: docs/accuracy.md).
+    pub far_sky: bool,
     /// Denoise the sampling output.
     pub blur: bool,
     /// The sampling pass runs at half width and height, and so do the blur and the average over
@@ -206,6 +209,7 @@ impl Default for Settings {
             indirect_strength: 1.0,
             sender_sky: SenderSky::LastFrame,
             far_side: false,
+            far_sky: false,
             blur: true,
             half_resolution: true,
             accumulate: ACCUMULATE.default,

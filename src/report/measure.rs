@@ -197,6 +197,7 @@ impl Bench<'_> {
             pyramid: config.pyramid(),
             // (Drawn only where the scene has point lights to light it.)
             far_side: config.far_side() && renderer.plan().far_side,
+            far_sky: config.far_sky() && renderer.plan().has(crate::render::modes::Step::FAR_SKY),
             blur: config.knobs.blur,
             // What lit the senders (the variants that do not march take `march` for `last-frame`).
             bounce: if mode.declaration().directional_occlusion {

@@ -17,8 +17,10 @@ pub struct Row {
     pub blur: bool,
     /// What lights the bounce's senders (DO modes); `None`: no bounce (`--indirect-strength 0`).
     pub bounce: Option<SenderSky>,
-    /// The far side layer's senders send too (`--far-side`).
+    /// The far side layer's senders send too (`--far-side`), and with the sky they see
+    /// (`--far-sky`).
     pub far_side: bool,
+    pub far_sky: bool,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
     /// Frames averaged, and the camera's turn a frame over them, in degrees.
@@ -69,7 +71,7 @@ impl Row {
             if self.half_resolution { " half" } else { "" },
             self.radius,
             self.blur,
-            Row::bounce_label(self.mode, config.bounce(), config.far_side()),
+            Row::bounce_label(self.mode, config.bounce(), (config.far_side(), config.far_sky())),
             self.accumulate,
             self.orbit,
             self.ms,

@@ -22,7 +22,7 @@ pub struct Config {
 /// name; points gives the same image) and once for classic. Every sampled mode is measured at
 /// each count with blur on and off; the DO modes also with the march's depth pyramid, and at the
 /// default count with the bounce's other senders, with no bounce and with the far side layer's
-/// senders (`--far-side`). The rows with blur on and
+/// senders (`--far-side`, and with their sky, `--far-sky`). The rows with blur on and
 /// off and the default bounce are measured at every `--accumulate` count, and the accumulated
 /// ones also orbiting where `--orbit` is given; the rows with blur on at full and at half
 /// resolution; the pyramid, the other bounces and the far side at one frame, at the default
@@ -73,6 +73,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                     }
                     configs.push(at(Knobs { indirect_strength: 0.0, ..counted }));
                     configs.push(at(Knobs { far_side: true, ..counted }));
+                    configs.push(at(Knobs { far_side: true, far_sky: true, ..counted }));
                 }
             }
         }
@@ -137,6 +138,11 @@ impl Config {
         self.knobs.far_side && self.bounce().is_some()
     }
 
+    /// ... with the sky its surfaces see (`--far-sky`).
+    pub fn far_sky(&self) -> bool {
+        self.far_side() && self.knobs.far_sky
+    }
+
     /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
     pub fn bounce(&self) -> Option<SenderSky> {
         let directional = self.mode.declaration().directional_occlusion;
@@ -186,12 +192,12 @@ mod tests {
     #[test]
     fn the_sweep_is_counted_as_it_is_listed() {
         // Per radius and count: 3 sampled modes × blur on/off, the two DO modes again with the
-        // pyramid (march only), and at the default march 5 other bounces and the far side in each
-        // DO mode.
+        // pyramid (march only), and at the default march 5 other bounces and the far side (with
+        // and without its sky) in each DO mode.
         for (samples, march, radii) in [(1, 1, 1), (5, 4, 1), (2, 3, 2)] {
             let o = options(samples, march, radii);
             // ...and the 3 sampled modes with blur on again at half resolution.
-            let per_radius = 2 * (9 * samples) + (9 + 2) * march + 2 * 6 * march;
+            let per_radius = 2 * (9 * samples) + (9 + 2) * march + 2 * 7 * march;
             assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
         }
         let mut o = options(1, 1, 1);

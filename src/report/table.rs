@@ -25,14 +25,16 @@ impl Row {
 
     /// What lit the bounce's senders: "march", "irradiance", "lights" (the point lights only),
     /// "none" (no bounce), "—" (no DO); " + far side" where the far side layer sends too.
-    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>, far_side: bool) -> String {
+    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>, (far_side, far_sky): (bool, bool)) -> String {
         let senders = match (mode, bounce) {
             (Mode::Off | Mode::Ssao, _) => "—",
             (_, Some(SenderSky::Off)) => "lights",
             (_, Some(other)) => other.name(),
             (_, None) => "none",
         };
-        if far_side {
+        if far_sky {
+            format!("{senders} + far side and its sky")
+        } else if far_side {
             format!("{senders} + far side")
         } else {
             senders.to_string()
@@ -67,7 +69,7 @@ impl Row {
             self.mode.name(),
             self.variant,
             if off { "—".to_string() } else { self.label() },
-            Row::bounce_label(self.mode, self.bounce, self.far_side),
+            Row::bounce_label(self.mode, self.bounce, (self.far_side, self.far_sky)),
             if off { "—".to_string() } else { format!("{:.3}", self.radius) },
             self.frames_label(),
             self.ms,
@@ -128,7 +130,7 @@ impl Report {
                 r.steps.to_string(),
                 r.pyramid.to_string(),
                 r.blur.to_string(),
-                Row::bounce_label(r.mode, r.bounce, r.far_side),
+                Row::bounce_label(r.mode, r.bounce, (r.far_side, r.far_sky)),
                 format!("{:.5}", r.radius),
                 r.accumulate.to_string(),
                 r.orbit.to_string(),

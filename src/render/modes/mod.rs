@@ -93,6 +93,8 @@ pub struct PlanOptions {
     pub material_thickness: bool,
     /// The far side layer: the nearest surfaces turned away from the eye, lit, for the bounce.
     pub far_side: bool,
+    /// ... and its surfaces' sky from a march of their own (`--far-sky`).
+    pub far_sky: bool,
 }
 
 impl Default for PlanOptions {
@@ -110,6 +112,7 @@ impl Default for PlanOptions {
             accumulate: true,
             material_thickness: true,
             far_side: false,
+            far_sky: false,
         }
     }
 }

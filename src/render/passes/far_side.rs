@@ -24,10 +24,16 @@ impl Step {
 
 pub const ENTRY: Entry = Entry::new(Step::FAR_SIDE, runs, FarSidePass::io, |cx| Ok(Box::new(FarSidePass::new(cx)?)));
 
-/// Where a DO mode bounces light, the far side is asked for, and there are point lights to
-/// light it (its sky is left out: see `fs_far_side`).
+/// Where a DO mode bounces light, the far side is asked for, and there is light to light it:
+/// point lights, or the sky its own march measures (`--far-sky`, `far_sky.rs`).
 pub fn runs(f: &PlanFacts) -> bool {
-    f.bounces() && f.lights() && f.options.far_side
+    f.bounces() && f.options.far_side && (f.lights() || sky(f))
+}
+
+/// Whether the far side's surfaces take the sky they see (`far_sky.rs`): asked for, and the
+/// senders take the sky at all.
+pub fn sky(f: &PlanFacts) -> bool {
+    f.options.far_sky && f.sender_sky() != crate::render::settings::SenderSky::Off
 }
 
 /// The far side's surfaces: the packed normal and shininess as the G-buffer packs them (x), the

@@ -52,6 +52,8 @@ struct Key {
     extent_layer: bool,
     /// ... from the G-buffer's thickness layer where it holds a sheet.
     thickness_layer: bool,
+    /// The far side's surfaces take the sky their own march saw.
+    far_sky: bool,
 }
 
 impl Key {
@@ -67,6 +69,7 @@ impl Key {
             far_side: plan.far_side,
             extent_layer: plan.extent_layer,
             thickness_layer: plan.thickness_layer,
+            far_sky: plan.has(Step::FAR_SKY),
         }
     }
 
@@ -79,6 +82,7 @@ impl Key {
             ("NORMAL_MAPPED", flag(self.normal_mapped)),
             ("FAR_SIDE", flag(self.far_side)),
             ("THICKNESS_LAYER", flag(self.extent_layer && self.thickness_layer)),
+            ("FAR_SKY", flag(self.far_sky)),
         ];
         let extent = self.extent_layer.then(|| EXTENT_LAYER.format.into());
         PipelineSpec {
@@ -132,6 +136,7 @@ impl LightingPass {
             Read::target_if(plan.sender_sky == SenderSky::LastFrame, LAST_SKY),
             Read::target_if(plan.far_side, FAR_SURFACE),
             Read::target_if(plan.extent_layer && plan.thickness_layer, THICKNESS),
+            Read::target_if(plan.has(Step::FAR_SKY), super::far_sky::FAR_SKY),
         ];
         let direct = plan.lighting_writes_direct().then_some(HDR);
         let extent = plan.extent_layer.then_some(EXTENT_LAYER);

@@ -9,6 +9,7 @@ pub mod blur;
 pub mod composite;
 pub mod depth_pyramid;
 pub mod far_side;
+pub mod far_sky;
 pub mod gbuffer;
 pub mod light_cubes;
 pub mod lighting;
@@ -29,7 +30,7 @@ use crate::scene::Model;
 use crate::Result;
 
 /// Every pass, in the order a frame runs them.
-pub const PASSES: [Entry; 13] = [
+pub const PASSES: [Entry; 14] = [
     // Geometry once: albedo, normal, depth.
     gbuffer::ENTRY,
     // The nearest surfaces turned away from the eye, lit as senders (`--far-side`).
@@ -38,6 +39,8 @@ pub const PASSES: [Entry; 13] = [
     depth_pyramid::ENTRY,
     // The sky each sender sees, at half resolution.
     sender_sky::ENTRY,
+    // The sky each far side surface sees, at quarter resolution (`--far-sky`).
+    far_sky::ENTRY,
     // Each surface's direct light: the radiance SSDO bounces, and the point lights' light.
     lighting::ENTRY,
     // AO and/or DO from one set of samples.

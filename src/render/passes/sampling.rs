@@ -142,7 +142,8 @@ impl SamplingPass {
     /// The sampling passes' reads (this one's and the sender-sky march's): the G-buffer, the
     /// parameters, the bounce source where `bounce` says it is read (and then, with the far side,
     /// the depth with each surface's extent that the lighting pass writes beside it, in place of
-    /// the thickness layer), the depth pyramid and the thickness layer.
+    /// the thickness layer), the depth pyramid, the thickness layer and the far side's surfaces
+    /// (which only the far-sky pass reads).
     pub fn reads(plan: &Plan, bounce: bool) -> Vec<Read> {
         let layer = match bounce && plan.extent_layer {
             true => Read::Target(super::far_side::EXTENT_LAYER),
@@ -156,6 +157,8 @@ impl SamplingPass {
             Read::target_if(bounce, plan.bounce_target()),
             Read::target_if(plan.pyramid, PYRAMID),
             layer,
+            // The far side's surfaces: the far-sky pass's alone (`far_sky.rs`).
+            Read::Absent(super::far_side::FAR_SURFACE),
         ]
     }
 

@@ -44,6 +44,7 @@ fn preset() -> Preset {
             accumulate: 8,
             sender_sky: SenderSky::Irradiance,
             far_side: true,
+            far_sky: true,
             indirect_strength: 0.0,
         },
         measured: Some(measured()),

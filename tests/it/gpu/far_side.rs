@@ -9,7 +9,7 @@ use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::headless::readback::read_rgba16f;
 use ssdo::reference::{ReferenceScene, TraceSettings};
-use ssdo::render::{Mode, Sampling, Settings, Variant, View};
+use ssdo::render::{Mode, Sampling, Settings, Step, Variant, View};
 use ssdo::scene::{OrbitCamera, PointLight, Scene, Skybox};
 
 /// A red block (1.2 wide, 0.25 tall, 0.4 deep: thicker than the march's slab) on a white floor,
@@ -162,4 +162,52 @@ fn the_floor_beside_a_deep_block_is_shaded_by_its_depth_not_a_slab() {
         error(extent),
         error(slab)
     );
+}
+
+/// The march's mean bounce over `at` under a white sky and no point lights (the DO-indirect view:
+/// the bounce alone), with the far side and its sky or without.
+fn sky_bounce(gpu: &ssdo::gpu::Gpu, scene: &Scene, camera: &OrbitCamera, far: bool, at: &[(usize, usize)]) -> Vec3 {
+    let settings = Settings { far_sky: far, view: View::DoIndirect, ..bounce_only(far, 1.0) };
+    let mut r = renderer(gpu, scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
+    assert_eq!(r.plan().has(Step::FAR_SKY), far, "the far sky runs where asked");
+    shoot(gpu, &mut r, camera);
+    let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
+    at.iter().map(|&(x, y)| Vec3::from_slice(&d[y * W as usize + x][..3])).sum::<Vec3>() / at.len() as f32
+}
+
+#[test]
+fn under_a_sky_alone_the_floor_behind_a_block_gets_the_bounce_of_its_far_faces_sky() {
+    let Some(gpu) = gpu() else { return };
+    let mut scene = block_lit_from_behind();
+    scene.lights.clear();
+    let truth = ReferenceScene::new(&scene.model);
+    let camera = looking(Vec3::new(0.0, 0.0, -0.45), 0.0, 50.0, 3.0);
+    let mut at = Vec::new();
+    for y in 0..H as usize {
+        for x in 0..W as usize {
+            let (eye, dir) = common::eye_ray_in(&camera, (W, H), (x, y));
+            let Some(s) = truth.trace(eye, dir, 1e4) else { continue };
+            let p = s.position;
+            if s.normal.y > 0.99 && p.y.abs() < 1e-3 && (-0.7..-0.45).contains(&p.z) && p.x.abs() < 0.4 {
+                at.push(((x, y), s));
+            }
+        }
+    }
+    assert!(at.len() >= 20, "only {} floor pixels behind the block", at.len());
+    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
+    let mut rng = StdRng::seed_from_u64(5);
+    let sky = Skybox::constant(Vec3::ONE);
+    let truth_bounce =
+        at.iter().map(|(_, s)| truth.estimate(s, &[], &scene.rig, &sky, &settings, &mut rng).bounce).sum::<Vec3>()
+            / at.len() as f32;
+    let pixels: Vec<_> = at.iter().map(|&(pixel, _)| pixel).collect();
+    let near_only = sky_bounce(gpu, &scene, &camera, false, &pixels);
+    let far_sky = sky_bounce(gpu, &scene, &camera, true, &pixels);
+    eprintln!("sky-lit bounce behind the block ({} pixels): truth {truth_bounce}, near side only {near_only}, far side's sky {far_sky}", at.len());
+    // The red is the block's far face's, lit by the sky it sees.
+    let red = |b: Vec3| b.x - b.z;
+    assert!(red(truth_bounce) > 0.02, "the truth's bounce is the block's: {truth_bounce}");
+    let (before, after) = (red(near_only) / red(truth_bounce), red(far_sky) / red(truth_bounce));
+    assert!(before < 0.3, "the near side, facing away, sends little: {before:.2} of the truth's red");
+    assert!((0.5..=1.5).contains(&after), "the far side's sky sends the truth's red: {after:.2} of it");
 }

@@ -48,7 +48,7 @@ fn all_plans() -> Vec<Plan> {
     let mut plans = Vec::new();
     for mode in Mode::ALL {
         for lights in [0, 8] {
-            for bits in 0..256u32 {
+            for bits in 0..512u32 {
                 for sender_sky in SenderSky::ALL {
                     // Every switch both ways over the default (its material thickness on).
                     let mut o = PlanOptions { sender_sky, ..PlanOptions::default() };
@@ -61,7 +61,8 @@ fn all_plans() -> Vec<Plan> {
                         o.half_resolution,
                         o.bilateral,
                         o.far_side,
-                    ] = [0, 1, 2, 3, 4, 5, 6, 7].map(|b| bits & (1 << b) != 0);
+                        o.far_sky,
+                    ] = [0, 1, 2, 3, 4, 5, 6, 7, 8].map(|b| bits & (1 << b) != 0);
                     plans.push(Plan::new(mode, SceneFeatures::lit(lights), o));
                 }
             }
@@ -133,6 +134,11 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         assert_eq!(plan.extent_layer, plan.has(Step::FAR_SIDE), "{:?}", plan.steps);
         assert_eq!(Step::LIGHTING.io(&plan).writes.contains(&extent), plan.extent_layer);
         assert_eq!(Step::SAMPLING.io(&plan).reads.contains(&extent), plan.extent_layer);
+        // The far side's sky: its own march, where asked for and the senders take the sky at all
+        // (then the far side is drawn with no point lights too), read by the lighting pass.
+        let far_sky = plan.has(Step::FAR_SKY);
+        assert!(!far_sky || plan.has(Step::FAR_SIDE), "{:?}", plan.steps);
+        assert_eq!(Step::LIGHTING.io(&plan).reads.contains(&super::far_sky::FAR_SKY), far_sky);
     }
 }
 
