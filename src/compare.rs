@@ -24,8 +24,13 @@ pub fn caption(renderer: &Renderer, sky: &str, lights: usize) -> Vec<String> {
             s.sampling.count_label()
         ));
     }
-    // The far side layer, where the plan draws it.
-    let far = if renderer.plan().far_side { ", far side" } else { "" };
+    // The far side layer, where the plan draws it, and its sky.
+    let plan = renderer.plan();
+    let far = match (plan.far_side, plan.has(crate::render::modes::Step::FAR_SKY)) {
+        (true, true) => ", far side and its sky",
+        (true, false) => ", far side",
+        _ => "",
+    };
     lines.push(format!("sky {sky}, {lights} lights, ambient {}{far}", s.ambient));
     lines
 }
