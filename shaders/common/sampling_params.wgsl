@@ -25,7 +25,7 @@ struct SamplingParams {
     // `sky_strength` leave it alone, so the DO-indirect view still bounces sky light)
     sender_sky_strength: f32,
     _pad0: f32,
-    // The march (shaders/march.wgsl): slices and steps per side...
+    // The march (shaders/common/march.wgsl): slices and steps per side...
     slices: u32,
     steps: u32,
     // ...reach (view units: how far the sky's visibility and the bounce are looked for) and

@@ -1,4 +1,4 @@
-// The march's slices and sectors (shaders/march.wgsl): the hemisphere is cut into slices about the
+// The march's slices and sectors (shaders/common/march.wgsl): the hemisphere is cut into slices about the
 // view vector, and a slice into 32 sectors of angle, one bit each, integrated in four groups of
 // eight; a slice's plane, its angles and its groups' measures.
 

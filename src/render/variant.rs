@@ -12,7 +12,7 @@ use crate::{Error, Result};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Variant {
     /// The depth buffer marched per direction (slices × steps) for AO, sky and bounce, out to a
-    /// reach beyond the AO radius (`shaders/march.wgsl`); bilateral blur. The default: the
+    /// reach beyond the AO radius (`shaders/common/march.wgsl`); bilateral blur. The default: the
     /// report's lowest error at the default time budget.
     #[default]
     March,

@@ -1,5 +1,5 @@
 //! How thick each material's surfaces are, measured from the model's own triangles, for the
-//! march (`shaders/march.wgsl`): a depth sample is taken to be a slab of the scene's default
+//! march (`shaders/common/march.wgsl`): a depth sample is taken to be a slab of the scene's default
 //! thickness unless its material says it is thinner.
 //!
 //! - A **cut-out** material (an alpha mask: OBJ `map_d`, glTF `MASK`) is a sheet: thickness 0.

@@ -51,7 +51,7 @@ use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 pub struct SceneFeatures {
     pub lights: usize,
     /// A material has a normal map: the G-buffer's normals are not the surfaces' own, and the
-    /// sampling passes take the geometry's from the depth (see `shaders/march.wgsl`).
+    /// sampling passes take the geometry's from the depth (see `shaders/common/march.wgsl`).
     pub normal_mapped: bool,
     /// A material is thinner than the scene's default thickness (`scene/thickness.rs`): the
     /// march can take each depth sample's thickness from the G-buffer's thickness layer.

@@ -1,6 +1,6 @@
 //! The far side's sky (`--far-sky`, with `--far-side`): before the lighting pass, at a quarter of
 //! the width and height, the sky each far side surface sees through one slice of the march
-//! (`fs_far_sender` in `shaders/march.wgsl`), its angles measured about the continuation of its
+//! (`fs_far_sender` in `shaders/sender_sky.wgsl`), its angles measured about the continuation of its
 //! eye ray (it faces away from the eye), over the depth buffer: what lies behind it on the screen
 //! occludes it (an underside sees the floor beneath), what the screen does not show does not. The
 //! lighting pass lights the far senders with it and the ambient, as it lights the near ones with
@@ -25,7 +25,7 @@ pub const ENTRY: Entry = Entry::new(
     FarSkyPass::io,
     |cx| Ok(Box::new(FarSkyPass::new(cx)?)),
 )
-.binding(&["march.wgsl"])
+.binding(&["sender_sky.wgsl"])
 .role(Role::Sampling);
 
 /// The sky each far side surface sees (rgb, E/π before albedo, at the senders' sky strength) and
@@ -39,7 +39,7 @@ pub struct FarSkyPass {
 
 impl FarSkyPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "far_sky", "march.wgsl", true)? })
+        Ok(Self { state: PassState::new(cx, "far_sky", "sender_sky.wgsl", true)? })
     }
 
     /// The sampling pass's reads but the bounce, and the far side's surfaces; the far sky.

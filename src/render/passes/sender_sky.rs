@@ -1,6 +1,6 @@
 //! The sender-sky march (`--sender-sky march`, or `march-quarter` at a quarter of the width and
 //! height): before the lighting pass, at half resolution, the
-//! sky each surface sees through one slice of the march (`fs_sender` in `shaders/march.wgsl`,
+//! sky each surface sees through one slice of the march (`fs_sender` in `shaders/sender_sky.wgsl`,
 //! built with DO on and AO and the bounce off). The lighting pass turns it into the sky light each
 //! sender bounces, so the bounce carries the sky with the sender's own visibility.
 //!
@@ -27,7 +27,7 @@ pub const ENTRY: Entry = Entry::new(
     SenderSkyPass::io,
     |cx| Ok(Box::new(SenderSkyPass::new(cx)?)),
 )
-.binding(&["march.wgsl"])
+.binding(&["sender_sky.wgsl"])
 .role(Role::Sampling);
 
 /// The sky each sender of the bounce sees (rgb, E/π before albedo) and its open share (a), at
@@ -55,7 +55,7 @@ pub struct SenderSkyPass {
 
 impl SenderSkyPass {
     pub fn new(cx: &PassContext<'_>) -> Result<Self> {
-        Ok(Self { state: PassState::new(cx, "sender_sky", "march.wgsl", true)?, skipped: false })
+        Ok(Self { state: PassState::new(cx, "sender_sky", "sender_sky.wgsl", true)?, skipped: false })
     }
 
     /// The sampling pass's reads but the bounce, which this pass feeds; the senders' sky.
