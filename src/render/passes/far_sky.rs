@@ -8,8 +8,9 @@
 
 use super::far_side::FAR_SURFACE;
 use super::sampling::SamplingPass;
+use super::sender_sky::sky_march;
 use crate::render::graph::io::{PassIo, Read};
-use crate::render::graph::state::{flag, PassState, PipelineSpec};
+use crate::render::graph::state::PassState;
 use crate::render::graph::{Entry, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
 use crate::render::targets::{Place, TargetId, DO_FORMAT};
@@ -53,19 +54,10 @@ impl FarSkyPass {
 impl Pass for FarSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let key = || (p.plan.pyramid, p.plan.features.normal_mapped, p.plan.thickness_layer);
-        let spec = |(pyramid, mapped, thickness)| PipelineSpec {
-            entry: "fs_far_sender",
-            targets: vec![Some(DO_FORMAT.into())],
-            constants: vec![
-                ("HAS_AO", 0.0),
-                ("HAS_DO", 1.0),
-                ("INDIRECT", 0.0),
-                ("USE_PYRAMID", flag(pyramid)),
-                ("NORMAL_MAPPED", flag(mapped)),
-                ("SENDER_SHIFT", 2.0),
-                ("THICKNESS_LAYER", flag(thickness)),
-                ("FAR_EXTENT", 1.0),
-            ],
+        let spec = |inputs| {
+            let mut spec = sky_march("fs_far_sender", inputs, 2);
+            spec.constants.push(("FAR_EXTENT", 1.0));
+            spec
         };
         self.state.prepare_fullscreen(device, p, (Step::FAR_SKY, Self::io), key, spec);
     }

@@ -64,22 +64,31 @@ impl SenderSkyPass {
     }
 }
 
+/// A sky pass's pipeline (this one's, and the far sky's): the march with DO alone (no AO, no
+/// bounce), its pyramid, normal maps and thickness layer as `inputs` say, at `1 / 2^shift` of the
+/// screen's width and height.
+pub fn sky_march(entry: &'static str, (pyramid, mapped, thickness): (bool, bool, bool), shift: u32) -> PipelineSpec {
+    PipelineSpec {
+        entry,
+        targets: vec![Some(DO_FORMAT.into())],
+        constants: vec![
+            ("HAS_AO", 0.0),
+            ("HAS_DO", 1.0),
+            ("INDIRECT", 0.0),
+            ("USE_PYRAMID", flag(pyramid)),
+            ("NORMAL_MAPPED", flag(mapped)),
+            ("SENDER_SHIFT", shift as f64),
+            ("THICKNESS_LAYER", flag(thickness)),
+        ],
+    }
+}
+
 impl Pass for SenderSkyPass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
         let quarter = p.plan.sender_sky == SenderSky::MarchQuarter;
         let key = || (p.plan.pyramid, p.plan.features.normal_mapped, quarter, p.plan.thickness_layer);
-        let spec = |(pyramid, mapped, quarter, thickness)| PipelineSpec {
-            entry: "fs_sender",
-            targets: vec![Some(DO_FORMAT.into())],
-            constants: vec![
-                ("HAS_AO", 0.0),
-                ("HAS_DO", 1.0),
-                ("INDIRECT", 0.0),
-                ("USE_PYRAMID", flag(pyramid)),
-                ("NORMAL_MAPPED", flag(mapped)),
-                ("SENDER_SHIFT", if quarter { 2.0 } else { 1.0 }),
-                ("THICKNESS_LAYER", flag(thickness)),
-            ],
+        let spec = |(pyramid, mapped, quarter, thickness)| {
+            sky_march("fs_sender", (pyramid, mapped, thickness), if quarter { 2 } else { 1 })
         };
         self.state.prepare_fullscreen(device, p, (Step::SENDER_SKY, Self::io), key, spec);
     }

@@ -58,18 +58,14 @@ fn march_bounce(
     at.iter().map(|&pixel| texel(&with, pixel) - texel(&without, pixel)).sum::<Vec3>() / at.len() as f32
 }
 
-#[test]
-fn the_floor_behind_a_block_gets_the_bounce_of_its_far_face() {
-    let Some(gpu) = gpu() else { return };
-    let scene = block_lit_from_behind();
+/// The floor behind the block that `camera` sees over it, the width of its middle (the block's
+/// face that faces it is one the camera cannot see), and the truth's mean bounce there under `sky`.
+fn floor_behind_block(scene: &Scene, camera: &OrbitCamera, sky: Vec3) -> (Vec<(usize, usize)>, Vec3) {
     let truth = ReferenceScene::new(&scene.model);
-    let camera = looking(Vec3::new(0.0, 0.0, -0.45), 0.0, 50.0, 3.0);
-    // The floor behind the block that the camera sees over it, the width of its middle: the block's face that faces it
-    // is the one the camera cannot see.
     let mut at = Vec::new();
     for y in 0..H as usize {
         for x in 0..W as usize {
-            let (eye, dir) = common::eye_ray_in(&camera, (W, H), (x, y));
+            let (eye, dir) = common::eye_ray_in(camera, (W, H), (x, y));
             let Some(s) = truth.trace(eye, dir, 1e4) else { continue };
             let p = s.position;
             if s.normal.y > 0.99 && p.y.abs() < 1e-3 && (-0.7..-0.45).contains(&p.z) && p.x.abs() < 0.4 {
@@ -80,18 +76,26 @@ fn the_floor_behind_a_block_gets_the_bounce_of_its_far_face() {
     assert!(at.len() >= 20, "only {} floor pixels behind the block", at.len());
     let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
     let mut rng = StdRng::seed_from_u64(5);
-    let sky = Skybox::constant(Vec3::ZERO);
-    let truth_bounce = at
+    let sky = Skybox::constant(sky);
+    let bounce = at
         .iter()
         .map(|(_, s)| truth.estimate(s, &scene.lights, &scene.rig, &sky, &settings, &mut rng).bounce)
         .sum::<Vec3>()
         / at.len() as f32;
-    let pixels: Vec<_> = at.iter().map(|&(pixel, _)| pixel).collect();
+    (at.into_iter().map(|(pixel, _)| pixel).collect(), bounce)
+}
+
+#[test]
+fn the_floor_behind_a_block_gets_the_bounce_of_its_far_face() {
+    let Some(gpu) = gpu() else { return };
+    let scene = block_lit_from_behind();
+    let camera = looking(Vec3::new(0.0, 0.0, -0.45), 0.0, 50.0, 3.0);
+    let (pixels, truth_bounce) = floor_behind_block(&scene, &camera, Vec3::ZERO);
     let near_only = march_bounce(gpu, &scene, &camera, false, &pixels);
     let far_side = march_bounce(gpu, &scene, &camera, true, &pixels);
     eprintln!(
         "bounce on the floor behind the block ({} pixels): truth {truth_bounce}, near side only {near_only}, far side {far_side}",
-        at.len()
+        pixels.len()
     );
     // The red comes from the block's far face, lit from behind.
     assert!(truth_bounce.x > 3.0 * truth_bounce.z, "the truth's bounce is the block's: {truth_bounce}");
@@ -180,30 +184,11 @@ fn under_a_sky_alone_the_floor_behind_a_block_gets_the_bounce_of_its_far_faces_s
     let Some(gpu) = gpu() else { return };
     let mut scene = block_lit_from_behind();
     scene.lights.clear();
-    let truth = ReferenceScene::new(&scene.model);
     let camera = looking(Vec3::new(0.0, 0.0, -0.45), 0.0, 50.0, 3.0);
-    let mut at = Vec::new();
-    for y in 0..H as usize {
-        for x in 0..W as usize {
-            let (eye, dir) = common::eye_ray_in(&camera, (W, H), (x, y));
-            let Some(s) = truth.trace(eye, dir, 1e4) else { continue };
-            let p = s.position;
-            if s.normal.y > 0.99 && p.y.abs() < 1e-3 && (-0.7..-0.45).contains(&p.z) && p.x.abs() < 0.4 {
-                at.push(((x, y), s));
-            }
-        }
-    }
-    assert!(at.len() >= 20, "only {} floor pixels behind the block", at.len());
-    let settings = TraceSettings { samples_per_pixel: 256, seed: 3, radius: 1.0, sky_scale: 1.0, ambient: 0.0 };
-    let mut rng = StdRng::seed_from_u64(5);
-    let sky = Skybox::constant(Vec3::ONE);
-    let truth_bounce =
-        at.iter().map(|(_, s)| truth.estimate(s, &[], &scene.rig, &sky, &settings, &mut rng).bounce).sum::<Vec3>()
-            / at.len() as f32;
-    let pixels: Vec<_> = at.iter().map(|&(pixel, _)| pixel).collect();
+    let (pixels, truth_bounce) = floor_behind_block(&scene, &camera, Vec3::ONE);
     let near_only = sky_bounce(gpu, &scene, &camera, false, &pixels);
     let far_sky = sky_bounce(gpu, &scene, &camera, true, &pixels);
-    eprintln!("sky-lit bounce behind the block ({} pixels): truth {truth_bounce}, near side only {near_only}, far side's sky {far_sky}", at.len());
+    eprintln!("sky-lit bounce behind the block ({} pixels): truth {truth_bounce}, near side only {near_only}, far side's sky {far_sky}", pixels.len());
     // The red is the block's far face's, lit by the sky it sees.
     let red = |b: Vec3| b.x - b.z;
     assert!(red(truth_bounce) > 0.02, "the truth's bounce is the block's: {truth_bounce}");
