@@ -64,11 +64,10 @@ impl Row {
     /// The row in one line, as the progress bar shows it.
     pub(super) fn progress_line(&self, config: Config) -> String {
         format!(
-            "{} {} {}{}, radius {:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
+            "{} {} {}, radius {:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
             self.mode,
             self.variant,
-            Row::count_label(self.variant, self.samples, self.steps, self.pyramid),
-            if self.half_resolution { " half" } else { "" },
+            self.label(),
             self.radius,
             self.blur,
             Row::bounce_label(self.mode, config.bounce(), (config.far_side(), config.far_sky())),
