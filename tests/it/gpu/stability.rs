@@ -169,6 +169,16 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     c.size = (37, 23);
     c.settings.far_side = true;
     list.push(c);
+    // The far sky's quarter-size cells scan blocks that run past the screen's edge.
+    for (size, label, line) in [
+        ((37, 23), "far side and its sky, 37x23", "--far-side --far-sky --size 37x23"),
+        ((1, 1), "far side and its sky, 1x1", "--far-side --far-sky --size 1x1"),
+    ] {
+        let mut c = base(label, line);
+        c.size = size;
+        (c.settings.far_side, c.settings.far_sky) = (true, true);
+        list.push(c);
+    }
     let max = gpu.device.limits().max_texture_dimension_2d;
     let mut c = base("largest 2D size (width)", "--size <max>x2");
     c.size = (max, 2);
