@@ -8,7 +8,7 @@ use rand::{rngs::StdRng, SeedableRng};
 use rayon::prelude::*;
 
 use super::layers::within_two_surfaces;
-use super::place::{Placement, SenderPlace};
+use super::place::{Placement, Places, SenderPlace};
 use super::scene::{point_lighting, ray_box, ReferenceScene, Surface, TraceSettings};
 use crate::scene::{LightRig, OrbitCamera, PointLight, Skybox};
 
@@ -31,7 +31,9 @@ pub struct Reference {
     pub sky_near: Vec<Vec3>,
     pub bounce_near: Vec<Vec3>,
     /// The bounce's luminance by where its sender lies for the camera ([`Placement::index`]).
-    pub bounce_by_place: Vec<[f32; Placement::COUNT]>,
+    pub bounce_by_place: Vec<Places>,
+    /// The sky the occluders block, by where they lie ([`Placement::index`]).
+    pub blocked_by_place: Vec<Places>,
     /// Direct point lighting (diffuse + specular), as displayed.
     pub direct: Vec<Vec3>,
     /// Mean Monte Carlo standard errors over the valid pixels.
@@ -55,7 +57,8 @@ struct PixelResult {
     open: f32,
     sky_near: Vec3,
     bounce_near: Vec3,
-    bounce_by_place: [f32; Placement::COUNT],
+    bounce_by_place: Places,
+    blocked_by_place: Places,
     direct: Vec3,
 }
 
@@ -170,6 +173,7 @@ impl Tracer<'_> {
             sky_near: Vec3::ZERO,
             bounce_near: Vec3::ZERO,
             bounce_by_place: [0.0; Placement::COUNT],
+            blocked_by_place: [0.0; Placement::COUNT],
             direct: Vec3::ZERO,
         };
         let Some(surface) = scene.trace(eye, direction, f32::INFINITY) else { return empty };
@@ -202,6 +206,7 @@ impl Tracer<'_> {
             sky_near: e.sky_near,
             bounce_near: e.bounce_near,
             bounce_by_place: e.bounce_by_place,
+            blocked_by_place: e.blocked_by_place,
             direct: diffuse + specular,
         }
     }
@@ -283,6 +288,7 @@ impl Reference {
             sky_near: pixels.iter().map(|p| p.sky_near).collect(),
             bounce_near: pixels.iter().map(|p| p.bounce_near).collect(),
             bounce_by_place: pixels.iter().map(|p| p.bounce_by_place).collect(),
+            blocked_by_place: pixels.iter().map(|p| p.blocked_by_place).collect(),
             direct: pixels.iter().map(|p| p.direct).collect(),
         }
     }
@@ -310,37 +316,6 @@ impl Reference {
         self.sky_near[i] + self.bounce_near[i]
     }
 
-    /// The shares of the truth's bounce (its luminance over the measured pixels) by where its
-    /// senders lie ([`SenderPlace::ALL`]); `None` where there is no bounce.
-    pub fn bounce_shares(&self) -> Option<[f64; 4]> {
-        self.placed_shares().map(|s| std::array::from_fn(|k| s[k] + s[k + SenderPlace::ALL.len()]))
-    }
-
-    /// The shares of the truth's bounce from senders of each place ([`SenderPlace::ALL`]) that
-    /// the first two surfaces on their eye ray hold ([`Placement`]): of the hidden and the
-    /// facing away, what a second depth layer could reach.
-    pub fn two_layer_shares(&self) -> Option<[f64; 4]> {
-        self.placed_shares().map(|s| std::array::from_fn(|k| s[k]))
-    }
-
-    /// The shares of the truth's bounce by [`Placement::index`].
-    fn placed_shares(&self) -> Option<[f64; Placement::COUNT]> {
-        let mut sums = [0.0f64; Placement::COUNT];
-        for (by_place, _) in self.bounce_by_place.iter().zip(&self.valid).filter(|(_, v)| **v) {
-            for (sum, b) in sums.iter_mut().zip(by_place) {
-                *sum += *b as f64;
-            }
-        }
-        let total: f64 = sums.iter().sum();
-        (total > 0.0).then(|| sums.map(|s| s / total))
-    }
-
-    /// The mean luminance of the truth's bounce from senders the camera sees, over `pixels`.
-    pub fn seen_bounce(&self, pixels: &[usize]) -> f64 {
-        let seen = Placement::seen().index();
-        pixels.iter().map(|&i| self.bounce_by_place[i][seen] as f64).sum::<f64>() / pixels.len().max(1) as f64
-    }
-
     /// The mean of two independent traces of the same view (the truth with half the noise).
     pub fn mean(a: &Reference, b: &Reference) -> Reference {
         Self::weighted_mean((a, 1.0), (b, 1.0))
@@ -352,6 +327,9 @@ impl Reference {
         let (ka, kb) = ((wa / (wa + wb)) as f32, (wb / (wa + wb)) as f32);
         let avg3 = |x: &[Vec3], y: &[Vec3]| x.iter().zip(y).map(|(p, q)| ka * *p + kb * *q).collect();
         let avg1 = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| ka * p + kb * q).collect();
+        let avg_places = |x: &[Places], y: &[Places]| {
+            x.iter().zip(y).map(|(p, q)| std::array::from_fn(|k| ka * p[k] + kb * q[k])).collect()
+        };
         // Independent errors: their weighted sum's standard error.
         let error = |ea: f64, eb: f64| ((ka as f64 * ea).powi(2) + (kb as f64 * eb).powi(2)).sqrt();
         Reference {
@@ -365,12 +343,8 @@ impl Reference {
             open: avg1(&a.open, &b.open),
             sky_near: avg3(&a.sky_near, &b.sky_near),
             bounce_near: avg3(&a.bounce_near, &b.bounce_near),
-            bounce_by_place: a
-                .bounce_by_place
-                .iter()
-                .zip(&b.bounce_by_place)
-                .map(|(p, q)| std::array::from_fn(|k| ka * p[k] + kb * q[k]))
-                .collect(),
+            bounce_by_place: avg_places(&a.bounce_by_place, &b.bounce_by_place),
+            blocked_by_place: avg_places(&a.blocked_by_place, &b.blocked_by_place),
             direct: a.direct.clone(),
             ao_error: error(a.ao_error, b.ao_error),
             sky_error: error(a.sky_error, b.sky_error),

@@ -40,6 +40,7 @@ mod image;
 mod layers;
 mod place;
 mod scene;
+mod shares;
 
 pub use image::*;
 pub use place::*;

@@ -56,3 +56,6 @@ impl Placement {
         self.place as usize + if self.in_two_layers { 0 } else { SenderPlace::ALL.len() }
     }
 }
+
+/// A pixel's sums by [`Placement::index`].
+pub type Places = [f32; Placement::COUNT];

@@ -250,6 +250,9 @@ pub struct Estimate {
     /// The bounce's luminance by where its sender lies ([`Placement::index`]): they add up to
     /// the bounce's.
     pub bounce_by_place: [f32; Placement::COUNT],
+    /// The sky's luminance the occluders block (what each ray that hits something would have
+    /// brought from the sky), by where the occluder lies: what the screen can block and what not.
+    pub blocked_by_place: [f32; Placement::COUNT],
 }
 
 impl ReferenceScene {
@@ -283,7 +286,7 @@ impl ReferenceScene {
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
         let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
-        let mut by_place = [0.0f32; Placement::COUNT];
+        let (mut by_place, mut blocked) = ([0.0f32; Placement::COUNT], [0.0f32; Placement::COUNT]);
         for _ in 0..n {
             let dir = Self::hemisphere_direction(surface, rng);
             match self.trace(origin, dir, f32::INFINITY) {
@@ -298,7 +301,9 @@ impl ReferenceScene {
                     let diffuse = self.sender_radiance(&sender, -dir, lights, rig, sky, settings, rng);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
-                    by_place[place(&sender).index()] += luminance(diffuse);
+                    let at = place(&sender).index();
+                    by_place[at] += luminance(diffuse);
+                    blocked[at] += luminance(sky.sample(dir) * settings.sky_scale);
                     if sender.distance < settings.radius {
                         ao_sum += 1.0;
                         ao_sq += 1.0;
@@ -322,6 +327,7 @@ impl ReferenceScene {
             sky_near: sky_near / nf,
             bounce_near: bounce_near / nf,
             bounce_by_place: by_place.map(|b| b / nf),
+            blocked_by_place: blocked.map(|b| b / nf),
         }
     }
 

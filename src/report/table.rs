@@ -168,6 +168,7 @@ impl Report {
              - the truth's bounce by where its senders lie for the camera: {}; \"bounce / seen\" is the estimate's \
              bounce over the seen part, what screen space can reach; \"within two layers\": the sender is the first or \
              the second surface on its pixel's eye ray, what a second depth layer could add\n\
+             - the sky the truth's occluders block, by where they lie for the camera: {}\n\
              - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
              over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
              cost of one frame with the average running\n\
@@ -196,6 +197,7 @@ impl Report {
             r.mismatched,
             r.covered,
             bounce_places(r),
+            blocked_places(r),
             options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", crate::text::markdown_cell(&p.name))),
         );
         out.push_str(
@@ -237,5 +239,16 @@ fn bounce_places(r: &reference::Reference) -> String {
             .collect::<Vec<_>>()
             .join(", "),
         _ => "no bounce".to_string(),
+    }
+}
+
+/// The sky the truth's occluders block, by where they lie.
+fn blocked_places(r: &reference::Reference) -> String {
+    match r.blocked_shares() {
+        Some(shares) => (reference::SenderPlace::ALL.iter().zip(shares))
+            .map(|(place, share)| format!("{} {:.1}%", place.name(), 100.0 * share))
+            .collect::<Vec<_>>()
+            .join(", "),
+        None => "nothing blocked".to_string(),
     }
 }
