@@ -9,7 +9,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rand::{rngs::StdRng, RngExt};
 
-use super::place::Placement;
+use super::place::{Placement, Places};
 use crate::scene::model::NormalMap;
 use crate::scene::{LightRig, Material, Model, PointLight, Skybox};
 
@@ -249,10 +249,10 @@ pub struct Estimate {
     pub bounce_near: Vec3,
     /// The bounce's luminance by where its sender lies ([`Placement::index`]): they add up to
     /// the bounce's.
-    pub bounce_by_place: [f32; Placement::COUNT],
+    pub bounce_by_place: Places,
     /// The sky's luminance the occluders block (what each ray that hits something would have
     /// brought from the sky), by where the occluder lies: what the screen can block and what not.
-    pub blocked_by_place: [f32; Placement::COUNT],
+    pub blocked_by_place: Places,
 }
 
 impl ReferenceScene {
@@ -286,7 +286,7 @@ impl ReferenceScene {
         let (mut sky_sum, mut sky_sq) = (Vec3::ZERO, 0.0f32);
         let (mut bounce_sum, mut bounce_sq) = (Vec3::ZERO, 0.0f32);
         let (mut open, mut sky_near, mut bounce_near) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
-        let (mut by_place, mut blocked) = ([0.0f32; Placement::COUNT], [0.0f32; Placement::COUNT]);
+        let (mut by_place, mut blocked): (Places, Places) = Default::default();
         for _ in 0..n {
             let dir = Self::hemisphere_direction(surface, rng);
             match self.trace(origin, dir, f32::INFINITY) {
@@ -301,15 +301,17 @@ impl ReferenceScene {
                     let diffuse = self.sender_radiance(&sender, -dir, lights, rig, sky, settings, rng);
                     bounce_sum += diffuse;
                     bounce_sq += luminance(diffuse).powi(2);
+                    // The sky this occluder blocks: the within-R image's beyond R.
+                    let blocked_sky = sky.sample(dir) * settings.sky_scale;
                     let at = place(&sender).index();
                     by_place[at] += luminance(diffuse);
-                    blocked[at] += luminance(sky.sample(dir) * settings.sky_scale);
+                    blocked[at] += luminance(blocked_sky);
                     if sender.distance < settings.radius {
                         ao_sum += 1.0;
                         ao_sq += 1.0;
                         bounce_near += diffuse;
                     } else {
-                        sky_near += sky.sample(dir) * settings.sky_scale;
+                        sky_near += blocked_sky;
                     }
                 }
             }

@@ -1,7 +1,8 @@
 //! The truth's bounce split by where its senders lie for the camera, and the sky its occluders
 //! block by where they lie: a wall beside the view sends its whole bounce, and blocks all the
-//! sky it blocks, from off the screen, the same wall in view from what the screen shows; a fin's far face, whose light falls on the floor behind it, is the second
-//! surface on its eye ray, and behind a nearer fin it is deeper.
+//! sky it blocks, from off the screen, the same wall in view from what the screen shows; a
+//! fin's far face, whose light falls on the floor behind it, is the second surface on its eye
+//! ray, and behind a nearer fin it is deeper.
 
 use glam::Vec3;
 use ssdo::reference::{self, ReferenceScene, SenderPlace, TraceSettings};
