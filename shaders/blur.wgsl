@@ -6,7 +6,7 @@
 //    does not cross silhouettes or creases (no halos).
 //  * otherwise the classic 4x4 box blur of the classic SSAO chapter.
 // Neighbours on the sky or holding non-finite values are left out.
-// With HALF_RESOLUTION the blur runs on the half-resolution samples, before the upsample: its pixel
+// In a half-resolution plan the blur runs on the half-size samples, before the upsample: its pixel
 // (x, y) is the sample taken at the full-resolution pixel (2x, 2y), whose G-buffer it reads, and
 // its 4x4 window is the rotation tile the samples were taken with (sampling_params.wgsl).
 
@@ -21,7 +21,7 @@
 @group(1) @binding(4) var input: texture_2d<f32>;
 
 override BILATERAL: bool = true;
-// On the half-resolution samples (HALF_RESOLUTION).
+// On the half-size samples, in a half-resolution plan.
 #include "common/half_resolution.wgsl"
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;

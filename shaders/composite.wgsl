@@ -27,10 +27,10 @@
 #include "common/tone_curve.wgsl"
 #include "common/filter_params.wgsl"
 
-// The upsample's tolerances (HALF_RESOLUTION).
+// The upsample's tolerances (in a half-resolution plan).
 @group(1) @binding(3) var<uniform> params: FilterParams;
 // The sampling chain's last stage: AO alone in r (SSAO), or DO in rgb and AO in a (SSDO,
-// SSAO+SSDO); at half size with HALF_RESOLUTION.
+// SSAO+SSDO); at half size in a half-resolution plan.
 @group(1) @binding(4) var current: texture_2d<f32>;
 // The lighting pass's direct light (DISPLAY after a lighting pass; blended onto otherwise).
 @group(1) @binding(5) var direct_map: texture_2d<f32>;
@@ -55,7 +55,7 @@ override DISPLAY: bool = false;
 override OUTPUT_SRGB: bool = true;
 // DISPLAY after a lighting pass: read its direct light from `direct_map`.
 override DIRECT_INPUT: bool = false;
-// `current` holds half-size samples: upsampled here as they are read (HALF_RESOLUTION).
+// In a half-resolution plan `current` holds half-size samples, upsampled here as they are read.
 #include "common/half_resolution.wgsl"
 // ... the temporal pass's average: the samples' surfaces are read from `surface_guide`, one load
 // a tap instead of the G-buffer's depth and normal.

@@ -28,8 +28,8 @@
 // What lights the senders besides the point lights: 0 nothing, 1 irradiance, 2 march, 3 march at
 // quarter resolution, 4 the last frame's march.
 override SENDER_SKY: u32 = 2u;
-// SENDER_SKY 4: the last frame's sampling pass ran at half width and height (HALF_RESOLUTION), so its
-// sky is half size.
+// SENDER_SKY 4: the last frame's sampling pass ran where the samples are, so its sky is half
+// size in a half-resolution plan.
 #include "common/half_resolution.wgsl"
 // SENDER_SKY 4: the camera moved since the last frame, so a surface is looked for where the last
 // camera saw it. Without it each pixel reads its own texel.
@@ -143,7 +143,7 @@ fn last_frame_sky(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth
         was = vec2<i32>(at);
     }
     let last = vec2<i32>(textureDimensions(last_sky)) - vec2<i32>(1);
-    let texel = select(was, was >> vec2<u32>(1u), HALF_RESOLUTION);
+    let texel = sample_texel(was);
     return textureLoad(last_sky, min(texel, last), 0);
 }
 

@@ -18,9 +18,9 @@
 // Where the plan has no blur pass (BLUR: half resolution, the bilateral blur, accumulation) it
 // blurs this frame's samples as it reads that neighbourhood, in the frames that blur.
 //
-// After a half-resolution sampling pass (HALF_RESOLUTION) it runs where the samples are: each texel is the
-// sample of the full-resolution pixel (2x, 2y), its surface that pixel's, and the histories are
-// half size too; the composite upsamples the average as it reads it. A full-screen pass here
+// After a half-resolution sampling pass it runs where the samples are: each texel is the sample
+// of the full-resolution pixel (2x, 2y), its surface that pixel's, and the histories are half
+// size too; the composite upsamples the average as it reads it. A full-screen pass here
 // would upsample every frame's samples first, at four times the pixels.
 
 #include "common/uniforms.wgsl"
@@ -51,7 +51,8 @@ const STILL_PIXELS: f32 = 0.01;
 // pixel is still and reads its own texel alone, which on a CPU rasteriser (where a branch not
 // taken still costs its work) keeps the pass to a fifth of its moving cost.
 override CAMERA_MOVED: bool = true;
-// The pass runs at half size, over half-size samples, into half-size histories (HALF_RESOLUTION).
+// In a half-resolution plan the pass runs at half size, over half-size samples, into half-size
+// histories.
 #include "common/half_resolution.wgsl"
 
 struct TemporalOut {
@@ -146,8 +147,8 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
     let ndc = clip.xy / clip.w;
     let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
     past.moved = length(was - position);
-    // In the history's texels, whose texel t holds the pixel centred at 2t + 0.5 (HALF_RESOLUTION) or t + 0.5.
-    let at = select(was - 0.5, (was - 0.5) * 0.5, HALF_RESOLUTION);
+    // In the history's texels, texel t at t.
+    let at = texel_coordinate(was);
     let base = floor(at);
     let frac = at - base;
     let texels = vec2<i32>(textureDimensions(history_surface));

@@ -42,12 +42,10 @@ struct SamplingParams {
 // with the rotation tile of its own pixel.
 #include "common/half_resolution.wgsl"
 
-// The full-resolution pixel centre a sampling pass's fragment at `frag` samples.
+// The full-resolution pixel centre a sampling pass's fragment at `frag` samples (`frag` itself
+// at full resolution).
 fn sampled_position(frag: vec2<f32>) -> vec2<f32> {
-    if HALF_RESOLUTION {
-        return vec2<f32>(surface_pixel(vec2<i32>(frag))) + 0.5;
-    }
-    return frag;
+    return vec2<f32>(surface_pixel(vec2<i32>(frag))) + 0.5;
 }
 
 // A material has a normal map: the G-buffer's normals are the maps', not the geometry's. The
