@@ -126,6 +126,23 @@ impl Knob {
         }
     }
 
+    /// The value on this knob's rungs that costs least a frame; `None` where tune leaves the knob
+    /// or its cost does not move with it.
+    pub(super) fn cheapest(&self) -> Option<Value> {
+        let falls = self.cost == Cost::Falls;
+        let value = match self.rungs {
+            Rungs::Fixed => return None,
+            Rungs::Counts(rungs) => Value::Count(if falls { rungs[rungs.len() - 1] } else { rungs[0] }),
+            Rungs::Numbers(rungs) => Value::Number(if falls { rungs[rungs.len() - 1] } else { rungs[0] }),
+            Rungs::Toggle => Value::Switch(falls),
+            Rungs::Every => match self.cost {
+                Cost::Ranked(names) => Value::Choice(names[0]),
+                _ => return None,
+            },
+        };
+        (self.cost != Cost::Same).then_some(value)
+    }
+
     /// The settings one rung away on this knob, before they are made canonical.
     pub(super) fn steps_from(&self, knobs: &Knobs) -> Vec<Knobs> {
         let with = |v: Value| {

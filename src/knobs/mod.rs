@@ -184,6 +184,18 @@ impl Knobs {
         k
     }
 
+    /// The cheapest corner of `variant`: every knob tune steps at its cheapest rung (the lowest
+    /// counts, no blur, half resolution, one frame, no bounce), the others at their defaults.
+    pub fn cheapest(variant: Variant) -> Self {
+        let mut k = Knobs::for_variant(variant);
+        for knob in &KNOBS {
+            if let Some(value) = knob.cheapest() {
+                (knob.set)(&mut k, value);
+            }
+        }
+        k
+    }
+
     /// The settings one rung away on one knob that means something in `mode`, each canonical.
     /// A step that gives a choice its meaning (the bounce turned on gives the senders theirs)
     /// reaches each of its values.

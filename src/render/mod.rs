@@ -199,22 +199,7 @@ impl Renderer {
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the
     /// frame) unless HDR is kept or a debug view needs the tone-map pass.
     fn plan_for(settings: &Settings, features: SceneFeatures, keep_hdr: bool) -> Plan {
-        let pyramid = settings.sampling.reads_pyramid();
-        let display = !keep_hdr && settings.view == View::Final;
-        let options = PlanOptions {
-            blur: settings.blur,
-            bilateral: settings.sampling.variant.decl().blur == variant::Blur::Bilateral,
-            pyramid,
-            display,
-            indirect: settings.indirect_strength > 0.0,
-            sender_sky: settings.sender_sky.for_variant(settings.sampling.variant),
-            accumulate: settings.accumulates(),
-            half_resolution: settings.half_resolution,
-            material_thickness: settings.sampling.material_thickness()
-                && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
-            far_side: settings.far_side,
-            far_sky: settings.far_sky,
-        };
+        let options = PlanOptions::of(settings, keep_hdr);
         Plan::new(settings.mode, features, options)
     }
 

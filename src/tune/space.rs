@@ -2,7 +2,7 @@
 //! form; its neighbours are the settings one rung away on one knob (the rungs and which way each
 //! knob moves the cost are the knobs' declarations, `crate::knobs::KNOBS`).
 
-use crate::knobs::{Knobs, ACCUMULATE_RUNGS, SAMPLE_RUNGS, SLICE_RUNGS, STEP_RUNGS};
+use crate::knobs::Knobs;
 use crate::render::{Mode, Variant};
 use crate::report::Config;
 
@@ -34,20 +34,9 @@ impl Candidate {
         Self::new(mode, Knobs::for_variant(variant))
     }
 
-    /// The cheapest corner of `variant`: the lowest counts, half resolution, no blur, no history,
-    /// no bounce.
+    /// The cheapest corner of `variant` ([`Knobs::cheapest`]).
     pub fn cheapest_of(mode: Mode, variant: Variant) -> Self {
-        let knobs = Knobs {
-            samples: SAMPLE_RUNGS[0],
-            slices: SLICE_RUNGS[0],
-            steps: STEP_RUNGS[0],
-            blur: false,
-            half_resolution: true,
-            accumulate: ACCUMULATE_RUNGS[0],
-            indirect_strength: 0.0,
-            ..Knobs::for_variant(variant)
-        };
-        Self::new(mode, knobs)
+        Self::new(mode, Knobs::cheapest(variant))
     }
 
     /// Where the search starts: each variant's defaults, and the cheapest corner of the two that
@@ -104,5 +93,19 @@ mod tests {
         assert_eq!(starts.iter().collect::<std::collections::HashSet<_>>().len(), 5);
         assert_eq!(Candidate::cheapest_of(Mode::Ssdo, Variant::March).knobs.indirect_strength, 0.0);
         assert_eq!(Candidate::cheapest_of(Mode::Ssao, Variant::March).knobs.indirect_strength, 1.0);
+    }
+
+    #[test]
+    fn no_neighbour_of_the_cheapest_corner_costs_less() {
+        for mode in Mode::sampled() {
+            for variant in [Variant::March, Variant::Points] {
+                let c = Candidate::cheapest_of(mode, variant);
+                assert_eq!(c.knobs.accumulate, 1);
+                assert!(!c.knobs.blur);
+                for n in c.neighbours() {
+                    assert_ne!(c.knobs.dearer(&n.knobs), Some(false), "{mode} {variant}: {:?} is cheaper", n.knobs);
+                }
+            }
+        }
     }
 }

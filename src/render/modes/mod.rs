@@ -42,9 +42,10 @@ pub mod table;
 pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
-use super::settings::SenderSky;
+use super::settings::{SenderSky, Settings, View};
 use super::targets::{half_size, Place, Stage, TargetId, DO_FORMAT};
 use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
+use super::variant::Blur;
 
 /// What the scene brings that changes the plan.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -97,23 +98,33 @@ pub struct PlanOptions {
     pub far_sky: bool,
 }
 
-impl Default for PlanOptions {
-    /// The defaults' plan: a display plan with half-resolution sampling, blur and accumulation,
-    /// no pyramid, and the bounce lit by the sky and the lights.
-    fn default() -> Self {
+impl PlanOptions {
+    /// The options `settings` give: a display plan (no HDR after the frame) unless HDR is kept
+    /// (`keep_hdr`) or a debug view needs the tone-map pass.
+    pub fn of(settings: &Settings, keep_hdr: bool) -> Self {
+        let variant = settings.sampling.variant;
         Self {
-            blur: true,
-            bilateral: true,
-            pyramid: false,
-            display: true,
-            indirect: true,
-            sender_sky: SenderSky::default(),
-            half_resolution: true,
-            accumulate: true,
-            material_thickness: true,
-            far_side: false,
-            far_sky: false,
+            blur: settings.blur,
+            bilateral: variant.decl().blur == Blur::Bilateral,
+            pyramid: settings.sampling.reads_pyramid(),
+            display: !keep_hdr && settings.view == View::Final,
+            indirect: settings.indirect_strength > 0.0,
+            sender_sky: settings.sender_sky.for_variant(variant),
+            accumulate: settings.accumulates(),
+            half_resolution: settings.half_resolution,
+            material_thickness: settings.sampling.material_thickness()
+                && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
+            far_side: settings.far_side,
+            far_sky: settings.far_sky,
         }
+    }
+}
+
+impl Default for PlanOptions {
+    /// The default settings' plan in a mode that samples: a display plan with half-resolution
+    /// sampling, blur and accumulation, no pyramid, and the bounce lit by the sky and the lights.
+    fn default() -> Self {
+        Self::of(&Settings { mode: Mode::Ssdo, ..Settings::default() }, false)
     }
 }
 
