@@ -108,6 +108,8 @@ impl Gpu {
         }))
         .map_err(|e| Error::Gpu(format!("could not open a device on {}: {e}", info.name)))?;
 
+        seamless_cube_maps(&device);
+
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
@@ -164,5 +166,23 @@ impl Gpu {
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
             .map_err(|e| Error::Gpu(format!("waiting for the GPU: {e}")))
+    }
+}
+
+/// Turns on seamless cube-map filtering where `device` runs on desktop OpenGL, which filters each
+/// face apart unless told otherwise (Vulkan and OpenGL ES always filter across the faces):
+/// without it the sky's face edges are hard seams, in the background and in every level of the
+/// sky the sampling passes read. wgpu does not set it; nothing else on the context changes it.
+fn seamless_cube_maps(device: &wgpu::Device) {
+    use glow::HasContext;
+    // SAFETY: the context is used only while its lock is held, and the one state set is none
+    // that wgpu tracks.
+    unsafe {
+        if let Some(hal) = device.as_hal::<wgpu::hal::api::Gles>() {
+            let gl = hal.context().lock();
+            if !gl.version().is_embedded {
+                gl.enable(glow::TEXTURE_CUBE_MAP_SEAMLESS);
+            }
+        }
     }
 }

@@ -108,3 +108,36 @@ fn a_nearer_light_cube_covers_a_farther_one_in_both_paths() {
         assert!(red > 200 && green < 60, "HDR path {keep_hdr}: the pixel is ({red}, {green}), not the near red cube");
     }
 }
+
+#[test]
+fn the_sky_is_filtered_across_its_cube_faces_on_every_backend() {
+    let Some(gpu) = gpu() else { return };
+    // Faces of 4x4 texels, ±X red and ±Z blue (±Y green): looking level along a diagonal of the
+    // XZ plane, the middle of the view is the edge between an X face and a Z face. Filtered
+    // across the edge (Vulkan, OpenGL ES, desktop GL with seamless filtering on) the colour ramps
+    // from red to blue over tens of pixels at this magnification; filtered face by face (desktop
+    // GL's default) it steps from one to the other.
+    let sky = scene::Skybox::from_fn("face colours", 4, |d| {
+        let a = d.abs();
+        if a.x >= a.y && a.x >= a.z {
+            glam::Vec3::X
+        } else if a.z >= a.y {
+            glam::Vec3::Z
+        } else {
+            glam::Vec3::Y
+        }
+    });
+    let scene = Scene::new(scene::builtin::plane(1.0, [0.5; 3]).unwrap(), 0, 1);
+    // Far above the small plane, looking level: the view holds sky alone.
+    let camera = common::looking(glam::Vec3::new(0.0, 50.0, 0.0), 45.0, 0.0, 1.0);
+    let mut r = renderer(gpu, &scene, &sky, SIZE, Settings::default());
+    for keep_hdr in [true, false] {
+        r.keep_hdr(gpu, keep_hdr);
+        let image = shoot(gpu, &mut r, &camera);
+        let row: Vec<[u8; 4]> = (0..SIZE.0).map(|x| image.get_pixel(x, SIZE.1 / 3).0).collect();
+        let (reds, blues) = (row.iter().filter(|p| p[0] > 200).count(), row.iter().filter(|p| p[2] > 200).count());
+        let mixed = row.iter().filter(|p| p[0] > 60 && p[2] > 60).count();
+        assert!(reds > 10 && blues > 10, "HDR path {keep_hdr}: the row is not split between two faces: {row:?}");
+        assert!(mixed >= 8, "HDR path {keep_hdr}: {mixed} pixels blend the faces at their edge: {row:?}");
+    }
+}
