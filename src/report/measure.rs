@@ -187,7 +187,7 @@ impl Bench<'_> {
         } else {
             (None, None)
         };
-        let flip = self.flip(image, truth, renderer.settings.exposure, maps.map(|m| (m, &frame.ao)))?;
+        let flip = self.flip(image, truth, renderer.settings.exposure, maps.map(|m| (m, &frame)))?;
         let Errors { hdr_rmse, hdr_rmse_near, hdr_peak, ao_rmse, do_rmse, do_rmse_near } = errors;
         Ok(Row {
             mode,
@@ -250,19 +250,20 @@ impl Bench<'_> {
     }
 
     /// FLIP between the displayed GPU image and the truth displayed alike; with `maps` (where
-    /// to keep them, and the AO read back), the error maps are made too.
+    /// to keep them, and the frame's buffers read back), the error maps are made too.
     fn flip(
         &self,
         image: image::RgbaImage,
         truth: &Truth,
         exposure: f32,
-        maps: Option<(&mut MapFiles, &Option<Vec<f32>>)>,
+        maps: Option<(&mut MapFiles, &Frame)>,
     ) -> Result<f64> {
         let gpu_image = image::DynamicImage::ImageRgba8(image).to_rgb8();
         let ref_image = truth.displayed(&gpu_image, self.ambient, exposure);
         let (flip, flip_map) = metrics::flip(&ref_image, &gpu_image, &truth.reference.valid);
-        if let Some((kept, ao)) = maps {
-            kept.extend(maps::encode(&self.options.out, &truth.reference, ao, &ref_image, &gpu_image, &flip_map)?);
+        if let Some((kept, frame)) = maps {
+            let buffers = (frame.ao.as_deref(), frame.directional.as_deref());
+            kept.extend(maps::encode(&self.options.out, &truth.reference, buffers, &ref_image, &gpu_image, &flip_map)?);
         }
         Ok(flip)
     }
