@@ -314,7 +314,7 @@ fn integrate_slice(r: Receiver, s: Slice, taken: Taken, sums: ptr<function, Sums
             let visible = f32(countOneBits(~taken.mask & group_bits)) / f32(PER_GROUP);
             (*sums).open += w * visible;
             if visible > 0.0 {
-                let turn = select(turns[g], s.cut_turns[g], NORMAL_MAPPED && ((s.cut >> g) & 1u) != 0u);
+                let turn = read_turn(s, g, turns[g]);
                 let cos_theta = s.turned.x * turn.x - s.turned.y * turn.y;
                 let sin_theta = s.turned.y * turn.x + s.turned.x * turn.y;
                 let world = r.v_world * cos_theta + t_world * sin_theta;
