@@ -174,12 +174,12 @@ fn inside_measures(s: ptr<function, Slice>, sin_gamma: f32) {
     for (var g = 0u; g < GROUPS; g += 1u) {
         let count = counts[g];
         if count > 0.0 && count < f32(PER_GROUP) {
-            let bits = ((*s).inside >> (g * PER_GROUP)) & 0xffu;
-            let a = lo + f32(g * PER_GROUP + firstTrailingBit(bits)) * sector;
+            let first = firstTrailingBit(((*s).inside >> (g * PER_GROUP)) & 0xffu);
+            let a = lo + f32(g * PER_GROUP + first) * sector;
             let w = measure_between(a, a + count * sector, (*s).gamma, (*s).turned, sin_gamma, (*s).n_len);
             weights[g] = w * f32(PER_GROUP) / count;
             // The turn from the group's middle to theirs, |Δ| ≤ 3.5 sectors: by its series (to 1e-5).
-            let d = (f32(firstTrailingBit(bits)) + 0.5 * count - 0.5 * f32(PER_GROUP)) * sector;
+            let d = (f32(first) + 0.5 * count - 0.5 * f32(PER_GROUP)) * sector;
             let d2 = d * d;
             (*s).cut |= 1u << g;
             (*s).cut_turns[g] = vec2<f32>(1.0 - d2 * (0.5 - d2 / 24.0), d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0)));

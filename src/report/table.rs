@@ -229,26 +229,27 @@ impl Report {
 /// and the facing away, the part the first two surfaces on their eye ray hold beside it.
 fn bounce_places(r: &reference::Reference) -> String {
     match (r.bounce_shares(), r.two_layer_shares()) {
-        (Some(shares), Some(layered)) => (reference::SenderPlace::ALL.iter().zip(shares).zip(layered))
-            .map(|((place, share), layered)| match place {
-                reference::SenderPlace::Hidden | reference::SenderPlace::FacingAway => {
-                    format!("{} {:.1}% ({:.1}% within two layers)", place.name(), 100.0 * share, 100.0 * layered)
-                }
-                _ => format!("{} {:.1}%", place.name(), 100.0 * share),
-            })
-            .collect::<Vec<_>>()
-            .join(", "),
+        (Some(shares), Some(layered)) => place_list(shares, Some(layered)),
         _ => "no bounce".to_string(),
     }
 }
 
 /// The sky the truth's occluders block, by where they lie.
 fn blocked_places(r: &reference::Reference) -> String {
-    match r.blocked_shares() {
-        Some(shares) => (reference::SenderPlace::ALL.iter().zip(shares))
-            .map(|(place, share)| format!("{} {:.1}%", place.name(), 100.0 * share))
-            .collect::<Vec<_>>()
-            .join(", "),
-        None => "nothing blocked".to_string(),
-    }
+    r.blocked_shares().map_or_else(|| "nothing blocked".to_string(), |shares| place_list(shares, None))
+}
+
+/// Shares by place ([`reference::SenderPlace::ALL`]) in one line, with the hidden and the facing
+/// away's part within two layers where `layered` gives it.
+fn place_list(shares: [f64; 4], layered: Option<[f64; 4]>) -> String {
+    let two_layers = |place, k: usize| match (place, layered) {
+        (reference::SenderPlace::Hidden | reference::SenderPlace::FacingAway, Some(l)) => {
+            format!(" ({:.1}% within two layers)", 100.0 * l[k])
+        }
+        _ => String::new(),
+    };
+    (reference::SenderPlace::ALL.iter().zip(shares).enumerate())
+        .map(|(k, (&place, share))| format!("{} {:.1}%{}", place.name(), 100.0 * share, two_layers(place, k)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
