@@ -121,7 +121,7 @@ fn radiance(c: FrameVaryings, pixel: vec2<i32>, position: vec2<f32>, depth: f32,
     var occlusion = unoccluded_value();
     if HAS_AO || HAS_DO {
         if HALF_RESOLUTION {
-            occlusion = upsample_surface(pixel, p, bits, c.projection, c.viewport);
+            occlusion = upsample_surface(pixel, p, bits, c.projection, c.viewport, sky_quadratic(c));
         } else {
             occlusion = textureLoad(current, pixel, 0);
         }

@@ -17,7 +17,7 @@ fn do_value(o: Occlusion) -> vec4<f32> {
 
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
-    return do_value(evaluate_pixel(in.position.xy));
+    return stored_do(do_value(evaluate_pixel(in.position.xy)), surface_pixel(vec2<i32>(in.position.xy)));
 }
 
 struct DoAndSky {
@@ -32,5 +32,5 @@ struct DoAndSky {
 @fragment
 fn fs_do_senders(in: FullscreenOut) -> DoAndSky {
     let o = evaluate_pixel(in.position.xy);
-    return DoAndSky(do_value(o), sender_value(o));
+    return DoAndSky(stored_do(do_value(o), surface_pixel(vec2<i32>(in.position.xy))), sender_value(o));
 }

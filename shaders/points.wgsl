@@ -213,5 +213,6 @@ fn fs_ao(in: FullscreenOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_do(in: FullscreenOut) -> @location(0) vec4<f32> {
     let o = evaluate(sampled_position(in.position.xy), vec2<i32>(in.position.xy));
-    return vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, HAS_AO));
+    let value = vec4<f32>(o.direct * occ.sky_strength + o.indirect * occ.indirect_strength, select(1.0, o.ao, HAS_AO));
+    return stored_do(value, surface_pixel(vec2<i32>(in.position.xy)));
 }

@@ -12,6 +12,7 @@
 
 #include "common/uniforms.wgsl"
 #include "common/fullscreen_triangle.wgsl"
+#include "common/sky_quadratic.wgsl"
 
 struct FrameVaryings {
     @builtin(position) position: vec4<f32>,
@@ -26,8 +27,8 @@ struct FrameVaryings {
     // frame.ao_strength, frame.ao_power; what the point lights need besides their own entries:
     // frame.pre_exposure, frame.min_light_distance2
     @location(4) @interpolate(flat) shading: vec4<f32>,
-    // frame.sky_irradiance's nine rgb weights (see `sky_irradiance`), a colour channel's first
-    // eight in two vectors (red: sky_r0, sky_r1), the constant term's three in sky_k.
+    // frame.sky_irradiance's nine rgb weights as `SkyQuadratic` packs them (red: sky_r0,
+    // sky_r1; the constant term: sky_k).
     @location(5) @interpolate(flat) sky_r0: vec4<f32>,
     @location(6) @interpolate(flat) sky_r1: vec4<f32>,
     @location(7) @interpolate(flat) sky_g0: vec4<f32>,
@@ -51,14 +52,14 @@ fn fullscreen_vs(@builtin(vertex_index) index: u32) -> FrameVaryings {
     out.output = vec4<f32>(frame.output_origin, frame.display_scale, 0.0);
     out.ambient = vec4<f32>(frame.pre_exposure * frame.ambient, 0.0);
     out.shading = vec4<f32>(frame.ao_strength, frame.ao_power, frame.pre_exposure, frame.min_light_distance2);
-    let q = frame.sky_irradiance;
-    out.sky_r0 = vec4<f32>(q[0].r, q[1].r, q[2].r, q[3].r);
-    out.sky_r1 = vec4<f32>(q[4].r, q[5].r, q[6].r, q[7].r);
-    out.sky_g0 = vec4<f32>(q[0].g, q[1].g, q[2].g, q[3].g);
-    out.sky_g1 = vec4<f32>(q[4].g, q[5].g, q[6].g, q[7].g);
-    out.sky_b0 = vec4<f32>(q[0].b, q[1].b, q[2].b, q[3].b);
-    out.sky_b1 = vec4<f32>(q[4].b, q[5].b, q[6].b, q[7].b);
-    out.sky_k = vec4<f32>(q[8].rgb, 0.0);
+    let sky = frame_sky_quadratic();
+    out.sky_r0 = sky.r0;
+    out.sky_r1 = sky.r1;
+    out.sky_g0 = sky.g0;
+    out.sky_g1 = sky.g1;
+    out.sky_b0 = sky.b0;
+    out.sky_b1 = sky.b1;
+    out.sky_k = sky.k;
     // (The uniforms' copy of the lights is zero past the scene's count.)
     let light = frame.first_lights[0];
     out.light_position = vec4<f32>(light.view_position, 0.0);
@@ -72,19 +73,15 @@ fn view_position_of(c: FrameVaryings, pixel: vec2<f32>, depth: f32) -> vec3<f32>
     return unproject(pixel, depth, c.projection, c.viewport.zw);
 }
 
-// The sky's unoccluded irradiance E(n)/π for view-space unit normal `n` (pre-exposed): the
-// composite's sky light in Off and SSAO, and the sky light the lighting pass gives the bounce's
-// senders. The three SH bands are a quadratic polynomial of the direction; the CPU turns them
-// into view space each frame (`irradiance_quadratic` in src/scene/skybox.rs), so a pixel pays nine
-// multiply-adds and no transform of its normal. Three bands can ring below 0 opposite a bright
-// sun: clamped.
+// The sky's weights as the triangle handed them down.
+fn sky_quadratic(c: FrameVaryings) -> SkyQuadratic {
+    return SkyQuadratic(c.sky_r0, c.sky_r1, c.sky_g0, c.sky_g1, c.sky_b0, c.sky_b1, c.sky_k);
+}
+
+// The sky's unoccluded irradiance E(n)/π for view-space unit normal `n` (pre-exposed,
+// common/sky_quadratic.wgsl): the composite's sky light in Off and SSAO, and the sky light the
+// lighting pass gives the bounce's senders. A pixel pays nine multiply-adds a colour and no
+// transform of its normal.
 fn sky_irradiance(c: FrameVaryings, n: vec3<f32>) -> vec3<f32> {
-    let terms0 = vec4<f32>(n.x * n.x, n.y * n.y, n.x * n.y, n.x * n.z);
-    let terms1 = vec4<f32>(n.y * n.z, n.x, n.y, n.z);
-    let e = vec3<f32>(
-        dot(terms0, c.sky_r0) + dot(terms1, c.sky_r1),
-        dot(terms0, c.sky_g0) + dot(terms1, c.sky_g1),
-        dot(terms0, c.sky_b0) + dot(terms1, c.sky_b1),
-    ) + c.sky_k.rgb;
-    return max(e, vec3<f32>(0.0));
+    return irradiance_at(sky_quadratic(c), n);
 }

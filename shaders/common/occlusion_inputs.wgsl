@@ -11,3 +11,21 @@ override HAS_AO: bool = true;
 override HAS_DO: bool = true;
 // The scene has point lights, so there is a bounce buffer to read.
 override INDIRECT: bool = true;
+
+#include "common/sky_quadratic.wgsl"
+
+// The DO is written over the sky's unoccluded irradiance at the sample's normal, for the
+// upsample to multiply by that at each pixel's own (half resolution under a normal map, whose
+// normals turn faster than the samples are spaced: common/upsample.wgsl,
+// `Plan::do_over_irradiance`).
+override DO_OVER_IRRADIANCE: bool = false;
+
+// The DO a sample at full-resolution `pixel` writes: by DO_OVER_IRRADIANCE, `value`'s DO over
+// E(n) there; otherwise `value`.
+fn stored_do(value: vec4<f32>, pixel: vec2<i32>) -> vec4<f32> {
+    if !DO_OVER_IRRADIANCE {
+        return value;
+    }
+    let e = irradiance_at(frame_sky_quadratic(), load_normal(pixel)) + NORMAL_RATIO_FLOOR;
+    return vec4<f32>(value.rgb / e, value.a);
+}

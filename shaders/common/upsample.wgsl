@@ -10,10 +10,24 @@
 // behind it, and a far wall nothing from the object before it: no halo. Where no sample is on
 // the same surface (a feature thinner than two pixels), the one nearest its plane stands in.
 //
+// Under a normal map the normal turns from pixel to pixel faster than the samples are spaced,
+// and a sample's DO was measured with its own pixel's normal. With DO_OVER_IRRADIANCE the
+// samples hold their DO over the sky's unoccluded irradiance at their own normal (`stored_do` in
+// common/occlusion_inputs.wgsl), which the blur and the temporal pass average as they are, and
+// the upsample multiplies by that at this pixel's: E(n)/E(n_s) in effect, so the map's shading
+// survives half resolution where its occlusion is shared (what it buys: docs/accuracy.md,
+// normal maps).
+//
 // The including shader declares `current` (the half-size samples: AO in r, or DO + AO),
 // `params` (FilterParams), the override HAS_DO and `sample_surface` (a sample's depth and packed
 // normal: the G-buffer's at its pixel, or what the temporal pass stored for it), and includes
 // gbuffer_read.wgsl first.
+
+#include "common/sky_quadratic.wgsl"
+
+// The samples hold their DO over the sky's irradiance at their normals (the including shader
+// declares HAS_DO; this is only set with it).
+override DO_OVER_IRRADIANCE: bool = false;
 
 // What a pixel with no surface holds: no occlusion, no DO.
 fn unoccluded_value() -> vec4<f32> {
@@ -28,15 +42,21 @@ fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
         return unoccluded_value();
     }
     let bits = textureLoad(g_normal, pixel, 0).r;
-    return upsample_surface(pixel, view_position(position, depth), bits, projection_terms(), frame.viewport);
+    var sky: SkyQuadratic;
+    if DO_OVER_IRRADIANCE {
+        sky = frame_sky_quadratic();
+    }
+    return upsample_surface(pixel, view_position(position, depth), bits, projection_terms(), frame.viewport, sky);
 }
 
 // The same for a `pixel` that shows a surface, given its view-space position `p` and its packed
-// normal `bits` (for a caller that has read them already), and the frame's `projection_terms`
-// and viewport (for a caller that has them at hand: common/frame_varyings.wgsl).
-fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<f32>, viewport: vec4<f32>) -> vec4<f32> {
+// normal `bits` (for a caller that has read them already), the frame's `projection_terms` and
+// viewport (for a caller that has them at hand: common/frame_varyings.wgsl) and, under
+// DO_OVER_IRRADIANCE, the sky's irradiance weights.
+fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<f32>, viewport: vec4<f32>, sky: SkyQuadratic) -> vec4<f32> {
     let unoccluded = unoccluded_value();
     let n = unpack_normal(bits);
+
     let code = octahedral_code(bits);
     let tolerance = max(0.25 * params.radius, 1e-30);
     let full = vec2<i32>(viewport.xy);
@@ -74,8 +94,12 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<
             total += w;
         }
     }
+    var result = nearest;
     if total > 1e-4 {
-        return sum / total;
+        result = sum / total;
     }
-    return nearest;
+    if DO_OVER_IRRADIANCE {
+        result = vec4<f32>(result.rgb * (irradiance_at(sky, n) + NORMAL_RATIO_FLOOR), result.a);
+    }
+    return result;
 }

@@ -311,6 +311,14 @@ impl Plan {
         self.steps.contains(&step)
     }
 
+    /// Whether the sampling chain holds its DO over the sky's unoccluded irradiance at each
+    /// sample's normal, which the upsample multiplies by that at each pixel's own
+    /// (`DO_OVER_IRRADIANCE` in `shaders/common/upsample.wgsl`): a normal map's normals turn
+    /// faster than half-size samples are spaced.
+    pub fn do_over_irradiance(&self) -> bool {
+        self.half_resolution && self.decl.directional_occlusion && self.features.normal_mapped
+    }
+
     /// Whether the composite runs the point-light loop itself (lights, but no lighting pass).
     pub fn light_loop(&self) -> bool {
         self.features.lights > 0 && !self.lighting

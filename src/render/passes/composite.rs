@@ -39,6 +39,9 @@ struct Key {
     display: bool,
     /// ... and is the temporal pass's average, whose surfaces its surface history holds.
     guide: bool,
+    /// ... and holds its DO over the sky's irradiance at each sample's normal
+    /// (`Plan::do_over_irradiance`).
+    over_irradiance: bool,
 }
 
 impl Key {
@@ -53,6 +56,7 @@ impl Key {
             white_albedo,
             display: plan.display,
             guide: guided(plan),
+            over_irradiance: plan.do_over_irradiance(),
         }
     }
 }
@@ -123,6 +127,7 @@ impl Pass for CompositePass {
                 ("OUTPUT_SRGB", f(output.is_srgb())),
                 ("DIRECT_INPUT", f(key.display && key.additive)),
                 ("GUIDE_INPUT", f(key.guide)),
+                ("DO_OVER_IRRADIANCE", f(key.over_irradiance)),
             ]
             .into_iter()
             .chain(key.lights.constants())

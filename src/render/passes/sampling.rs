@@ -94,6 +94,9 @@ struct Key {
     pyramid: bool,
     /// The G-buffer holds mapped normals: the geometry's come from the depth.
     normal_mapped: bool,
+    /// The DO is written over the sky's irradiance at the sample's normal
+    /// (`Plan::do_over_irradiance`).
+    over_irradiance: bool,
     /// The march writes the sky each pixel sees for the next frame's senders.
     last_sky: bool,
     /// The march reads each sample's thickness from the thickness layer.
@@ -114,6 +117,7 @@ impl Key {
             ("HAS_DO", f(o.directional)),
             ("INDIRECT", f(o.indirect)),
             ("NORMAL_MAPPED", f(self.normal_mapped)),
+            ("DO_OVER_IRRADIANCE", f(self.over_irradiance)),
         ];
         if self.march {
             list.push(("USE_PYRAMID", f(self.pyramid)));
@@ -186,6 +190,7 @@ impl Pass for SamplingPass {
             march: variant.decl().sampler == Sampler::March,
             pyramid: plan.pyramid,
             normal_mapped: plan.features.normal_mapped,
+            over_irradiance: plan.do_over_irradiance(),
             last_sky: plan.sender_sky == SenderSky::LastFrame,
             thickness_layer: plan.thickness_layer,
             far_side: plan.far_side,

@@ -29,7 +29,8 @@ pub const ENTRY: Entry = Entry::new(
 .role(Role::Denoise);
 
 pub struct UpsamplePass {
-    state: PassState<Outputs>,
+    /// Keyed by the outputs and whether the DO is held over the samples' irradiance.
+    state: PassState<(Outputs, bool)>,
 }
 
 impl UpsamplePass {
@@ -45,11 +46,13 @@ impl UpsamplePass {
 
 impl Pass for UpsamplePass {
     fn prepare(&mut self, device: &wgpu::Device, p: &Preparation<'_>) {
-        let key = || Outputs::of(p.plan);
-        self.state.prepare_fullscreen(device, p, (Step::UPSAMPLE, Self::io), key, |outputs| PipelineSpec {
-            entry: "fs_main",
-            targets: vec![Some(outputs.format().into())],
-            constants: vec![("HAS_DO", flag(outputs.directional))],
+        let key = || (Outputs::of(p.plan), p.plan.do_over_irradiance());
+        self.state.prepare_fullscreen(device, p, (Step::UPSAMPLE, Self::io), key, |(outputs, over_irradiance)| {
+            PipelineSpec {
+                entry: "fs_main",
+                targets: vec![Some(outputs.format().into())],
+                constants: vec![("HAS_DO", flag(outputs.directional)), ("DO_OVER_IRRADIANCE", flag(over_irradiance))],
+            }
         });
     }
 

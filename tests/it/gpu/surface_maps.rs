@@ -465,3 +465,51 @@ fn a_leaning_normal_map_takes_the_horizon_light_above_its_plane_as_the_truth_doe
         }
     }
 }
+
+/// A floor whose normal map alternates stripes leaning 45° towards +x and towards -x, each
+/// stripe about 1.5 pixels wide on the screen, under a sky red on the +x side and blue on the
+/// other: a pixel is red or blue by its own stripe. Off lights each pixel by the sky's
+/// irradiance at its own normal; SSDO samples at half resolution, every other pixel, and holds
+/// each sample's DO over the sky's irradiance at the sample's normal for the upsample to multiply
+/// by that at each pixel's own: its red shares follow Off's (0.02 from them, which spread 0.19).
+/// Taking the samples' DO as it is gave the odd pixels their neighbours' stripe (0.14).
+#[test]
+fn stripes_of_a_normal_map_finer_than_the_samples_keep_their_colours_at_half_resolution() {
+    let Some((gpu, dir)) = common::gpu_and_folder() else { return };
+    let lean = 45f32.to_radians();
+    write_png(&dir.path().join("stripes.png"), 2, 1, |x, _| {
+        let side = if x == 0 { 1.0 } else { -1.0 };
+        encode(Vec3::new(side * lean.sin(), 0.0, lean.cos()))
+    });
+    let mtl = "newmtl floor\nKd 0.8 0.8 0.8\nnorm stripes.png\n";
+    let model = scene::obj_model::load_obj(&write_obj(dir.path(), "stripes", &[floor(20.0, 480.0, "floor")], mtl));
+    let scene = Scene::new(model.unwrap(), 0, 1);
+    let sky = split_sky();
+    let camera = looking(Vec3::ZERO, 0.0, 50.0, 4.0);
+    let off = hdr(gpu, &scene, &sky, &camera, settings(Mode::Off));
+    let ssdo = hdr(gpu, &scene, &sky, &camera, settings(Mode::Ssdo));
+    // Over the middle of the floor: how far each pixel's red share lies from Off's, against how
+    // far Off's shares spread.
+    let (mut spread, mut error, mut mean, mut n) = (0.0, 0.0, 0.0, 0.0);
+    let share = |p: [f32; 4]| red_share(Vec3::new(p[0], p[1], p[2]));
+    let window = |f: &mut dyn FnMut(usize)| {
+        for y in H as usize / 2 - 20..H as usize / 2 + 20 {
+            for x in W as usize / 2 - 40..W as usize / 2 + 40 {
+                f(y * W as usize + x);
+            }
+        }
+    };
+    window(&mut |i| {
+        mean += share(off[i]);
+        n += 1.0;
+    });
+    mean /= n;
+    window(&mut |i| {
+        spread += (share(off[i]) - mean).powi(2);
+        error += (share(ssdo[i]) - share(off[i])).powi(2);
+    });
+    let (spread, error) = ((spread / n).sqrt(), (error / n).sqrt());
+    println!("Off's red shares spread {spread:.4} about {mean:.4}; SSDO's differ from them by {error:.4}");
+    assert!(spread > 0.1, "the stripes show in Off: red shares spread {spread}");
+    assert!(error < 0.25 * spread, "SSDO's red shares are {error} from Off's, which spread {spread}");
+}
