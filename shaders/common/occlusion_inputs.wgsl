@@ -26,6 +26,6 @@ fn stored_do(value: vec4<f32>, pixel: vec2<i32>) -> vec4<f32> {
     if !DO_OVER_IRRADIANCE {
         return value;
     }
-    let e = irradiance_at(frame_sky_quadratic(), load_normal(pixel)) + NORMAL_RATIO_FLOOR;
+    let e = irradiance_floored(frame_sky_quadratic(), load_normal(pixel));
     return vec4<f32>(value.rgb / e, value.a);
 }

@@ -7,10 +7,6 @@
 
 #include "common/uniforms.wgsl"
 
-// Added to the irradiance a half-size sample's DO is divided by and a pixel's multiplied by
-// under a normal map (common/upsample.wgsl), so a black sky's ratio stays finite.
-const NORMAL_RATIO_FLOOR: f32 = 1e-3;
-
 struct SkyQuadratic {
     r0: vec4<f32>,
     r1: vec4<f32>,
@@ -47,4 +43,15 @@ fn irradiance_at(s: SkyQuadratic, n: vec3<f32>) -> vec3<f32> {
         dot(terms0, s.b0) + dot(terms1, s.b1),
     ) + s.k.rgb;
     return max(e, vec3<f32>(0.0));
+}
+
+// The irradiance a half-size sample's DO is held over and a pixel's is multiplied by under a
+// normal map (DO_OVER_IRRADIANCE, common/upsample.wgsl): E(n)/π, but at least a quarter of its
+// mean over all normals (the constant and a third of x²'s and y²'s weights), plus 10⁻³. A sample
+// facing a dark part of the sky holds mostly bounce, which a ratio of sky irradiances does not
+// describe: the floor keeps the ratio between two normals under four times the sky's brightest
+// irradiance over its mean, and a black sky's at 1.
+fn irradiance_floored(s: SkyQuadratic, n: vec3<f32>) -> vec3<f32> {
+    let mean = s.k.rgb + (vec3<f32>(s.r0.x, s.g0.x, s.b0.x) + vec3<f32>(s.r0.y, s.g0.y, s.b0.y)) / 3.0;
+    return max(irradiance_at(s, n), 0.25 * mean) + 1e-3;
 }

@@ -99,7 +99,7 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<
         result = sum / total;
     }
     if DO_OVER_IRRADIANCE {
-        result = vec4<f32>(result.rgb * (irradiance_at(sky, n) + NORMAL_RATIO_FLOOR), result.a);
+        result = vec4<f32>(result.rgb * irradiance_floored(sky, n), result.a);
     }
     return result;
 }
