@@ -116,7 +116,8 @@ impl Renderer {
         let normal_mapped = scene.model.is_normal_mapped() && scene.model.has_tangents();
         let thickness = scene.model.thickness_codes();
         let thin_materials = thickness.iter().any(|&c| c < FULL_THICKNESS);
-        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped, thin_materials };
+        let smooth_normals = scene.model.has_smooth_normals();
+        let features = SceneFeatures { lights: scene.lights.len(), normal_mapped, thin_materials, smooth_normals };
         Self::check_memory(size, &settings, features, false, &[settings.mode])?;
         let plan = Self::plan_for(&settings, features, false);
         let frame = FrameData::new(device);
@@ -193,7 +194,8 @@ impl Renderer {
     /// What the current scene brings to the plan.
     fn features(&self) -> SceneFeatures {
         let (normal_mapped, thin_materials) = (self.scene.normal_mapped, self.scene.thin_materials);
-        SceneFeatures { lights: self.lights.len(), normal_mapped, thin_materials }
+        let smooth_normals = self.scene.smooth_normals;
+        SceneFeatures { lights: self.lights.len(), normal_mapped, thin_materials, smooth_normals }
     }
 
     /// The plan of `settings` for a scene with `features`: a display plan (no HDR after the

@@ -57,12 +57,15 @@ pub struct SceneFeatures {
     /// A material is thinner than the scene's default thickness (`scene/thickness.rs`): the
     /// march can take each depth sample's thickness from the G-buffer's thickness layer.
     pub thin_materials: bool,
+    /// The model is smooth-shaded somewhere (`Model::has_smooth_normals`): its normals turn
+    /// from pixel to pixel, as a normal map's do.
+    pub smooth_normals: bool,
 }
 
 impl SceneFeatures {
-    /// A scene with `lights` point lights, no normal maps and no thin materials.
+    /// A scene with `lights` point lights, flat-shaded, no normal maps and no thin materials.
     pub fn lit(lights: usize) -> Self {
-        Self { lights, normal_mapped: false, thin_materials: false }
+        Self { lights, normal_mapped: false, thin_materials: false, smooth_normals: false }
     }
 }
 
@@ -313,10 +316,12 @@ impl Plan {
 
     /// Whether the sampling chain holds its DO over the sky's unoccluded irradiance at each
     /// sample's normal, which the upsample multiplies by that at each pixel's own
-    /// (`DO_OVER_IRRADIANCE` in `shaders/common/upsample.wgsl`): a normal map's normals turn
-    /// faster than half-size samples are spaced.
+    /// (`DO_OVER_IRRADIANCE` in `shaders/common/upsample.wgsl`): under a normal map or smooth
+    /// shading the normal turns between pixels that share half-size samples. A flat-shaded
+    /// scene's normals turn only at edges, where the upsample takes no sample across.
     pub fn do_over_irradiance(&self) -> bool {
-        self.half_resolution && self.decl.directional_occlusion && self.features.normal_mapped
+        let turning = self.features.normal_mapped || self.features.smooth_normals;
+        self.half_resolution && self.decl.directional_occlusion && turning
     }
 
     /// Whether the composite runs the point-light loop itself (lights, but no lighting pass).

@@ -200,7 +200,18 @@ impl GBufferPass {
         }
         let textured = draws.iter().any(|d| d.features.textured);
         let normal_mapped = draws.iter().any(|d| d.features.normal_mapped);
-        SceneGpu { vertices, indices, tangents, draws, textured, normal_mapped, thin_materials, bytes: maps.bytes }
+        let smooth_normals = model.has_smooth_normals();
+        SceneGpu {
+            vertices,
+            indices,
+            tangents,
+            draws,
+            textured,
+            normal_mapped,
+            thin_materials,
+            smooth_normals,
+            bytes: maps.bytes,
+        }
     }
 
     /// Material `m`'s bind group: its parameters, and its maps uploaded through `maps` (or the

@@ -101,6 +101,8 @@ pub struct SceneGpu {
     pub normal_mapped: bool,
     /// A material is thinner than the scene's default thickness (`scene/thickness.rs`).
     pub thin_materials: bool,
+    /// The model is smooth-shaded somewhere (`Model::has_smooth_normals`).
+    pub smooth_normals: bool,
     pub bytes: u64,
 }
 

@@ -378,3 +378,21 @@ fn welding_shares_equal_vertices_and_changes_no_corner() {
     let cornell = load_obj(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/models/cornell/cornell.obj"))).unwrap();
     assert!(cornell.vertices.len() < cornell.indices.len() / 2, "{} vertices", cornell.vertices.len());
 }
+
+/// A model is smooth-shaded where a vertex normal turns from its triangle's face: a sphere's
+/// triangles are, a box's and a quad's are not, so the default scene (with its sphere) and the
+/// open scene (spheres) take the half-size DO over the sky's irradiance, and stairs and fence,
+/// all boxes and quads, run as before.
+#[test]
+fn smooth_shading_is_told_from_flat_faces() {
+    use ssdo::scene::named;
+    assert!(builtin::cornell().unwrap().has_smooth_normals(), "the default scene's sphere");
+    assert!(named::open().unwrap().has_smooth_normals(), "the open scene's spheres");
+    assert!(!builtin::plane(1.0, [0.5; 3]).unwrap().has_smooth_normals(), "a quad");
+    assert!(!named::stairs().unwrap().has_smooth_normals(), "stairs: boxes");
+    assert!(!named::fence().unwrap().has_smooth_normals(), "fence: quads");
+    let mut b = builtin::MeshBuilder::default();
+    let m = b.material(ssdo::scene::model::Material::plain("box", [0.5; 3]));
+    b.cuboid(m, Vec3::ZERO, Vec3::ONE, true);
+    assert!(!b.build("box").unwrap().has_smooth_normals(), "a box");
+}
