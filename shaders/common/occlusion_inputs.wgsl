@@ -15,8 +15,8 @@ override INDIRECT: bool = true;
 #include "common/sky_quadratic.wgsl"
 
 // The DO is written over the sky's unoccluded irradiance at the sample's normal, for the
-// upsample to multiply by that at each pixel's own (half resolution under a normal map, whose
-// normals turn faster than the samples are spaced: common/upsample.wgsl,
+// upsample to multiply by that at each pixel's own (half resolution under a normal map or smooth
+// shading, whose normals turn faster than the samples are spaced: common/upsample.wgsl,
 // `Plan::do_over_irradiance`).
 override DO_OVER_IRRADIANCE: bool = false;
 

@@ -10,13 +10,13 @@
 // behind it, and a far wall nothing from the object before it: no halo. Where no sample is on
 // the same surface (a feature thinner than two pixels), the one nearest its plane stands in.
 //
-// Under a normal map the normal turns from pixel to pixel faster than the samples are spaced,
-// and a sample's DO was measured with its own pixel's normal. With DO_OVER_IRRADIANCE the
-// samples hold their DO over the sky's unoccluded irradiance at their own normal (`stored_do` in
-// common/occlusion_inputs.wgsl), which the blur and the temporal pass average as they are, and
-// the upsample multiplies by that at this pixel's: E(n)/E(n_s) in effect, so the map's shading
-// survives half resolution where its occlusion is shared (what it buys: docs/accuracy.md,
-// normal maps).
+// Under a normal map, or on a smooth-shaded model, the normal turns from pixel to pixel faster
+// than the samples are spaced, and a sample's DO was measured with its own pixel's normal. With
+// DO_OVER_IRRADIANCE the samples hold their DO over the sky's unoccluded irradiance at their own
+// normal (`stored_do` in common/occlusion_inputs.wgsl), which the blur and the temporal pass
+// average as they are, and the upsample multiplies by that at this pixel's: Ê(n)/Ê(n_s) in
+// effect (`irradiance_floored`), so each pixel's shading survives half resolution where the
+// occlusion is shared (what it buys: docs/accuracy.md, normal maps).
 //
 // The including shader declares `current` (the half-size samples: AO in r, or DO + AO),
 // `params` (FilterParams), the override HAS_DO and `sample_surface` (a sample's depth and packed
