@@ -56,7 +56,6 @@ fn upsample(pixel: vec2<i32>, position: vec2<f32>) -> vec4<f32> {
 fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<f32>, viewport: vec4<f32>, sky: SkyQuadratic) -> vec4<f32> {
     let unoccluded = unoccluded_value();
     let n = unpack_normal(bits);
-
     let code = octahedral_code(bits);
     let tolerance = max(0.25 * params.radius, 1e-30);
     let full = vec2<i32>(viewport.xy);

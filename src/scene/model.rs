@@ -138,10 +138,6 @@ pub const REBASE_RADII: f32 = 1e3;
 /// ...and one farther than this many is refused: its positions hold under 4 bits of its shape.
 pub const MAX_OFFSET_RADII: f32 = 1e6;
 
-/// How far (degrees) a vertex normal may turn from its triangle's face for the triangle to count
-/// as flat-shaded ([`Model::has_smooth_normals`]).
-pub const SMOOTH_NORMAL_DEG: f32 = 2.0;
-
 /// Triangles ready for upload: one vertex and one index buffer, parts sorted by material.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -256,19 +252,6 @@ impl Model {
     /// Whether a drawn material has a normal map (the model then has tangents).
     pub fn is_normal_mapped(&self) -> bool {
         self.parts.iter().any(|p| self.materials[p.material].normal_map.is_some())
-    }
-
-    /// Whether the model is smooth-shaded somewhere: a vertex normal turns more than
-    /// `SMOOTH_NORMAL_DEG` from its triangle's face, so the normal turns from pixel to pixel
-    /// across the triangle, not only at its edges (a sphere, a figure; not a box).
-    pub fn has_smooth_normals(&self) -> bool {
-        let cos = SMOOTH_NORMAL_DEG.to_radians().cos();
-        self.indices.chunks_exact(3).any(|t| {
-            let v = [t[0], t[1], t[2]].map(|i| self.vertices[i as usize]);
-            let p = v.map(|v| Vec3::from(v.position));
-            let face = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-            face != Vec3::ZERO && v.iter().any(|v| Vec3::from(v.normal).dot(face) < cos)
-        })
     }
 
     /// Whether there is a tangent for every vertex: normal maps are drawn (and traced) only then;

@@ -1,7 +1,10 @@
-//! One triangle of a loaded model, built the same way for every file format, and the vertex it
-//! is made of (which `model.rs` hands on as `model::Vertex`).
+//! One triangle of a loaded model, built the same way for every file format, the vertex it is
+//! made of (which `model.rs` hands on as `model::Vertex`), and whether a model's triangles are
+//! smooth-shaded.
 
 use glam::Vec3;
+
+use super::model::Model;
 
 /// One vertex as the G-buffer pass reads it.
 #[repr(C)]
@@ -30,6 +33,24 @@ fn face(pos: [Vec3; 3]) -> (Vec3, bool) {
     let cross = e1.cross(e2);
     let normal = cross.try_normalize().map_or(Vec3::Y, |n| n.as_vec3());
     (normal, cross.length() > 1e-4 * e1.length_squared().max(e2.length_squared()))
+}
+
+/// How far (degrees) a vertex normal may turn from its triangle's face for the triangle to count
+/// as flat-shaded ([`Model::has_smooth_normals`]).
+pub const SMOOTH_NORMAL_DEG: f32 = 2.0;
+
+impl Model {
+    /// Whether the model is smooth-shaded somewhere: a vertex normal turns more than
+    /// `SMOOTH_NORMAL_DEG` from its well-shaped triangle's face, so the normal turns from pixel
+    /// to pixel across the triangle, not only at its edges (a sphere, a figure; not a box).
+    pub fn has_smooth_normals(&self) -> bool {
+        let cos = SMOOTH_NORMAL_DEG.to_radians().cos();
+        self.indices.chunks_exact(3).any(|t| {
+            let v = [t[0], t[1], t[2]].map(|i| self.vertices[i as usize]);
+            let (normal, well_shaped) = face(v.map(|v| Vec3::from(v.position)));
+            well_shaped && v.iter().any(|v| normal.dot(Vec3::from(v.normal)) < cos)
+        })
+    }
 }
 
 /// Whether the triangle at `pos` is wound against `normals` (their sum, the side they say is
