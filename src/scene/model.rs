@@ -9,8 +9,8 @@ use glam::Vec3;
 
 use super::bounds::Bounds;
 pub use super::texture::{texture_file_name, TextureImage};
-use super::triangle::wound_against;
 pub use super::triangle::Vertex;
+use super::triangle::{smooth_shaded, wound_against};
 use crate::{Error, Result};
 
 /// Surface description: Blinn-Phong with optional diffuse and specular maps, a tangent-space
@@ -252,6 +252,12 @@ impl Model {
     /// Whether a drawn material has a normal map (the model then has tangents).
     pub fn is_normal_mapped(&self) -> bool {
         self.parts.iter().any(|p| self.materials[p.material].normal_map.is_some())
+    }
+
+    /// Whether the model is smooth-shaded somewhere (a sphere, a figure; not a box): a triangle
+    /// whose normal turns across it ([`smooth_shaded`]).
+    pub fn has_smooth_normals(&self) -> bool {
+        self.indices.chunks_exact(3).any(|t| smooth_shaded([t[0], t[1], t[2]].map(|i| self.vertices[i as usize])))
     }
 
     /// Whether there is a tangent for every vertex: normal maps are drawn (and traced) only then;

@@ -1,10 +1,7 @@
 //! One triangle of a loaded model, built the same way for every file format, the vertex it is
-//! made of (which `model.rs` hands on as `model::Vertex`), and whether a model's triangles are
-//! smooth-shaded.
+//! made of (which `model.rs` hands on as `model::Vertex`), and whether it is smooth-shaded.
 
 use glam::Vec3;
-
-use super::model::Model;
 
 /// One vertex as the G-buffer pass reads it.
 #[repr(C)]
@@ -36,21 +33,16 @@ fn face(pos: [Vec3; 3]) -> (Vec3, bool) {
 }
 
 /// How far (degrees) a vertex normal may turn from its triangle's face for the triangle to count
-/// as flat-shaded ([`Model::has_smooth_normals`]).
+/// as flat-shaded ([`smooth_shaded`]).
 pub const SMOOTH_NORMAL_DEG: f32 = 2.0;
 
-impl Model {
-    /// Whether the model is smooth-shaded somewhere: a vertex normal turns more than
-    /// `SMOOTH_NORMAL_DEG` from its well-shaped triangle's face, so the normal turns from pixel
-    /// to pixel across the triangle, not only at its edges (a sphere, a figure; not a box).
-    pub fn has_smooth_normals(&self) -> bool {
-        let cos = SMOOTH_NORMAL_DEG.to_radians().cos();
-        self.indices.chunks_exact(3).any(|t| {
-            let v = [t[0], t[1], t[2]].map(|i| self.vertices[i as usize]);
-            let (normal, well_shaped) = face(v.map(|v| Vec3::from(v.position)));
-            well_shaped && v.iter().any(|v| normal.dot(Vec3::from(v.normal)) < cos)
-        })
-    }
+/// Whether the triangle of vertices `v` is smooth-shaded: a vertex normal turns more than
+/// `SMOOTH_NORMAL_DEG` from its face, so the normal turns from pixel to pixel across it, not
+/// only at its edges. A sliver says nothing, as for its winding.
+pub(super) fn smooth_shaded(v: [Vertex; 3]) -> bool {
+    let (normal, well_shaped) = face(v.map(|v| Vec3::from(v.position)));
+    let cos = SMOOTH_NORMAL_DEG.to_radians().cos();
+    well_shaped && v.iter().any(|v| normal.dot(Vec3::from(v.normal)) < cos)
 }
 
 /// Whether the triangle at `pos` is wound against `normals` (their sum, the side they say is
