@@ -93,17 +93,16 @@ fn around(texel: vec2<i32>, centre: vec4<f32>, p: vec3<f32>, n: vec3<f32>, oct: 
             let at = surface_pixel(t);
             let d = load_depth(at);
             let v = textureLoad(current, t, 0);
-            if d <= 0.0 || !finite4(v) {
-                continue;
-            }
-            out.lo = min(out.lo, v);
-            out.hi = max(out.hi, v);
+            // (Selects, not a `continue`: a CPU rasteriser pays for a branch its lanes disagree on.)
+            let on_surface = d > 0.0 && finite4(v);
+            out.lo = select(out.lo, min(out.lo, v), on_surface);
+            out.hi = select(out.hi, max(out.hi, v), on_surface);
             if BLUR {
                 let q = view_position(vec2<f32>(at) + 0.5, d);
                 let oct_q = octahedral_code(textureLoad(g_normal, at, 0).r);
                 let w = f32((2 - abs(x)) * (2 - abs(y))) * bilateral_weight(p, n, oct, q, oct_q, tolerance);
-                sum += w * v;
-                total += w;
+                sum += select(vec4<f32>(0.0), w * v, on_surface);
+                total += select(0.0, w, on_surface);
             }
         }
     }
@@ -143,68 +142,89 @@ fn past_in_place(texel: vec2<i32>, depth: f32) -> Past {
 // truth). The frames held are the bilinear average of the 2x2 around the point.
 fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: vec3<f32>) -> Past {
     var past = Past(vec4<f32>(0.0), 0.0, 0.0);
-    let size = frame.viewport.xy;
     let ndc = clip.xy / clip.w;
-    let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * size;
+    let was = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * frame.viewport.xy;
     past.moved = length(was - position);
     // In the history's texels, texel t at t.
     let at = texel_coordinate(was);
     let base = floor(at);
-    let frac = at - base;
-    let texels = vec2<i32>(textureDimensions(history_surface));
-    let tolerance = max(PLANE_RADII * params.radius, 1e-6 * -p.z);
+    let f = at - base;
     // This pixel's surface (point and unit normal) in the previous view, where the taps are.
-    let pp = frame.previous_projection;
-    let p_then = (frame.view_to_previous_view * vec4<f32>(p, 1.0)).xyz;
-    let plane_normal = safe_normalize(n_then, n_then);
-    let c0 = frac * (-0.5 + frac * (1.0 - 0.5 * frac));
-    let c1 = 1.0 + frac * frac * (-2.5 + 1.5 * frac);
-    let c2 = frac * (0.5 + frac * (2.0 - 1.5 * frac));
-    let c3 = frac * frac * (-0.5 + 0.5 * frac);
-    var weight = 0.0;
-    var held_weight = 0.0;
-    for (var i = 0u; i < 12u; i += 1u) {
-        // The 4x4 taps but its corners (their weight is at most 0.006 of the sum): rows 0 and 3
-        // hold their middle two, rows 1 and 2 all four.
-        let row = select(select(select(0u, 1u, i >= 2u), 2u, i >= 6u), 3u, i >= 10u);
-        let column = select(select(select(i + 1u, i - 2u, i >= 2u), i - 6u, i >= 6u), i - 9u, i >= 10u);
-        let corner = vec2<u32>(column, row);
-        let tap = vec2<i32>(base) + vec2<i32>(corner) - 1;
-        if any(tap < vec2<i32>(0)) || any(tap >= texels) {
-            continue;
-        }
-        let s = textureLoad(history_surface, tap, 0);
-        let frames = f32(s.y >> 24u);
-        if frames <= 0.0 {
-            continue;
-        }
-        // The texel's own surface point in the previous view, from its pixel and depth through
-        // the previous projection (a rigid turn from world space keeps the plane's distances).
-        let uv = (vec2<f32>(surface_pixel(tap)) + 0.5) / size;
-        let z = -pp.w / (bitcast<f32>(s.x) + pp.z);
-        let q = vec3<f32>((uv.x * 2.0 - 1.0) * -z * pp.x, (1.0 - uv.y * 2.0) * -z * pp.y, z);
-        let value = textureLoad(history, tap, 0);
-        let same = abs(dot(plane_normal, q - p_then)) <= tolerance && dot(unpack_normal(s.y), n_then) >= MIN_NORMAL_COS;
-        if !same || !finite4(value) {
-            continue;
-        }
-        let cx = select(select(c0.x, c1.x, corner.x == 1u), select(c2.x, c3.x, corner.x == 3u), corner.x >= 2u);
-        let cy = select(select(c0.y, c1.y, corner.y == 1u), select(c2.y, c3.y, corner.y == 3u), corner.y >= 2u);
-        past.value += (cx * cy) * value;
-        weight += cx * cy;
-        if all(corner >= vec2<u32>(1u)) && all(corner <= vec2<u32>(2u)) {
-            let bilinear = select(1.0 - frac, frac, corner == vec2<u32>(2u));
-            past.held += bilinear.x * bilinear.y * frames;
-            held_weight += bilinear.x * bilinear.y;
-        }
-    }
-    if weight > 0.5 && held_weight > 1e-3 {
-        past.value /= weight;
-        past.held /= held_weight;
-    } else {
-        past.held = 0.0;
+    let then = Then(
+        (frame.view_to_previous_view * vec4<f32>(p, 1.0)).xyz,
+        n_then,
+        safe_normalize(n_then, n_then),
+        max(PLANE_RADII * params.radius, 1e-6 * -p.z),
+    );
+    let c0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    let c1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    let c2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    let c3 = f * f * (-0.5 + 0.5 * f);
+    let g = 1.0 - f;
+    // The 4x4 taps but its corners (their weight is at most 0.006 of the sum), row by row, each
+    // written out with its weights (no tap chooses its place and weights by selects); the middle
+    // four also carry their bilinear weights.
+    let b = vec2<i32>(base) - 1;
+    var taken = Taken(vec4<f32>(0.0), 0.0, 0.0, 0.0);
+    take(&taken, then, b + vec2<i32>(1, 0), c1.x * c0.y, 0.0);
+    take(&taken, then, b + vec2<i32>(2, 0), c2.x * c0.y, 0.0);
+    take(&taken, then, b + vec2<i32>(0, 1), c0.x * c1.y, 0.0);
+    take(&taken, then, b + vec2<i32>(1, 1), c1.x * c1.y, g.x * g.y);
+    take(&taken, then, b + vec2<i32>(2, 1), c2.x * c1.y, f.x * g.y);
+    take(&taken, then, b + vec2<i32>(3, 1), c3.x * c1.y, 0.0);
+    take(&taken, then, b + vec2<i32>(0, 2), c0.x * c2.y, 0.0);
+    take(&taken, then, b + vec2<i32>(1, 2), c1.x * c2.y, g.x * f.y);
+    take(&taken, then, b + vec2<i32>(2, 2), c2.x * c2.y, f.x * f.y);
+    take(&taken, then, b + vec2<i32>(3, 2), c3.x * c2.y, 0.0);
+    take(&taken, then, b + vec2<i32>(1, 3), c1.x * c3.y, 0.0);
+    take(&taken, then, b + vec2<i32>(2, 3), c2.x * c3.y, 0.0);
+    if taken.weight > 0.5 && taken.held_weight > 1e-3 {
+        past.value = taken.value / taken.weight;
+        past.held = taken.held / taken.held_weight;
     }
     return past;
+}
+
+// A pixel's surface in the last frame's view: its point, its normal (and that normalised: its
+// plane), and how far off that plane a history texel may lie and still hold it.
+struct Then {
+    p: vec3<f32>,
+    n: vec3<f32>,
+    plane_normal: vec3<f32>,
+    tolerance: f32,
+}
+
+// The history taps that hold the surface, summed: their values and weights, and their frames
+// held under the bilinear weights.
+struct Taken {
+    value: vec4<f32>,
+    weight: f32,
+    held: f32,
+    held_weight: f32,
+}
+
+// Adds history texel `tap` to `taken` with weight `w` (and `bilinear` for its frames held), if it
+// holds the surface `then`: its own surface point in the previous view, from its pixel and depth
+// through the previous projection (a rigid turn from world space keeps the plane's distances),
+// lies on that surface's plane and its normal agrees.
+fn take(taken: ptr<function, Taken>, then: Then, tap: vec2<i32>, w: f32, bilinear: f32) {
+    let texels = vec2<i32>(textureDimensions(history_surface));
+    let inside = all(tap >= vec2<i32>(0)) && all(tap < texels);
+    let at = clamp(tap, vec2<i32>(0), texels - 1);
+    let s = textureLoad(history_surface, at, 0);
+    let frames = f32(s.y >> 24u);
+    let pp = frame.previous_projection;
+    let uv = (vec2<f32>(surface_pixel(at)) + 0.5) / frame.viewport.xy;
+    let z = -pp.w / (bitcast<f32>(s.x) + pp.z);
+    let q = vec3<f32>((uv.x * 2.0 - 1.0) * -z * pp.x, (1.0 - uv.y * 2.0) * -z * pp.y, z);
+    let value = textureLoad(history, at, 0);
+    let same = abs(dot(then.plane_normal, q - then.p)) <= then.tolerance && dot(unpack_normal(s.y), then.n) >= MIN_NORMAL_COS;
+    // (Selects, not early returns: a CPU rasteriser pays for a branch its lanes disagree on.)
+    let kept = inside && frames > 0.0 && same && finite4(value);
+    (*taken).value += select(vec4<f32>(0.0), w * value, kept);
+    (*taken).weight += select(0.0, w, kept);
+    (*taken).held += select(0.0, bilinear * frames, kept);
+    (*taken).held_weight += select(0.0, bilinear, kept);
 }
 
 // How far (degrees) a moving view's kept frames may have looked at a surface from: screen-space
