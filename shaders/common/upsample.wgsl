@@ -72,16 +72,15 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<
             let at = min(2 * h, full - 1);
             let surface = sample_surface(h, at);
             let d = bitcast<f32>(surface.x);
-            if d <= 0.0 {
-                continue;
-            }
+            // (Selects, not a `continue` where the sample has no surface: a CPU rasteriser runs
+            // both sides of a branch its lanes disagree on.)
+            let on_surface = d > 0.0;
             let value = textureLoad(current, h, 0);
             let q = unproject(vec2<f32>(at) + 0.5, d, projection, viewport.zw);
             let plane = abs(dot(n, q - p));
-            if plane < nearest_plane {
-                nearest_plane = plane;
-                nearest = value;
-            }
+            let nearer = on_surface && plane < nearest_plane;
+            nearest_plane = select(nearest_plane, plane, nearer);
+            nearest = select(nearest, value, nearer);
             // A tent over the distance in full-resolution pixels: 1 at the pixel itself, 0 at 3.
             let gap = abs(vec2<f32>(at - pixel));
             let tent = max(1.0 - gap / 3.0, vec2<f32>(0.0));
@@ -89,8 +88,8 @@ fn upsample_surface(pixel: vec2<i32>, p: vec3<f32>, bits: u32, projection: vec4<
             let spread = octahedral_distance(code, octahedral_code(surface.y));
             let agree = max(1.0 - 2.5 * spread * spread, 0.0);
             let w = tent.x * tent.y * max(1.0 - plane / tolerance, 0.0) * agree;
-            sum += w * value;
-            total += w;
+            sum += select(vec4<f32>(0.0), w * value, on_surface);
+            total += select(0.0, w, on_surface);
         }
     }
     var result = nearest;
