@@ -19,6 +19,7 @@ mod table;
 
 use serde_json::{Map, Value as Json};
 
+use crate::render::sampling::Sampling;
 use crate::render::{Mode, Settings, Variant};
 pub use switches::{switches, SwitchFlags};
 use table::choice;
@@ -65,22 +66,29 @@ impl Knobs {
         if s.sampling.variant != self.variant {
             s.ambient = self.variant.decl().default_ambient;
         }
-        s.sampling.variant = self.variant;
-        s.sampling.samples = self.samples;
-        s.sampling.slices = self.slices;
-        s.sampling.steps = self.steps;
-        s.sampling.depth_pyramid = self.depth_pyramid;
-        s.sampling.radius = None;
-        s.sampling.radius_scale = self.radius_scale;
-        s.sampling.thickness = None;
-        s.sampling.thickness_scale = self.thickness_scale;
-        s.blur = self.blur;
-        s.half_resolution = self.half_resolution;
-        s.accumulate = self.accumulate;
-        s.sender_sky = self.sender_sky;
-        s.far_side = self.far_side;
-        s.far_sky = self.far_sky;
-        s.indirect_strength = self.indirect_strength;
+        let sampling = Sampling {
+            variant: self.variant,
+            samples: self.samples,
+            slices: self.slices,
+            steps: self.steps,
+            depth_pyramid: self.depth_pyramid,
+            radius: None,
+            radius_scale: self.radius_scale,
+            thickness: None,
+            thickness_scale: self.thickness_scale,
+            ..s.sampling
+        };
+        *s = Settings {
+            sampling,
+            blur: self.blur,
+            half_resolution: self.half_resolution,
+            accumulate: self.accumulate,
+            sender_sky: self.sender_sky,
+            far_side: self.far_side,
+            far_sky: self.far_sky,
+            indirect_strength: self.indirect_strength,
+            ..*s
+        };
     }
 
     /// The settings: `base` with these knobs.
