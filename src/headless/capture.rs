@@ -66,9 +66,20 @@ pub fn capture_path(
     renderer: &mut Renderer,
     camera_at: impl Fn(u32) -> OrbitCamera,
 ) -> Result<image::RgbaImage> {
+    capture_path_from(gpu, renderer, 0, camera_at)
+}
+
+/// [`capture_path`] with `lead_in` frames more before those the average takes (`camera_at` goes
+/// that much further back): where the camera was before a cut.
+pub fn capture_path_from(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    lead_in: u32,
+    camera_at: impl Fn(u32) -> OrbitCamera,
+) -> Result<image::RgbaImage> {
     renderer.apply(gpu);
     renderer.reset_history();
-    let frames = renderer.accumulation();
+    let frames = renderer.accumulation() + lead_in;
     // A frame that averages nothing may still read what the last frame left (the senders' sky
     // from its march): it follows one, as every frame but the viewer's first does.
     let primer = (frames == 1 && !renderer.plan().history.is_empty()).then(|| camera_at(1));

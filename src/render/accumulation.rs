@@ -24,6 +24,15 @@ pub const BLURRED_FRAMES: u32 = 4;
 /// temporal pass 2.4 ms shorter on the room; at 10° the blur stays (nothing is kept).
 pub const SLOW_TURN_DEG: f32 = MAX_HISTORY_TURN_DEG / BLURRED_FRAMES as f32;
 
+/// A turn about what the camera looks at beyond this, from one frame to the next, is a cut: the
+/// next frame starts anew, as after a reset. The temporal pass keeps none of the last frame's
+/// average past [`MAX_HISTORY_TURN_DEG`], and the senders' sky the last frame measured, seen from
+/// that far away, lights them worse than a march of their own this frame (cornell, 16 frames
+/// turning 45° a frame: SSDO's DO 0.0370 → 0.0355; 4 frames after a cut from 90° away 0.0370 →
+/// 0.0348, the still view's; docs/accuracy.md). Not from 12°: a view that keeps turning 20° a
+/// frame would gain 1% of DO (0.0358 → 0.0355) for that march every frame (SSDO 1.13× the frame).
+pub const CUT_TURN_DEG: f32 = 30.0;
+
 /// The average over frames: what the temporal pass keeps, and where a still view stands.
 impl Renderer {
     /// The histories the plan keeps across frames.
@@ -96,6 +105,16 @@ impl Renderer {
     /// each entry a default average goes through.
     pub fn start_schedule_at(&mut self, entry: u32) {
         self.schedule_start = entry;
+    }
+
+    /// Whether `camera` cuts from the last frame's: the angle at its target between the last eye
+    /// and its own (the view's turn, as `StillView::turn_deg` measures it) is over
+    /// [`CUT_TURN_DEG`].
+    pub fn cuts_to(&self, camera: &OrbitCamera) -> bool {
+        self.still.camera.is_some_and(|last| {
+            let (then, now) = (last.eye() - camera.target, camera.eye() - camera.target);
+            then.angle_between(now).to_degrees() > CUT_TURN_DEG
+        })
     }
 
     /// The view jumped or what it shows changed: the next frame reuses nothing from the last

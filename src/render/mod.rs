@@ -30,7 +30,7 @@ use crate::gpu::Gpu;
 use crate::scene::thickness::FULL_THICKNESS;
 use crate::scene::{LightRig, OrbitCamera, PointLight, Scene, Skybox};
 use crate::{Error, Result};
-pub use accumulation::{BLURRED_FRAMES, SLOW_TURN_DEG};
+pub use accumulation::{BLURRED_FRAMES, CUT_TURN_DEG, SLOW_TURN_DEG};
 use frame::FrameData;
 use graph::io::{Fallbacks, Inputs};
 use graph::{FrameState, Preparation, Recording};
@@ -328,6 +328,9 @@ impl Renderer {
     ) {
         let Canvas { view: output, origin } = canvas.into();
         self.apply(gpu);
+        if self.cuts_to(camera) {
+            self.reset_history();
+        }
         self.still.count(camera, self.history.get(modes::OCCLUSION_HISTORY));
         self.upload_frame(gpu, camera, origin);
         let frame_index = self.frame.uniforms().frame_index;

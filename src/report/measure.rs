@@ -5,10 +5,10 @@ use glam::Vec3;
 
 use super::options::ReportOptions;
 use super::row::{NoiseFloor, Row};
-use super::sweep::Config;
+use super::sweep::{Config, CUT_DEG};
 use super::{maps, metrics};
 use crate::gpu::Gpu;
-use crate::headless::capture::capture_path;
+use crate::headless::capture::capture_path_from;
 use crate::headless::readback::{read_occlusion, read_rgba16f};
 use crate::reference::{self, Reference};
 use crate::render::{Mode, Renderer, View};
@@ -170,20 +170,25 @@ impl Bench<'_> {
         maps: Option<&mut MapFiles>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
-        let (mode, variant, orbit, bounce) = (config.mode, config.knobs.variant, config.orbit, config.bounce());
+        let (mode, variant, orbit, cut, bounce) = (config.mode, config.knobs.variant, config.orbit, config.cut, config.bounce());
         renderer.settings = config.settings(radius);
         let ms = if self.timed {
             crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms
         } else {
             0.0
         };
-        // The frames averaged, turning `orbit` degrees each, ending in the truth's view.
-        let camera_at = |k: u32| OrbitCamera { yaw_deg: camera.yaw_deg - orbit * k as f32, ..*camera };
-        let image = capture_path(gpu, renderer, camera_at)?;
+        // The frames averaged, turning `orbit` degrees each, ending in the truth's view; after a
+        // cut, as many before them from CUT_DEG around.
+        let lead_in = if cut { config.knobs.accumulate as u32 } else { 0 };
+        let camera_at = |k: u32| {
+            let turn = if cut && k >= lead_in { CUT_DEG } else { orbit * k as f32 };
+            OrbitCamera { yaw_deg: camera.yaw_deg - turn, ..*camera }
+        };
+        let image = capture_path_from(gpu, renderer, lead_in, camera_at)?;
         let frame = Frame::read(gpu, renderer, mode)?;
         let errors = frame.errors(truth, self.ambient);
         let (bounce_ratio, bounce_seen_ratio) = if self.diagnostics && frame.directional.is_some() && bounce.is_some() {
-            self.bounce_ratios(renderer, &camera_at, truth, frame.unexpose)?
+            self.bounce_ratios(renderer, (lead_in, &camera_at), truth, frame.unexpose)?
         } else {
             (None, None)
         };
@@ -208,6 +213,7 @@ impl Bench<'_> {
             radius: if mode == Mode::Off { 0.0 } else { radius },
             accumulate: config.knobs.accumulate,
             orbit,
+            cut,
             half_resolution: config.knobs.half_resolution,
             ms,
             ao_rmse,
@@ -230,13 +236,13 @@ impl Bench<'_> {
     fn bounce_ratios(
         &self,
         renderer: &mut Renderer,
-        camera_at: &dyn Fn(u32) -> OrbitCamera,
+        (lead_in, camera_at): (u32, &dyn Fn(u32) -> OrbitCamera),
         truth: &Truth,
         unexpose: f32,
     ) -> Result<(Option<f64>, Option<f64>)> {
         let view = renderer.settings.view;
         renderer.settings.view = View::DoIndirect;
-        capture_path(self.gpu, renderer, camera_at)?;
+        capture_path_from(self.gpu, renderer, lead_in, camera_at)?;
         renderer.settings.view = view;
         let bounce = renderer.targets().occlusion().directional.map(|t| read_rgba16f(self.gpu, &t.texture));
         let bounce = bounce.transpose()?.unwrap_or_default();

@@ -159,6 +159,7 @@ fn lines(rows: &[Row]) -> Vec<Line> {
                         && r.variant == variant
                         && !r.pyramid
                         && r.orbit == 0.0
+                        && !r.cut
                         && (r.accumulate, r.half_resolution) == (accumulate, half_resolution)
                         && (mode == Mode::Off || (r.blur && r.radius == first_radius))
                 })

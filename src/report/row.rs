@@ -26,6 +26,8 @@ pub struct Row {
     /// Frames averaged, and the camera's turn a frame over them, in degrees.
     pub accumulate: usize,
     pub orbit: f32,
+    /// The frames averaged came after a cut from another view (`Config::cut`).
+    pub cut: bool,
     /// The sampling pass at half resolution, upsampled.
     pub half_resolution: bool,
     /// Median GPU milliseconds of the whole frame (one frame, with accumulation running).
@@ -64,15 +66,14 @@ impl Row {
     /// The row in one line, as the progress bar shows it.
     pub(super) fn progress_line(&self, config: Config) -> String {
         format!(
-            "{} {} {}, radius {:.3}, blur {}, bounce {}, {} frames, orbit {}°: {:.2} ms, HDR RMSE {:.4}",
+            "{} {} {}, radius {:.3}, blur {}, bounce {}, {} frames: {:.2} ms, HDR RMSE {:.4}",
             self.mode,
             self.variant,
             self.label(),
             self.radius,
             self.blur,
             Row::bounce_label(self.mode, config.bounce(), (config.far_side(), config.far_sky())),
-            self.accumulate,
-            self.orbit,
+            self.frames_label(),
             self.ms,
             self.hdr_rmse
         )

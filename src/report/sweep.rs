@@ -15,7 +15,14 @@ pub struct Config {
     /// The degrees the camera turns about the model each of the frames averaged (0: still); the
     /// error is taken at the last frame, in the view of the truth.
     pub orbit: f32,
+    /// A camera cut: as many frames as the row averages are first rendered from [`CUT_DEG`]
+    /// around the model, then as many in the truth's view, the last one measured. What the
+    /// history of another view leaves in the average after a cut.
+    pub cut: bool,
 }
+
+/// Where a cut row's camera was before the cut: this far around the model from the truth's view.
+pub const CUT_DEG: f32 = 90.0;
 
 /// The configurations measured at one radius. Off has no sampling pass and no radius, so only
 /// the first radius measures it: once with the sky-lit composite (under the default variant's
@@ -24,7 +31,7 @@ pub struct Config {
 /// default count with the bounce's other senders, with no bounce and with the far side layer's
 /// senders (`--far-side`, and with their sky, `--far-sky`). The rows with blur on and
 /// off and the default bounce are measured at every `--accumulate` count, and the accumulated
-/// ones also orbiting where `--orbit` is given; the rows with blur on at full and at half
+/// ones also orbiting where `--orbit` is given, and after a cut; the rows with blur on at full and at half
 /// resolution; the pyramid, the other bounces and the far side at one frame, at the default
 /// resolution.
 pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config> {
@@ -58,6 +65,7 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
+                            configs.push(Config { cut: true, ..config });
                         }
                     }
                 }
@@ -90,7 +98,7 @@ pub fn planned_configurations(options: &ReportOptions) -> usize {
 impl Config {
     /// `knobs` in `mode`, in their canonical form, still.
     pub fn new(mode: Mode, knobs: Knobs) -> Self {
-        Self { mode, knobs: knobs.canonical(mode), orbit: 0.0 }
+        Self { mode, knobs: knobs.canonical(mode), orbit: 0.0, cut: false }
     }
 
     /// The configuration a preset's knobs give in `mode`, and its radius scale.
@@ -206,13 +214,15 @@ mod tests {
         assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
         assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
         // Accumulation doubles the rows of blur on (full and half resolution) and off (3 variants
-        // × 3 modes × 3) at one count each; orbiting adds the accumulated ones again.
+        // × 3 modes × 3) at one count each; orbiting adds the accumulated ones twice more (turning,
+        // and after a cut).
         let single = configurations(&options(1, 1, 1), true).len();
         assert_eq!(configs.len(), single + 3 * 3 * 3);
         o.orbit = 1.0;
         let orbiting = configurations(&o, true);
-        assert_eq!(orbiting.len(), single + 2 * 3 * 3 * 3);
-        assert!(orbiting.iter().all(|c| c.orbit == 0.0 || c.knobs.accumulate > 1));
+        assert_eq!(orbiting.len(), single + 3 * 3 * 3 * 3);
+        assert!(orbiting.iter().all(|c| (c.orbit == 0.0 && !c.cut) || c.knobs.accumulate > 1));
+        assert!(orbiting.iter().all(|c| !(c.cut && c.orbit != 0.0)));
         assert!(configs.iter().filter(|c| c.mode == Mode::Ssao).all(|c| c.bounce().is_none() && !c.pyramid()));
         // No two configurations of one radius are the same setting.
         let distinct: Vec<String> = orbiting.iter().map(|c| format!("{c:?}")).collect();

@@ -41,10 +41,13 @@ impl Row {
         }
     }
 
-    /// "1", "16", or "16 (1°)" for 16 frames orbiting 1° each.
+    /// "1", "16", "16 (1°)" for 16 frames orbiting 1° each, or "16 (cut)" for 16 frames after a
+    /// cut.
     pub fn frames_label(&self) -> String {
         if self.orbit != 0.0 {
             format!("{} ({}°)", self.accumulate, self.orbit)
+        } else if self.cut {
+            format!("{} (cut)", self.accumulate)
         } else {
             self.accumulate.to_string()
         }
@@ -97,7 +100,7 @@ impl Row {
 
 impl Report {
     pub fn csv(&self) -> String {
-        const HEADER: [&str; 23] = [
+        const HEADER: [&str; 24] = [
             "mode",
             "variant",
             "samples",
@@ -108,6 +111,7 @@ impl Report {
             "radius",
             "accumulate",
             "orbit",
+            "cut",
             "half",
             "ms",
             "ao_rmse_within_r",
@@ -122,7 +126,7 @@ impl Report {
             "pareto",
             "preset",
         ];
-        let rows = self.rows.iter().map(|r| -> [String; 23] {
+        let rows = self.rows.iter().map(|r| -> [String; 24] {
             [
                 r.mode.name().to_string(),
                 r.variant.to_string(),
@@ -134,6 +138,7 @@ impl Report {
                 format!("{:.5}", r.radius),
                 r.accumulate.to_string(),
                 r.orbit.to_string(),
+                r.cut.to_string(),
                 r.half_resolution.to_string(),
                 format!("{:.4}", r.ms),
                 cell(r.ao_rmse, 6),
@@ -170,7 +175,8 @@ impl Report {
              the second surface on its pixel's eye ray, what a second depth layer could add\n\
              - the sky the truth's occluders block, by where they lie for the camera: {}\n\
              - frames: the frames averaged (`--accumulate`; 1 is a single frame), with the camera's turn a frame \
-             over them in brackets (`--orbit`), the error taken at the last frame in the truth's view; ms is the \
+             over them in brackets (`--orbit`), or \"(cut)\": after as many frames from {}° around the model, the \
+             error taken at the last frame in the truth's view; ms is the \
              cost of one frame with the average running\n\
              - rows sorted by time; ★ = on the Pareto front (no row both faster and closer to the truth); P = the \
              preset given (`--preset`, `--quality`){}; \
@@ -198,6 +204,7 @@ impl Report {
             r.covered,
             bounce_places(r),
             blocked_places(r),
+            super::sweep::CUT_DEG,
             options.preset.as_ref().map_or_else(String::new, |p| format!(", '{}'", crate::text::markdown_cell(&p.name))),
         );
         out.push_str(

@@ -4,7 +4,8 @@
 //! independent sample sets); pixels a camera move uncovers keep nothing of the old view, and
 //! the walls a turn swings through the view keep theirs (normals compared in one view); sliding
 //! past a pole ghosts nothing onto the wall it uncovers; a turn of 10° a frame keeps no history
-//! (a frame seen from that far away is another image) and one of 1° the motion cap's; a
+//! (a frame seen from that far away is another image) and one of 1° the motion cap's; after a
+//! cut the image is a fresh start's, and a turn just under a cut keeps its history; a
 //! moving camera never leaves [0, 1] or produces a non-finite value; the history lives exactly as
 //! long as its plan, size and settings; half-resolution sampling leaves no halo; and the
 //! composite upsamples the half-size average exactly as the upsample pass's copy does.
@@ -366,6 +367,28 @@ fn a_fast_turn_keeps_no_history_and_a_slow_one_the_motion_cap() {
         assert!(most >= cap && median == cap, "{mode} turning 1° a frame: most {most}, median {median}, cap {cap}");
         assert!(kept * 10 > surface * 9, "{mode} turning 1° a frame keeps history on {kept} of {surface} texels");
     }
+}
+
+#[test]
+fn a_cut_starts_anew_and_a_turn_below_it_keeps_its_history() {
+    let Some(gpu) = gpu() else { return };
+    let (scene, sky, camera) = cornell();
+    let away = OrbitCamera { yaw_deg: camera.yaw_deg + 90.0, ..camera };
+    // Four frames of SSDO in the camera's view: after 8 from 90° around, and from a fresh start.
+    let mut cut = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 16));
+    render_frames(gpu, &mut cut, std::iter::repeat_n(away, 8).chain(std::iter::repeat_n(camera, 4))).unwrap();
+    let mut fresh = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 16));
+    render_frames(gpu, &mut fresh, std::iter::repeat_n(camera, 4)).unwrap();
+    assert_eq!(cut.frames_accumulated(), 4, "the history holds the frames since the cut");
+    // The image after the cut is the fresh one: nothing of the other view's average, nor of the
+    // sky its senders saw, is left in it.
+    assert_eq!(directional(gpu, &cut), directional(gpu, &fresh));
+    // A turn under the cut's keeps accumulating (the temporal pass decides what each texel keeps).
+    let mut turning = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 16));
+    let step = ssdo::render::CUT_TURN_DEG * 0.9;
+    render_frames(gpu, &mut turning, (0..4).map(|k| OrbitCamera { yaw_deg: camera.yaw_deg + step * k as f32, ..camera }))
+        .unwrap();
+    assert_eq!(turning.frames_accumulated(), 4, "turning {step}° a frame is no cut");
 }
 
 #[test]
