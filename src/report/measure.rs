@@ -170,7 +170,8 @@ impl Bench<'_> {
         maps: Option<&mut MapFiles>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
-        let (mode, variant, orbit, cut, bounce) = (config.mode, config.knobs.variant, config.orbit, config.cut, config.bounce());
+        let (mode, variant, orbit, cut, bounce) =
+            (config.mode, config.knobs.variant, config.orbit, config.cut, config.bounce());
         renderer.settings = config.settings(radius);
         let ms = if self.timed {
             crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms

@@ -386,8 +386,12 @@ fn a_cut_starts_anew_and_a_turn_below_it_keeps_its_history() {
     // A turn under the cut's keeps accumulating (the temporal pass decides what each texel keeps).
     let mut turning = renderer(gpu, &scene, &sky, (W, H), settings(Mode::Ssdo, 16));
     let step = ssdo::render::CUT_TURN_DEG * 0.9;
-    render_frames(gpu, &mut turning, (0..4).map(|k| OrbitCamera { yaw_deg: camera.yaw_deg + step * k as f32, ..camera }))
-        .unwrap();
+    render_frames(
+        gpu,
+        &mut turning,
+        (0..4).map(|k| OrbitCamera { yaw_deg: camera.yaw_deg + step * k as f32, ..camera }),
+    )
+    .unwrap();
     assert_eq!(turning.frames_accumulated(), 4, "turning {step}° a frame is no cut");
 }
 
