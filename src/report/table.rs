@@ -111,7 +111,6 @@ impl Report {
             "radius",
             "accumulate",
             "orbit",
-            "cut",
             "half",
             "ms",
             "ao_rmse_within_r",
@@ -125,6 +124,7 @@ impl Report {
             "flip",
             "pareto",
             "preset",
+            "cut",
         ];
         let rows = self.rows.iter().map(|r| -> [String; 24] {
             [
@@ -138,7 +138,6 @@ impl Report {
                 format!("{:.5}", r.radius),
                 r.accumulate.to_string(),
                 r.orbit.to_string(),
-                r.cut.to_string(),
                 r.half_resolution.to_string(),
                 format!("{:.4}", r.ms),
                 cell(r.ao_rmse, 6),
@@ -152,6 +151,7 @@ impl Report {
                 format!("{:.5}", r.flip),
                 r.pareto.to_string(),
                 r.preset.clone().unwrap_or_default(),
+                r.cut.to_string(),
             ]
         });
         output::csv_text(&HEADER, rows)
