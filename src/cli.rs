@@ -288,8 +288,8 @@ pub(crate) struct ReportArgs {
     #[arg(long, default_value = "1,4,16", value_delimiter = ',')]
     pub(crate) accumulate: Vec<usize>,
     /// Degrees the camera turns about the model each frame of an accumulated row, ending in the
-    /// truth's view: those rows are measured still, turning, and after a cut (as many frames
-    /// first from 90° around the model; 0: still only)
+    /// truth's view: those rows are measured still and turning, and each mode's default setting
+    /// also after a cut (as many frames first from 90° around the model; 0: still only)
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub(crate) orbit: f32,
     /// Output folder for report.csv, report.md, report.png and the error maps
