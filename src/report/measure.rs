@@ -10,6 +10,7 @@ use super::{maps, metrics};
 use crate::gpu::Gpu;
 use crate::headless::capture::capture_path_from;
 use crate::headless::readback::{read_occlusion, read_rgba16f};
+use crate::knobs::Knobs;
 use crate::reference::{self, Reference};
 use crate::render::{Mode, Renderer, View};
 use crate::scene::OrbitCamera;
@@ -170,8 +171,7 @@ impl Bench<'_> {
         maps: Option<&mut MapFiles>,
     ) -> Result<Row> {
         let (gpu, camera) = (self.gpu, self.camera);
-        let (mode, variant, orbit, cut, bounce) =
-            (config.mode, config.knobs.variant, config.orbit, config.cut, config.bounce());
+        let (mode, orbit, cut, bounce) = (config.mode, config.orbit, config.cut, config.bounce());
         renderer.settings = config.settings(radius);
         let ms = if self.timed {
             crate::headless::bench::measure(gpu, renderer, camera, self.view, self.options.frames)?.frame_ms
@@ -195,27 +195,16 @@ impl Bench<'_> {
         };
         let flip = self.flip(image, truth, renderer.settings.exposure, maps.map(|m| (m, &frame)))?;
         let Errors { hdr_rmse, hdr_rmse_near, hdr_peak, ao_rmse, do_rmse, do_rmse_near } = errors;
+        // (The far side is drawn only where the scene has point lights to light it.)
+        let plan = renderer.plan();
+        let drawn = Knobs {
+            far_side: config.far_side() && plan.far_side,
+            far_sky: config.far_sky() && plan.has(crate::render::modes::Step::FAR_SKY),
+            ..config.knobs
+        };
         Ok(Row {
-            mode,
-            variant,
-            samples: config.samples(),
-            steps: config.steps(),
-            pyramid: config.pyramid(),
-            // (Drawn only where the scene has point lights to light it.)
-            far_side: config.far_side() && renderer.plan().far_side,
-            far_sky: config.far_sky() && renderer.plan().has(crate::render::modes::Step::FAR_SKY),
-            blur: config.knobs.blur,
-            // What lit the senders (the variants that do not march take `march` for `last-frame`).
-            bounce: if mode.declaration().directional_occlusion {
-                bounce.map(|b| b.for_variant(variant))
-            } else {
-                None
-            },
+            config: Config { knobs: drawn, ..config },
             radius: if mode == Mode::Off { 0.0 } else { radius },
-            accumulate: config.knobs.accumulate,
-            orbit,
-            cut,
-            half_resolution: config.knobs.half_resolution,
             ms,
             ao_rmse,
             do_rmse,

@@ -145,15 +145,18 @@ pub fn run(gpu: &Gpu, options: &ReportOptions, progress: &(dyn Fn(&str) + Sync))
         reference_seconds += started.elapsed().as_secs_f64();
         for config in sweep::configurations(options, r_index == 0) {
             let maps = (r_index == 0 && config.is_the_default_both()).then_some(&mut map_files);
-            let row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
-            progress(&row.progress_line(config));
+            let mut row = bench.measure(&mut renderer, config, radius, &truth, maps)?;
+            // (The radius as the knob holds it: a multiple of the scene's default.)
+            row.config.knobs.radius_scale = radius / default_radius;
+            progress(&row.progress_line());
             rows.push(row);
         }
         if let (0, Some(preset)) = (r_index, &options.preset) {
             let (config, scale) = Config::of_knobs(preset.mode, &preset.knobs);
             let mut row = bench.measure(&mut renderer, config, scale * default_radius, &truth, None)?;
             row.preset = Some(preset.name.clone());
-            progress(&row.progress_line(config));
+            row.config.knobs.radius_scale = scale;
+            progress(&row.progress_line());
             rows.push(row);
         }
         if r_index == 0 {

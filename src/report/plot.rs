@@ -56,7 +56,7 @@ impl Report {
             // Every row, faint: the other radii and blur settings.
             chart
                 .draw_series(rows.iter().map(|r| {
-                    let m = Mode::ALL.iter().position(|m| *m == r.mode).unwrap_or(0);
+                    let m = Mode::ALL.iter().position(|m| *m == r.config.mode).unwrap_or(0);
                     Circle::new((log_value(r.ms), log_value(r.hdr_rmse)), 2, colours[m].mix(0.35).filled())
                 }))
                 .map_err(|e| fail(&e))?;
@@ -141,8 +141,8 @@ struct Line {
 /// full resolution, blur on, the first radius), and for the default variant its most
 /// accumulated still rows at full and at half resolution.
 fn lines(rows: &[Row]) -> Vec<Line> {
-    let first_radius = rows.iter().find(|r| r.mode != Mode::Off).map_or(0.0, |r| r.radius);
-    let most = rows.iter().map(|r| r.accumulate).max().unwrap_or(1);
+    let first_radius = rows.iter().find(|r| r.config.mode != Mode::Off).map_or(0.0, |r| r.radius);
+    let most = rows.iter().map(|r| r.config.knobs.accumulate).max().unwrap_or(1);
     // (variant, frames averaged, half resolution) of each line of a mode.
     let mut kinds: Vec<(Variant, usize, bool)> = Variant::ALL.iter().map(|&v| (v, 1, false)).collect();
     if most > 1 {
@@ -155,19 +155,20 @@ fn lines(rows: &[Row]) -> Vec<Line> {
             let mut line: Vec<&Row> = rows
                 .iter()
                 .filter(|r| {
-                    r.mode == mode
-                        && r.variant == variant
-                        && !r.pyramid
-                        && r.orbit == 0.0
-                        && !r.cut
-                        && (r.accumulate, r.half_resolution) == (accumulate, half_resolution)
-                        && (mode == Mode::Off || (r.blur && r.radius == first_radius))
+                    let (c, k) = (&r.config, &r.config.knobs);
+                    c.mode == mode
+                        && k.variant == variant
+                        && !c.pyramid()
+                        && c.orbit == 0.0
+                        && !c.cut
+                        && (k.accumulate, k.half_resolution) == (accumulate, half_resolution)
+                        && (mode == Mode::Off || (k.blur && r.radius == first_radius))
                 })
                 .collect();
             if line.is_empty() {
                 continue;
             }
-            line.sort_by_key(|r| r.samples * 1000 + r.steps);
+            line.sort_by_key(|r| r.config.samples() * 1000 + r.config.steps());
             let mut label = format!("{} {}", mode.title(), variant);
             if accumulate > 1 {
                 label = format!("{label} ×{accumulate} frames{}", if half_resolution { ", half res" } else { "" });

@@ -1,35 +1,16 @@
 //! One measured configuration of the report, and the truth's noise floor beside the rows.
 
 use super::sweep::Config;
-use crate::render::{Mode, SenderSky, Variant};
 
 /// One measured configuration.
 #[derive(Clone, Debug)]
 pub struct Row {
-    pub mode: Mode,
-    pub variant: Variant,
-    /// Samples per pixel of the sampling pass (0 for Off, which has none); slices for the march.
-    pub samples: usize,
-    /// Steps per side of each slice (the march; 0 otherwise).
-    pub steps: usize,
-    /// The march's far steps read the depth pyramid.
-    pub pyramid: bool,
-    pub blur: bool,
-    /// What lights the bounce's senders (DO modes); `None`: no bounce (`--indirect-strength 0`).
-    pub bounce: Option<SenderSky>,
-    /// The far side layer's senders send too (`--far-side`), and with the sky they see
-    /// (`--far-sky`).
-    pub far_side: bool,
-    pub far_sky: bool,
+    /// What was measured: the mode, the knobs it ran with, the camera's turn a frame and whether
+    /// the frames came after a cut. The far side layer (and its sky) as drawn: only where the
+    /// scene has point lights to light it.
+    pub config: Config,
     /// Sampling radius in model units (0 for Off).
     pub radius: f32,
-    /// Frames averaged, and the camera's turn a frame over them, in degrees.
-    pub accumulate: usize,
-    pub orbit: f32,
-    /// The frames averaged came after a cut from another view (`Config::cut`).
-    pub cut: bool,
-    /// The sampling pass at half resolution, upsampled.
-    pub half_resolution: bool,
     /// Median GPU milliseconds of the whole frame (one frame, with accumulation running).
     pub ms: f64,
     /// AO against the within-R AO, its definition (a diagnostic).
@@ -64,15 +45,16 @@ pub struct NoiseFloor {
 
 impl Row {
     /// The row in one line, as the progress bar shows it.
-    pub(super) fn progress_line(&self, config: Config) -> String {
+    pub(super) fn progress_line(&self) -> String {
+        let c = &self.config;
         format!(
             "{} {} {}, radius {:.3}, blur {}, bounce {}, {} frames: {:.2} ms, HDR RMSE {:.4}",
-            self.mode,
-            self.variant,
+            c.mode,
+            c.knobs.variant,
             self.label(),
             self.radius,
-            self.blur,
-            Row::bounce_label(self.mode, config.bounce(), (config.far_side(), config.far_sky())),
+            c.knobs.blur,
+            self.bounce_label(),
             self.frames_label(),
             self.ms,
             self.hdr_rmse

@@ -154,10 +154,12 @@ impl Config {
         self.far_side() && self.knobs.far_sky
     }
 
-    /// What lights the bounce's senders; `None`: no bounce (`--indirect-strength 0`), or no DO.
+    /// What lights the bounce's senders (the variants that do not march take `march` for
+    /// `last-frame`); `None`: no bounce (`--indirect-strength 0`), or no DO.
     pub fn bounce(&self) -> Option<SenderSky> {
         let directional = self.mode.declaration().directional_occlusion;
-        (directional && self.knobs.indirect_strength > 0.0).then_some(self.knobs.sender_sky)
+        let senders = self.knobs.sender_sky.for_variant(self.knobs.variant);
+        (directional && self.knobs.indirect_strength > 0.0).then_some(senders)
     }
 
     /// The renderer's settings for this configuration at `radius`. Every configuration renders

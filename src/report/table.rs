@@ -4,7 +4,8 @@
 use super::options::ReportOptions;
 use super::row::Row;
 use super::Report;
-use crate::render::{Mode, SenderSky, Variant};
+use crate::knobs::{self, KNOBS};
+use crate::render::{Mode, SenderSky};
 use crate::{output, reference, Result};
 
 fn cell(v: Option<f64>, digits: usize) -> String {
@@ -12,29 +13,19 @@ fn cell(v: Option<f64>, digits: usize) -> String {
 }
 
 impl Row {
-    /// "16" samples, or "4×8" slices × steps for the march ("4×8 pyramid" with the pyramid).
-    pub(super) fn count_label(variant: Variant, samples: usize, steps: usize, pyramid: bool) -> String {
-        // A row's `samples` holds the slices where the variant marches.
-        let short = variant.decl().count_short(samples, samples, steps);
-        if pyramid {
-            format!("{short} pyramid")
-        } else {
-            short
-        }
-    }
-
     /// What lit the bounce's senders: "march", "irradiance", "lights" (the point lights only),
     /// "none" (no bounce), "—" (no DO); " + far side" where the far side layer sends too.
-    pub(super) fn bounce_label(mode: Mode, bounce: Option<SenderSky>, (far_side, far_sky): (bool, bool)) -> String {
-        let senders = match (mode, bounce) {
+    pub(super) fn bounce_label(&self) -> String {
+        let c = &self.config;
+        let senders = match (c.mode, c.bounce()) {
             (Mode::Off | Mode::Ssao, _) => "—",
             (_, Some(SenderSky::Off)) => "lights",
             (_, Some(other)) => other.name(),
             (_, None) => "none",
         };
-        if far_sky {
+        if c.far_sky() {
             format!("{senders} + far side and its sky")
-        } else if far_side {
+        } else if c.far_side() {
             format!("{senders} + far side")
         } else {
             senders.to_string()
@@ -44,35 +35,36 @@ impl Row {
     /// "1", "16", "16 (1°)" for 16 frames orbiting 1° each, or "16 (cut)" for 16 frames after a
     /// cut.
     pub fn frames_label(&self) -> String {
-        if self.orbit != 0.0 {
-            format!("{} ({}°)", self.accumulate, self.orbit)
-        } else if self.cut {
-            format!("{} (cut)", self.accumulate)
+        let (frames, orbit) = (self.config.knobs.accumulate, self.config.orbit);
+        if orbit != 0.0 {
+            format!("{frames} ({orbit}°)")
+        } else if self.config.cut {
+            format!("{frames} (cut)")
         } else {
-            self.accumulate.to_string()
+            frames.to_string()
         }
     }
 
     /// The row in the Markdown table.
     fn markdown(&self) -> String {
-        let off = self.mode == Mode::Off;
+        let off = self.config.mode == Mode::Off;
         let marks = match (self.pareto, self.preset.is_some()) {
             (true, true) => "★ P",
             (false, true) => "P",
             (true, false) => "★",
             (false, false) => "",
         };
-        let blur = match (off, self.blur) {
+        let blur = match (off, self.config.knobs.blur) {
             (true, _) => "—",
             (false, true) => "on",
             (false, false) => "off",
         };
         format!(
             "| {marks} | {} | {} | {} | {blur} | {} | {} | {} | {:.2} | {:.4} | {:.4} | {:.2} | {:.4} | {} | {} | {} | {} | {} |\n",
-            self.mode.name(),
-            self.variant,
+            self.config.mode.name(),
+            self.config.knobs.variant,
             if off { "—".to_string() } else { self.label() },
-            Row::bounce_label(self.mode, self.bounce, (self.far_side, self.far_sky)),
+            self.bounce_label(),
             if off { "—".to_string() } else { format!("{:.3}", self.radius) },
             self.frames_label(),
             self.ms,
@@ -88,30 +80,27 @@ impl Row {
         )
     }
 
+    /// "16" samples, or "4×8" slices × steps for the march ("4×8 pyramid" with the pyramid),
+    /// and "half" at half resolution.
     pub fn label(&self) -> String {
-        let count = Self::count_label(self.variant, self.samples, self.steps, self.pyramid);
-        if self.half_resolution {
-            format!("{count} half")
-        } else {
-            count
+        let c = &self.config;
+        let mut label = c.knobs.variant.decl().count_short(c.samples(), c.samples(), c.steps());
+        if c.pyramid() {
+            label.push_str(" pyramid");
         }
+        if c.knobs.half_resolution {
+            label.push_str(" half");
+        }
+        label
     }
 }
 
 impl Report {
+    /// The rows, a line each: the mode, the knobs as the knob table names them (tune's CSV has
+    /// the same columns), each where it means something for the row, the radius
+    /// as a length, the camera's turn and cut, then what was measured.
     pub fn csv(&self) -> String {
-        const HEADER: [&str; 24] = [
-            "mode",
-            "variant",
-            "samples",
-            "steps",
-            "pyramid",
-            "blur",
-            "bounce",
-            "radius",
-            "accumulate",
-            "orbit",
-            "half",
+        const MEASURED: [&str; 12] = [
             "ms",
             "ao_rmse_within_r",
             "do_rmse",
@@ -124,21 +113,23 @@ impl Report {
             "flip",
             "pareto",
             "preset",
-            "cut",
         ];
-        let rows = self.rows.iter().map(|r| -> [String; 24] {
-            [
-                r.mode.name().to_string(),
-                r.variant.to_string(),
-                r.samples.to_string(),
-                r.steps.to_string(),
-                r.pyramid.to_string(),
-                r.blur.to_string(),
-                Row::bounce_label(r.mode, r.bounce, (r.far_side, r.far_sky)),
-                format!("{:.5}", r.radius),
-                r.accumulate.to_string(),
-                r.orbit.to_string(),
-                r.half_resolution.to_string(),
+        let header: Vec<&str> =
+            ["mode"].into_iter().chain(knobs::keys()).chain(["radius", "orbit", "cut"]).chain(MEASURED).collect();
+        let rows = self.rows.iter().map(|r| {
+            let c = &r.config;
+            // Empty where a knob means nothing for the row; Off samples nothing, and keeps only
+            // its variant (the first knob), whose composite it runs.
+            let knobs = KNOBS.iter().enumerate().map(|(i, knob)| {
+                let off = c.mode == Mode::Off && i > 0;
+                if off || !knob.applies(&c.knobs, Some(c.mode)) {
+                    String::new()
+                } else {
+                    knob.text(&c.knobs)
+                }
+            });
+            let place = [format!("{:.5}", r.radius), c.orbit.to_string(), c.cut.to_string()];
+            let measured = [
                 format!("{:.4}", r.ms),
                 cell(r.ao_rmse, 6),
                 cell(r.do_rmse, 6),
@@ -151,10 +142,10 @@ impl Report {
                 format!("{:.5}", r.flip),
                 r.pareto.to_string(),
                 r.preset.clone().unwrap_or_default(),
-                r.cut.to_string(),
-            ]
+            ];
+            [c.mode.name().to_string()].into_iter().chain(knobs).chain(place).chain(measured).collect::<Vec<_>>()
         });
-        output::csv_text(&HEADER, rows)
+        output::csv_text(&header, rows)
     }
 
     pub fn markdown(&self, options: &ReportOptions) -> String {

@@ -114,7 +114,13 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
             result
                 .rows
                 .iter()
-                .find(|r| r.mode == mode && r.variant == variant && (r.samples, r.steps) == (samples, steps) && !r.blur)
+                .find(|r| {
+                    let c = &r.config;
+                    c.mode == mode
+                        && c.knobs.variant == variant
+                        && (c.samples(), c.steps()) == (samples, steps)
+                        && !c.knobs.blur
+                })
                 .unwrap()
         };
         let (few, many) = (row(small), row(large));
@@ -132,7 +138,7 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
         result
             .rows
             .iter()
-            .filter(|r| r.mode == Mode::Ssdo && r.variant == variant)
+            .filter(|r| r.config.mode == Mode::Ssdo && r.config.knobs.variant == variant)
             .map(|r| r.hdr_rmse)
             .fold(f64::MAX, f64::min)
     };
@@ -146,8 +152,27 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
     assert!(csv.starts_with(
-        "mode,variant,samples,steps,pyramid,blur,bounce,radius,accumulate,orbit,half,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,bounce_seen_ratio,hdr_rmse"
+        "mode,variant,samples,slices,steps,accumulate,blur,half_resolution,radius_scale,thickness_scale,depth_pyramid,sender_sky,far_side,far_sky,indirect_strength,radius,orbit,cut,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,bounce_seen_ratio,hdr_rmse"
     ));
+    // Each knob's cell holds its value where it means something for the row, empty elsewhere:
+    // the points variant has no steps, SSAO no senders, Off nothing but its variant.
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let cells = |prefix: &str| -> Vec<Vec<String>> {
+        csv.lines().filter(|l| l.starts_with(prefix)).map(|l| l.split(',').map(str::to_string).collect()).collect()
+    };
+    for row in cells("ssao,points,") {
+        assert_eq!((row[column("steps")].as_str(), row[column("sender_sky")].as_str()), ("", ""), "{row:?}");
+        assert!(!row[column("samples")].is_empty() && !row[column("blur")].is_empty(), "{row:?}");
+    }
+    for row in cells("both,march,") {
+        assert!(["1", "4"].contains(&row[column("slices")].as_str()), "{row:?}");
+        assert_eq!(row[column("samples")], "", "{row:?}");
+        assert!(!row[column("sender_sky")].is_empty(), "{row:?}");
+    }
+    for row in cells("off,") {
+        assert!(row[column("blur")].is_empty() && !row[column("variant")].is_empty(), "{row:?}");
+    }
     assert_eq!(
         csv.lines().count(),
         1 + 2 + 3 * 3 * 2 * 3 + 2 * 2,
@@ -158,7 +183,8 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     assert!(result.rows.iter().any(|r| r.pareto), "a Pareto front is marked");
     // The truth's own noise is measured (not 0) and well below what Off, with no occlusion at
     // all, gets wrong.
-    let off = result.rows.iter().find(|r| r.mode == Mode::Off && r.variant == Variant::March).unwrap();
+    let off =
+        result.rows.iter().find(|r| r.config.mode == Mode::Off && r.config.knobs.variant == Variant::March).unwrap();
     assert!(
         result.noise.hdr > 0.0 && result.noise.hdr < 0.5 * off.hdr_rmse,
         "noise {} vs Off {}",
@@ -174,7 +200,8 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
                     .rows
                     .iter()
                     .find(|r| {
-                        r.mode == mode && r.variant == variant && r.samples == samples && r.blur && !r.half_resolution
+                        let (c, k) = (&r.config, &r.config.knobs);
+                        c.mode == mode && k.variant == variant && c.samples() == samples && k.blur && !k.half_resolution
                     })
                     .unwrap()
                     .flip
@@ -200,12 +227,13 @@ fn the_report_measures_how_much_a_single_frames_error_owes_to_its_pattern() {
         .rows
         .iter()
         .find(|r| {
-            (r.mode, r.variant, r.samples, r.steps, r.accumulate) == (Mode::Both, Variant::March, 2, 16, 1)
-                && r.blur
-                && r.half_resolution
-                && !r.pyramid
-                && r.bounce == Some(SenderSky::LastFrame)
-                && !r.far_side
+            let (c, k) = (&r.config, &r.config.knobs);
+            (c.mode, k.variant, c.samples(), c.steps(), k.accumulate) == (Mode::Both, Variant::March, 2, 16, 1)
+                && k.blur
+                && k.half_resolution
+                && !c.pyramid()
+                && c.bounce() == Some(SenderSky::LastFrame)
+                && !c.far_side()
         })
         .expect("the default single-frame row");
     let p = result.pattern;
@@ -258,7 +286,8 @@ fn report_divides_pre_exposure_out_so_brighter_scenes_are_measured_alike() {
         // differs from run to run.
         let hdr_rmse = |half: bool| {
             let mut rows = report.rows.iter().filter(|r| {
-                r.mode == Mode::Ssao && r.variant == Variant::Points && r.blur && r.half_resolution == half
+                let k = &r.config.knobs;
+                r.config.mode == Mode::Ssao && k.variant == Variant::Points && k.blur && k.half_resolution == half
             });
             let row = rows.next().expect("the sweep has this row");
             assert!(rows.next().is_none(), "one row with half = {half}");

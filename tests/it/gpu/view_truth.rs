@@ -49,14 +49,15 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
             .rows
             .iter()
             .find(|r| {
-                r.mode == mode
-                    && r.variant == Variant::default()
-                    && r.blur
-                    && !r.pyramid
-                    && !r.far_side
-                    && r.half_resolution == base.half_resolution
-                    && r.accumulate == base.accumulate
-                    && (mode == Mode::Ssao || r.bounce == Some(base.sender_sky))
+                let (c, k) = (&r.config, &r.config.knobs);
+                c.mode == mode
+                    && k.variant == Variant::default()
+                    && k.blur
+                    && !c.pyramid()
+                    && !c.far_side()
+                    && k.half_resolution == base.half_resolution
+                    && k.accumulate == base.accumulate
+                    && (mode == Mode::Ssao || c.bounce() == Some(base.sender_sky))
             })
             .expect("the report has the default row");
         assert!(measured.hdr_rmse > 1e-3 && measured.flip > 1e-3, "{mode}: an error to compare");
