@@ -155,6 +155,7 @@ fn past_reprojected(clip: vec4<f32>, position: vec2<f32>, p: vec3<f32>, n_then: 
         n_then,
         safe_normalize(n_then, n_then),
         max(PLANE_RADII * params.radius, 1e-6 * -p.z),
+        vec2<i32>(textureDimensions(history_surface)),
     );
     let c0 = f * (-0.5 + f * (1.0 - 0.5 * f));
     let c1 = 1.0 + f * f * (-2.5 + 1.5 * f);
@@ -192,6 +193,8 @@ struct Then {
     n: vec3<f32>,
     plane_normal: vec3<f32>,
     tolerance: f32,
+    // The history's size in texels (the taps outside it are dropped).
+    texels: vec2<i32>,
 }
 
 // The history taps that hold the surface, summed: their values and weights, and their frames
@@ -208,9 +211,8 @@ struct Taken {
 // through the previous projection (a rigid turn from world space keeps the plane's distances),
 // lies on that surface's plane and its normal agrees.
 fn take(taken: ptr<function, Taken>, then: Then, tap: vec2<i32>, w: f32, bilinear: f32) {
-    let texels = vec2<i32>(textureDimensions(history_surface));
-    let inside = all(tap >= vec2<i32>(0)) && all(tap < texels);
-    let at = clamp(tap, vec2<i32>(0), texels - 1);
+    let inside = all(tap >= vec2<i32>(0)) && all(tap < then.texels);
+    let at = clamp(tap, vec2<i32>(0), then.texels - 1);
     let s = textureLoad(history_surface, at, 0);
     let frames = f32(s.y >> 24u);
     let pp = frame.previous_projection;
@@ -238,12 +240,8 @@ override MAX_HISTORY_TURN: f32;
 // The frames a surface at view point `p` may keep: MAX_HISTORY_TURN over the angle between the
 // directions to this frame's and the last frame's eye (at least one: this frame).
 fn frames_within_turn(p: vec3<f32>) -> f32 {
-    // The last eye in this view: the inverse of the rigid view-to-last-view transform applied to
-    // the origin, -Rᵀt.
-    let m = frame.view_to_previous_view;
-    let eye_then = -(transpose(mat3x3<f32>(m[0].xyz, m[1].xyz, m[2].xyz)) * m[3].xyz);
     let now = safe_normalize(-p, vec3<f32>(0.0, 0.0, 1.0));
-    let then = safe_normalize(eye_then - p, now);
+    let then = safe_normalize(frame.previous_eye - p, now);
     let turn = degrees(acos(clamp(dot(now, then), -1.0, 1.0)));
     return max(floor(MAX_HISTORY_TURN / max(turn, 1e-3)), 1.0);
 }

@@ -48,6 +48,10 @@ struct Frame {
     // This frame's view space to the previous frame's: a direction (a normal) as the previous
     // frame's view saw it.
     view_to_previous_view: mat4x4<f32>,
+    // The previous frame's eye in this frame's view space (this eye on a first frame or after a
+    // reset): how far a surface's view turned since then.
+    previous_eye: vec3<f32>,
+    _pad2: f32,
     // The first UNIFORM_LIGHTS lights of `lights` again (the rest zero): a light loop over at most
     // that many reads them here, in uniform memory. On lavapipe each pixel's read of the storage
     // array is a load of its own: one light read there took the composite 12 ms of 25 at

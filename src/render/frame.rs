@@ -206,6 +206,8 @@ impl FrameData {
             previous_world_to_clip: mat(previous),
             previous_projection: projection_terms(previous * previous_world_to_view.inverse()),
             view_to_previous_view: mat(previous_world_to_view * world_to_view.inverse()),
+            previous_eye: (world_to_view * previous_world_to_view.inverse()).transform_point3(Vec3::ZERO).into(),
+            _pad2: 0.0,
             first_lights,
         };
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));

@@ -39,6 +39,10 @@ pub struct FrameUniforms {
     /// view space.
     pub previous_projection: [f32; 4],
     pub view_to_previous_view: [[f32; 4]; 4],
+    /// The previous frame's eye in this frame's view space (this eye on a first frame or after a
+    /// reset): how far a surface's view turned since then, once a frame rather than each pixel.
+    pub previous_eye: [f32; 3],
+    pub _pad2: f32,
     /// The first [`UNIFORM_LIGHTS`] lights (the rest zero), which the light loops read where the
     /// scene has no more.
     pub first_lights: [GpuLight; UNIFORM_LIGHTS],

@@ -106,6 +106,8 @@ fn uniform_structs_match_wgsl_member_for_member() {
             previous_world_to_clip,
             previous_projection,
             view_to_previous_view,
+            previous_eye,
+            _pad2,
             first_lights,
         }
     );
