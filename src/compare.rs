@@ -12,17 +12,13 @@ pub fn caption(renderer: &Renderer, sky: &str, lights: usize) -> Vec<String> {
     let (s, radius) = (&renderer.settings, renderer.radius());
     let mut lines = vec![format!("{}  [{}]", s.mode.title(), s.mode.key())];
     if !s.mode.declaration().runs_sampling() {
-        let light = s.sampling.variant.decl().composite.label();
+        let light = s.knobs.variant.decl().composite.label();
         lines.push(format!("{light} + point lights, no occlusion"));
     } else {
-        let blur = if s.blur { "blurred" } else { "no blur" };
-        let half = if s.half_resolution { " at half res" } else { "" };
-        let frames = if s.accumulates() { format!(", {} frames", s.accumulate) } else { String::new() };
-        lines.push(format!(
-            "{}, {}{half}, radius {radius:.3}, {blur}{frames}",
-            s.sampling.variant,
-            s.sampling.count_label()
-        ));
+        let blur = if s.knobs.blur { "blurred" } else { "no blur" };
+        let half = if s.knobs.half_resolution { " at half res" } else { "" };
+        let frames = if s.accumulates() { format!(", {} frames", s.knobs.accumulate) } else { String::new() };
+        lines.push(format!("{}, {}{half}, radius {radius:.3}, {blur}{frames}", s.knobs.variant, s.knobs.count_label()));
     }
     // The far side layer, where the plan draws it, and its sky.
     let plan = renderer.plan();

@@ -75,7 +75,7 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
         args.push("--no-surface-maps".into());
     }
     // The switches turned from their defaults, each by its flag.
-    let turned = crate::knobs::switches().filter(|k| k.is_on(view.settings) != k.default_switch());
+    let turned = crate::knobs::switches().filter(|k| k.is_on(&view.settings.knobs) != k.default_switch());
     args.extend(turned.map(|k| format!("--{}", k.flag)));
     if view.truth_rays.is_some() {
         args.push("--truth".into());
@@ -85,29 +85,28 @@ pub fn capture_arguments(view: &ViewDescription) -> Vec<String> {
 
 /// The valued flags of the settings that differ from the defaults of their variant.
 fn settings_flags(s: &Settings, flag: &mut impl FnMut(&str, String)) {
-    let base = Settings::for_variant(s.sampling.variant);
+    let base = Settings::for_variant(s.knobs.variant);
     flag("mode", s.mode.name().into());
-    if s.sampling.variant != Variant::default() {
-        flag("variant", s.sampling.variant.name().into());
+    if s.knobs.variant != Variant::default() {
+        flag("variant", s.knobs.variant.name().into());
     }
     for count in [SAMPLES, SLICES, STEPS] {
-        if s.count(count.id) != base.count(count.id) {
-            flag(count.flag, s.count(count.id).to_string());
+        if s.knobs.count(count.id) != base.knobs.count(count.id) {
+            flag(count.flag, s.knobs.count(count.id).to_string());
         }
     }
-    let sampling = s.sampling;
-    let lengths = [("reach", sampling.reach), ("thickness", sampling.thickness), ("radius", sampling.radius)];
+    let lengths = [("reach", s.given.reach), ("thickness", s.given.thickness), ("radius", s.given.radius)];
     for (name, value) in lengths {
         if let Some(v) = value {
             flag(name, v.to_string());
         }
     }
     let numbers = [
-        ("bias", sampling.bias, base.sampling.bias),
+        ("bias", s.given.bias, base.given.bias),
         ("ao-strength", s.ao_strength, base.ao_strength),
         ("ao-power", s.ao_power, base.ao_power),
         ("sky-strength", s.sky_strength, base.sky_strength),
-        ("indirect-strength", s.indirect_strength, base.indirect_strength),
+        ("indirect-strength", s.knobs.indirect_strength, base.knobs.indirect_strength),
         ("exposure", s.exposure, base.exposure),
         ("ambient", s.ambient, base.ambient),
         ("sky-scale", s.sky_scale, base.sky_scale),
@@ -117,11 +116,11 @@ fn settings_flags(s: &Settings, flag: &mut impl FnMut(&str, String)) {
             flag(name, value.to_string());
         }
     }
-    if s.sender_sky != base.sender_sky {
-        flag("sender-sky", s.sender_sky.name().into());
+    if s.knobs.sender_sky != base.knobs.sender_sky {
+        flag("sender-sky", s.knobs.sender_sky.name().into());
     }
-    if s.accumulate != base.accumulate {
-        flag("accumulate", s.accumulate.to_string());
+    if s.knobs.accumulate != base.knobs.accumulate {
+        flag("accumulate", s.knobs.accumulate.to_string());
     }
     if s.view != View::Final {
         flag("view", s.view.name().into());
@@ -169,7 +168,8 @@ mod tests {
     fn the_command_states_the_camera_and_what_differs_from_the_defaults() {
         let mut camera = OrbitCamera::framing(&Bounds { min: Vec3::splat(-1.0), max: Vec3::ONE });
         camera.target = Vec3::new(0.1, -0.2, 1.0 / 3.0);
-        let settings = Settings { mode: Mode::Ssdo, blur: false, exposure: 1.5, ..Settings::default() };
+        let mut settings = Settings { mode: Mode::Ssdo, exposure: 1.5, ..Settings::default() };
+        settings.knobs.blur = false;
         let line = shell_line(&capture_arguments(&description(&camera, &settings, false)));
         assert!(line.starts_with("ssdo capture --model 'my models/it'\\''s.glb' --lights 3 --seed 9"), "{line}");
         assert!(line.contains(&format!("--target 0.1,-0.2,{}", 1.0f32 / 3.0)), "{line}");

@@ -10,7 +10,7 @@ use clap::Args;
 use crate::knobs::{Knobs, SwitchFlags, KNOBS};
 use crate::preset::Preset;
 use crate::render::sampling::DEFAULT_BIAS;
-use crate::render::{Mode, Sampling, SenderSky, Settings, Variant, View};
+use crate::render::{GivenLengths, Mode, SenderSky, Settings, Variant, View};
 use crate::scene::camera::{DISTANCE_RADII, REACH_RADII};
 use crate::scene::{self, OrbitCamera, Scene};
 use crate::{Error, Result};
@@ -200,7 +200,7 @@ pub struct RenderArgs {
     pub view: View,
 }
 
-pub use crate::render::settings::MAX_GAIN;
+pub use crate::knobs::MAX_GAIN;
 /// The largest length setting (radius, reach, thickness), in model units.
 pub const MAX_LENGTH: f32 = 1e9;
 
@@ -354,7 +354,8 @@ impl RenderArgs {
         let length = |name: &str, v: Option<f32>| v.map(|r| non_negative(name, r)).transpose();
         let mut s = Settings {
             mode,
-            sampling: Sampling { bias: non_negative("bias", self.bias)?, ..base.sampling },
+            knobs: k,
+            given: GivenLengths { bias: non_negative("bias", self.bias)?, ..base.given },
             ao_strength: in_range("ao-strength", self.ao_strength, 0.0, 1.0)?,
             ao_power: in_range("ao-power", self.ao_power, 0.0, 100.0)?,
             sky_strength: in_range("sky-strength", self.sky_strength, 0.0, MAX_GAIN)?,
@@ -364,11 +365,10 @@ impl RenderArgs {
             view: self.view,
             ..base
         };
-        k.apply(&mut s);
         // Lengths given as flags win over the knobs' multiples of the scene's.
-        s.sampling.radius = length("radius", self.radius)?;
-        s.sampling.reach = length("reach", self.reach)?;
-        s.sampling.thickness = length("thickness", self.thickness)?;
+        s.given.radius = length("radius", self.radius)?;
+        s.given.reach = length("reach", self.reach)?;
+        s.given.thickness = length("thickness", self.thickness)?;
         Ok(s)
     }
 

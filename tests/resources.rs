@@ -140,7 +140,7 @@ fn the_frame_uniforms_carry_the_previous_camera_and_only_an_accumulating_plan_al
     // allocations; one that does not (Off, or one frame) allocates none of them. A DO mode keeps
     // the sky its march saw for the next frame's senders either way.
     for accumulate in [1, 16] {
-        renderer.settings.accumulate = accumulate;
+        renderer.settings.knobs.accumulate = accumulate;
         for mode in Mode::ALL {
             renderer.set_mode(gpu, mode);
             renderer.resize(gpu, 41, 30).unwrap();

@@ -8,7 +8,7 @@ use super::loader::Loaded;
 use super::panel_state::Action;
 use super::{timestamp, ui, Viewer, TIMING_REFRESH};
 use crate::headless::capture::capture_converged;
-use crate::render::{Canvas, Mode, Settings};
+use crate::render::{Canvas, Mode};
 use crate::scene::Scene;
 use crate::{compare, output, Result};
 
@@ -34,7 +34,7 @@ impl Viewer {
             }
             Action::ToggleAccumulation => {
                 let s = &mut self.renderer.settings;
-                s.accumulate = if s.accumulates() { 1 } else { self.panel.accumulate.max(2) };
+                s.knobs.accumulate = if s.accumulates() { 1 } else { self.panel.accumulate.max(2) };
             }
             Action::ResetCamera => {
                 self.camera = self.home;
@@ -68,7 +68,7 @@ impl Viewer {
             }
             Action::LoadPreset(path) => match crate::preset::Preset::load(&path) {
                 Ok(preset) => {
-                    preset.knobs.apply(&mut self.renderer.settings);
+                    self.renderer.settings = self.renderer.settings.with_knobs(preset.knobs);
                     self.panel.say(format!("preset '{}': {}", preset.name, preset.knobs.label()), false);
                     if let Some(warning) = preset.elsewhere(&self.panel.adapter, self.renderer.size()) {
                         self.panel.say(warning, true);
@@ -101,7 +101,7 @@ impl Viewer {
     pub(super) fn command(&self) -> String {
         // The lengths a preset gives as multiples, stated as this scene's.
         let settings = &self.renderer.settings;
-        let settings = Settings { sampling: settings.sampling.resolved(self.scene.default_radius()), ..*settings };
+        let settings = settings.resolved(self.scene.default_radius());
         let view = crate::reproduce::ViewDescription {
             model: self.model_path.as_deref(),
             skybox: self.sky_path.as_deref(),

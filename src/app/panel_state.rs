@@ -122,7 +122,11 @@ impl PanelState {
             sky_name: sky.name.clone(),
             loading: None,
             still_frames: 0,
-            accumulate: if settings.accumulates() { settings.accumulate } else { crate::render::ACCUMULATE.default },
+            accumulate: if settings.accumulates() {
+                settings.knobs.accumulate
+            } else {
+                crate::render::ACCUMULATE.default
+            },
             fly: args.eye.is_some(),
             command: String::new(),
             preset_path: String::new(),

@@ -74,9 +74,9 @@ fn mode_section(ui: &mut egui::Ui, settings: &mut Settings, actions: &mut Vec<Ac
             }
         }
     });
-    egui::ComboBox::from_label("variant").selected_text(settings.sampling.variant.name()).show_ui(ui, |ui| {
+    egui::ComboBox::from_label("variant").selected_text(settings.knobs.variant.name()).show_ui(ui, |ui| {
         for v in Variant::ALL {
-            ui.selectable_value(&mut settings.sampling.variant, v, v.name());
+            ui.selectable_value(&mut settings.knobs.variant, v, v.name());
         }
     });
     egui::ComboBox::from_label("view").selected_text(settings.view.title()).show_ui(ui, |ui| {
@@ -91,11 +91,7 @@ fn mode_section(ui: &mut egui::Ui, settings: &mut Settings, actions: &mut Vec<Ac
 fn preset_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, actions: &mut Vec<Action>) {
     use crate::preset::Quality;
     // The level whose knobs the settings hold now, if any.
-    let current = Quality::ALL.into_iter().find(|q| {
-        let mut s = *settings;
-        q.knobs().apply(&mut s);
-        s == *settings
-    });
+    let current = Quality::ALL.into_iter().find(|q| settings.with_knobs(q.knobs()) == *settings);
     let mut chosen = current;
     egui::ComboBox::from_label("quality")
         .selected_text(current.map_or("custom", Quality::name))
@@ -107,7 +103,7 @@ fn preset_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Sett
         .response
         .on_hover_text("tune's picks on the default scene at multiples of the Off frame's time (docs/quality.md)");
     if let Some(level) = chosen.filter(|&q| Some(q) != current) {
-        level.knobs().apply(settings);
+        *settings = settings.with_knobs(level.knobs());
         state.preset = Some(level.preset());
     }
     ui.label("Preset file (from ssdo tune)");
@@ -134,8 +130,8 @@ fn knob_label(key: &str) -> &'static str {
 /// The variant's counts and lengths, the bias, blur, half resolution and accumulation.
 fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, default_radius: f32) {
     ui.label("Sampling");
-    for count in settings.sampling.variant.decl().counts {
-        let value = settings.count_mut(count.id);
+    for count in settings.knobs.variant.decl().counts {
+        let value = settings.knobs.count_mut(count.id);
         ui.add(egui::Slider::new(value, count.range()).logarithmic(true).text(count.label));
     }
     // A length with a scene-derived default: the slider shows the default until moved.
@@ -148,37 +144,37 @@ fn sampling_section(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Se
         }
     };
     // The lengths in use (a preset's multiples made this scene's), within the sliders' ranges.
-    let now = settings.sampling.lengths(default_radius);
-    let defaults = crate::render::Sampling::default().lengths(default_radius);
-    length(ui, &mut settings.sampling.radius, now.radius, (default_radius * 5.0).max(now.radius), "radius");
-    if settings.sampling.variant.decl().marched_lengths {
-        length(ui, &mut settings.sampling.reach, now.reach, (defaults.reach * 4.0).max(now.reach), "reach");
+    let now = settings.lengths(default_radius);
+    let defaults = Settings::default().lengths(default_radius);
+    length(ui, &mut settings.given.radius, now.radius, (default_radius * 5.0).max(now.radius), "radius");
+    if settings.knobs.variant.decl().marched_lengths {
+        length(ui, &mut settings.given.reach, now.reach, (defaults.reach * 4.0).max(now.reach), "reach");
         let thickness = (defaults.thickness * 10.0).max(now.thickness);
-        length(ui, &mut settings.sampling.thickness, now.thickness, thickness, "thickness");
+        length(ui, &mut settings.given.thickness, now.thickness, thickness, "thickness");
     }
-    slider(ui, &mut settings.sampling.bias, 0.0..=0.3, "bias (× radius)");
+    slider(ui, &mut settings.given.bias, 0.0..=0.3, "bias (× radius)");
     // The switches, from their knobs: those that mean anything for this variant and mode.
-    let (knobs, mode) = (crate::knobs::Knobs::from_settings(settings), settings.mode);
+    let (knobs, mode) = (settings.knobs, settings.mode);
     for knob in crate::knobs::switches().filter(|k| k.applies(&knobs, Some(mode))) {
-        let mut on = knob.is_on(settings);
+        let mut on = knob.is_on(&settings.knobs);
         if ui.checkbox(&mut on, knob.label).on_hover_text(knob.help).changed() {
-            knob.turn(settings, on);
+            knob.turn(&mut settings.knobs, on);
         }
     }
     // Accumulation: on with the last count it had, off as 1 frame.
     let mut on = settings.accumulates();
     ui.horizontal(|ui| {
         if ui.checkbox(&mut on, "accumulate").on_hover_text("average the frames of a still view (T)").changed() {
-            settings.accumulate = if on { state.accumulate.max(2) } else { 1 };
+            settings.knobs.accumulate = if on { state.accumulate.max(2) } else { 1 };
         }
         if on {
-            ui.label(format!("{} / {} frames", state.still_frames, settings.accumulate));
+            ui.label(format!("{} / {} frames", state.still_frames, settings.knobs.accumulate));
         }
     });
     if on {
         let count = crate::render::ACCUMULATE;
-        ui.add(egui::Slider::new(&mut settings.accumulate, 2..=count.max).logarithmic(true).text("frames"));
-        state.accumulate = settings.accumulate;
+        ui.add(egui::Slider::new(&mut settings.knobs.accumulate, 2..=count.max).logarithmic(true).text("frames"));
+        state.accumulate = settings.knobs.accumulate;
     }
 }
 
@@ -187,12 +183,12 @@ fn lighting_section(ui: &mut egui::Ui, settings: &mut Settings) {
     slider(ui, &mut settings.ao_strength, 0.0..=1.0, "AO strength");
     slider(ui, &mut settings.ao_power, 0.25..=4.0, "AO power");
     slider(ui, &mut settings.sky_strength, 0.0..=4.0, "sky strength");
-    slider(ui, &mut settings.indirect_strength, 0.0..=8.0, "indirect strength");
+    slider(ui, &mut settings.knobs.indirect_strength, 0.0..=8.0, "indirect strength");
     egui::ComboBox::from_label(knob_label("sender_sky"))
-        .selected_text(settings.sender_sky.name())
+        .selected_text(settings.knobs.sender_sky.name())
         .show_ui(ui, |ui| {
             for option in crate::render::SenderSky::ALL {
-                ui.selectable_value(&mut settings.sender_sky, option, option.name());
+                ui.selectable_value(&mut settings.knobs.sender_sky, option, option.name());
             }
         })
         .response

@@ -82,9 +82,9 @@ impl BenchReport {
             "size": [self.size.0, self.size.1],
             "frames": self.frames,
             "orbit_deg": self.orbit,
-            "variant": s.sampling.variant.name(),
-            "samples": s.sampling.samples,
-            "blur": s.blur,
+            "variant": s.knobs.variant.name(),
+            "samples": s.knobs.samples,
+            "blur": s.knobs.blur,
             "modes": modes,
             "ratios": { "ssdo_over_ssao": ssdo_over_ssao, "both_over_ssdo": both_over_ssdo },
         })
@@ -100,7 +100,7 @@ impl BenchReport {
         } else {
             "synchronised wall time per frame (no timestamp queries)"
         };
-        let count = s.sampling.count_label();
+        let count = s.knobs.count_label();
         let _ = writeln!(out, "device: {}{software}", self.device);
         let camera = if self.orbit == 0.0 {
             "a still camera".to_string()
@@ -108,9 +108,9 @@ impl BenchReport {
             format!("the camera turning {}° a frame", self.orbit)
         };
         let _ = writeln!(out, "timing: {method}; median of {} frames after 2 warm-up frames, {camera}", self.frames);
-        let blur = if s.blur { "on" } else { "off" };
+        let blur = if s.knobs.blur { "on" } else { "off" };
         let _ =
-            writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.sampling.variant);
+            writeln!(out, "size {}x{}, {} variant, {count}, blur {blur}", self.size.0, self.size.1, s.knobs.variant);
         for (mode, r) in &self.modes {
             let passes: Vec<String> = r.passes.iter().map(|(n, ms)| format!("{n} {ms:.2}")).collect();
             let _ = writeln!(

@@ -5,9 +5,9 @@
 //! and written), its range checks, its flags, tune's search space (its neighbours and which of
 //! two is dearer), tune's CSV columns, the render flags' checks and the counts' help are all read
 //! from the table, and so are a switch's flag, panel checkbox and reproducing flag
-//! (`switches.rs`); a new knob is its row and its field in [`Knobs`] (`table.rs`), its two lines
-//! in [`Knobs::from_settings`] and [`Knobs::apply`], its field in [`crate::render::Settings`], and
-//! its way to the shader.
+//! (`switches.rs`). The renderer's settings hold the knobs as they are ([`crate::render::Settings`]'s
+//! `knobs`): a new knob is its row and its field in [`Knobs`] (`table.rs`), its default in
+//! [`Knobs::for_variant`], and its way to the shader.
 //!
 //! Lengths are kept as multiples of the scene's lengths (the radius as a multiple of the scene's
 //! default radius, the thickness of its default thickness): a preset travels between models, and
@@ -19,83 +19,85 @@ mod table;
 
 use serde_json::{Map, Value as Json};
 
-use crate::render::sampling::Sampling;
-use crate::render::{Mode, Settings, Variant};
+use crate::render::variant::CountId;
+use crate::render::{Mode, SenderSky, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
 pub use switches::{switches, SwitchFlags};
 use table::choice;
 pub use table::{
-    keys, Cost, Kind, Knob, Knobs, Rungs, Scope, Value, ACCUMULATE_RUNGS, BOUNCE_RUNGS, KNOBS, RADIUS_RUNGS,
+    keys, Cost, Kind, Knob, Knobs, Rungs, Scope, Value, ACCUMULATE_RUNGS, BOUNCE_RUNGS, KNOBS, MAX_GAIN, RADIUS_RUNGS,
     RADIUS_SCALE, SAMPLE_RUNGS, SLICE_RUNGS, STEP_RUNGS, THICKNESS_SCALE,
 };
 
 impl Default for Knobs {
     fn default() -> Self {
-        Self::from_settings(&Settings::default())
+        Self::for_variant(Variant::default())
     }
 }
 
 impl Knobs {
-    /// The defaults of `variant`.
+    /// The defaults of `variant`: the shared ones, with the variant's own sample count.
     pub fn for_variant(variant: Variant) -> Self {
-        Self::from_settings(&Settings::for_variant(variant))
-    }
-
-    /// The knobs of `settings` (an explicit length is not a multiple: it stays the settings').
-    pub fn from_settings(s: &Settings) -> Self {
         Self {
-            variant: s.sampling.variant,
-            samples: s.sampling.samples,
-            slices: s.sampling.slices,
-            steps: s.sampling.steps,
-            accumulate: s.accumulate,
-            blur: s.blur,
-            half_resolution: s.half_resolution,
-            radius_scale: s.sampling.radius_scale,
-            thickness_scale: s.sampling.thickness_scale,
-            depth_pyramid: s.sampling.depth_pyramid,
-            indirect_strength: s.indirect_strength,
-            sender_sky: s.sender_sky,
-            far_side: s.far_side,
-            far_sky: s.far_sky,
+            variant,
+            samples: variant.decl().default_samples,
+            slices: SLICES.default,
+            steps: STEPS.default,
+            accumulate: ACCUMULATE.default,
+            blur: true,
+            half_resolution: true,
+            radius_scale: 1.0,
+            thickness_scale: 1.0,
+            depth_pyramid: false,
+            indirect_strength: 1.0,
+            sender_sky: SenderSky::LastFrame,
+            far_side: false,
+            far_sky: false,
         }
     }
 
-    /// Sets these knobs in `s`. The radius and thickness go back to the scene's defaults times
-    /// the knobs' multiples; a variant other than the settings' brings its own ambient.
-    pub fn apply(&self, s: &mut Settings) {
-        if s.sampling.variant != self.variant {
-            s.ambient = self.variant.decl().default_ambient;
+    /// The value of a count: a sampling count or the frames averaged.
+    pub fn count(&self, id: CountId) -> usize {
+        match id {
+            CountId::Samples => self.samples,
+            CountId::Slices => self.slices,
+            CountId::Steps => self.steps,
+            CountId::Accumulate => self.accumulate,
         }
-        let sampling = Sampling {
-            variant: self.variant,
-            samples: self.samples,
-            slices: self.slices,
-            steps: self.steps,
-            depth_pyramid: self.depth_pyramid,
-            radius: None,
-            radius_scale: self.radius_scale,
-            thickness: None,
-            thickness_scale: self.thickness_scale,
-            ..s.sampling
-        };
-        *s = Settings {
-            sampling,
-            blur: self.blur,
-            half_resolution: self.half_resolution,
-            accumulate: self.accumulate,
-            sender_sky: self.sender_sky,
-            far_side: self.far_side,
-            far_sky: self.far_sky,
-            indirect_strength: self.indirect_strength,
-            ..*s
-        };
     }
 
-    /// The settings: `base` with these knobs.
-    pub fn settings(&self, base: Settings) -> Settings {
-        let mut s = base;
-        self.apply(&mut s);
-        s
+    /// A count to change (the panel's sliders).
+    pub fn count_mut(&mut self, id: CountId) -> &mut usize {
+        match id {
+            CountId::Samples => &mut self.samples,
+            CountId::Slices => &mut self.slices,
+            CountId::Steps => &mut self.steps,
+            CountId::Accumulate => &mut self.accumulate,
+        }
+    }
+
+    /// The sampling counts within their ranges: what the passes sample with, whatever was set.
+    pub fn clamped(&self) -> Self {
+        Self {
+            samples: SAMPLES.clamp(self.samples),
+            slices: SLICES.clamp(self.slices),
+            steps: STEPS.clamp(self.steps),
+            ..*self
+        }
+    }
+
+    /// Whether the march's far steps read the depth pyramid: asked for, and the variant marches.
+    pub fn reads_pyramid(&self) -> bool {
+        self.variant.decl().marched_lengths && self.depth_pyramid
+    }
+
+    /// "2 slices × 12 steps" or "16 samples": the counts this variant takes.
+    pub fn count_label(&self) -> String {
+        self.variant.decl().count_label(self.samples, self.slices, self.steps)
+    }
+
+    /// How many directions share the sky's radiance in one frame (see `VariantDecl::sky_directions`).
+    pub fn sky_directions(&self) -> usize {
+        self.variant.decl().sky_directions(self.samples, self.slices)
     }
 
     /// Every value within its range, or the problem naming its key in a preset and what is
@@ -154,7 +156,7 @@ impl Knobs {
     /// "march 2×16, radius 1.00x, blur on, half res, 16 frames, senders last-frame": the knobs
     /// in a line.
     pub fn label(&self) -> String {
-        let counts = self.variant.decl().count_label(self.samples, self.slices, self.steps);
+        let counts = self.count_label();
         let bounce = if self.indirect_strength == 0.0 {
             "no bounce".to_string()
         } else {
@@ -283,11 +285,34 @@ mod tests {
         assert_eq!(object.keys().map(String::as_str).collect::<Vec<_>>(), known);
         assert_eq!(Knobs::from_json(&object), Ok(k));
         assert_eq!(Knobs::from_json(&Map::new()), Ok(Knobs::default()));
-        let s = k.settings(Settings::default());
-        assert_eq!(Knobs::from_settings(&s), k);
+        assert_eq!(Knobs::default(), crate::render::Settings::default().knobs);
         // A length the knobs make follows the scene it is used on.
-        let lengths = s.sampling.lengths(2.0);
+        let lengths = crate::render::Settings::default().with_knobs(k).lengths(2.0);
         assert_eq!((lengths.radius, lengths.thickness), (1.5, 0.5 * crate::render::THICKNESS_RADII));
+    }
+
+    #[test]
+    fn each_variant_takes_its_own_sample_count_and_the_shared_rest() {
+        for v in Variant::ALL {
+            let k = Knobs::for_variant(v);
+            assert_eq!(k.samples, v.decl().default_samples, "{v}");
+            assert_eq!(
+                Knobs { variant: Variant::default(), samples: 0, ..k },
+                Knobs { samples: 0, ..Knobs::default() },
+                "{v}"
+            );
+        }
+        assert_eq!(Knobs::for_variant(Variant::Classic).samples, 64);
+    }
+
+    #[test]
+    fn counts_are_clamped_into_their_declared_ranges() {
+        let k = Knobs { samples: 0, slices: 1000, steps: 7, ..Knobs::default() }.clamped();
+        assert_eq!((k.samples, k.slices, k.steps), (SAMPLES.min, SLICES.max, 7));
+        let mut k = Knobs::default();
+        *k.count_mut(CountId::Slices) = 5;
+        *k.count_mut(CountId::Accumulate) = 4;
+        assert_eq!((k.count(CountId::Slices), k.count(CountId::Accumulate)), (5, 4));
     }
 
     #[test]

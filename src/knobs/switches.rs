@@ -6,7 +6,6 @@
 use clap::{Arg, ArgAction, ArgMatches, Command};
 
 use super::table::{switch, Kind, Knob, Knobs, Value, KNOBS};
-use crate::render::Settings;
 
 /// The switch knobs, in the table's order.
 pub fn switches() -> impl Iterator<Item = &'static Knob> {
@@ -19,18 +18,14 @@ impl Knob {
         switch((self.get)(&Knobs::default()))
     }
 
-    /// Whether a switch is on in `s`.
-    pub fn is_on(&self, s: &Settings) -> bool {
-        switch((self.get)(&Knobs::from_settings(s)))
+    /// Whether a switch is on in `knobs`.
+    pub fn is_on(&self, knobs: &Knobs) -> bool {
+        switch((self.get)(knobs))
     }
 
-    /// Turns a switch on or off in `s`, every other setting as it was (explicit lengths too).
-    pub fn turn(&self, s: &mut Settings, on: bool) {
-        let mut knobs = Knobs::from_settings(s);
-        (self.set)(&mut knobs, Value::Switch(on));
-        let lengths = (s.sampling.radius, s.sampling.thickness);
-        knobs.apply(s);
-        (s.sampling.radius, s.sampling.thickness) = lengths;
+    /// Turns a switch on or off in `knobs`, every other knob as it was.
+    pub fn turn(&self, knobs: &mut Knobs, on: bool) {
+        (self.set)(knobs, Value::Switch(on));
     }
 
     /// The flag's help: what the knob does, and what the flag does to it.

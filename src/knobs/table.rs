@@ -2,7 +2,6 @@
 //! every knob's declaration, and [`Knobs`], the values they set.
 
 use crate::render::sampling::THICKNESS_RADII;
-use crate::render::settings::MAX_GAIN;
 use crate::render::variant::Count;
 use crate::render::{SenderSky, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
@@ -135,6 +134,11 @@ pub const ACCUMULATE_RUNGS: [usize; 3] = [1, 4, 16];
 pub const RADIUS_RUNGS: [f32; 5] = [0.5, std::f32::consts::FRAC_1_SQRT_2, 1.0, std::f32::consts::SQRT_2, 2.0];
 /// A bounce or none.
 pub const BOUNCE_RUNGS: [f32; 2] = [0.0, 1.0];
+
+/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
+/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
+/// would turn black instead of white.
+pub const MAX_GAIN: f32 = 1e6;
 
 /// The multiples of the scene's lengths a knob may hold.
 pub const RADIUS_SCALE: (f32, f32) = (0.125, 8.0);

@@ -44,7 +44,7 @@ impl Renderer {
     /// averaged where the plan accumulates, 1 otherwise.
     pub fn accumulation(&self) -> u32 {
         if self.plan.accumulates() {
-            self.settings.accumulate as u32
+            self.settings.knobs.accumulate as u32
         } else {
             1
         }

@@ -27,7 +27,7 @@ impl Renderer {
         let sky = self.sky.peak * s.sky_scale * s.sky_strength.max(1.0);
         let min_d2 = (self.rig.min_distance * self.rig.min_distance).max(f32::MIN_POSITIVE);
         let lights: f32 = self.lights.iter().map(|l| l.intensity * l.color.max_element() / min_d2).sum();
-        pre_exposure_for(sky.max(s.ambient).max(lights * s.indirect_strength.max(1.0)))
+        pre_exposure_for(sky.max(s.ambient).max(lights * s.knobs.indirect_strength.max(1.0)))
     }
 
     /// The sampling radius in use, in model units.
@@ -37,7 +37,7 @@ impl Renderer {
 
     /// The radius, reach, thickness and bias in use, in model units.
     pub fn lengths(&self) -> Lengths {
-        self.settings.sampling.lengths(self.scene_radius)
+        self.settings.lengths(self.scene_radius)
     }
 
     /// Writes this frame's uniforms and, when the plan samples, the sampling parameters.
@@ -58,19 +58,19 @@ impl Renderer {
         };
         self.frame.update(&gpu.device, &gpu.queue, camera, &self.lights, &self.rig, &inputs);
         if self.plan.decl.runs_sampling() {
-            let sampling = s.sampling.clamped();
+            let knobs = s.knobs.clamped();
             // The frames the temporal pass's history holds: this frame's place in the schedule.
             let held = self.history.get(OCCLUSION_HISTORY).map_or(0, |h| h.frames);
-            let accumulate = if self.plan.accumulates() { s.accumulate as u32 } else { 1 };
+            let accumulate = if self.plan.accumulates() { knobs.accumulate as u32 } else { 1 };
             // The sky's mip is the solid angle of one direction of the converged average: the
             // frames' directions differ (the schedule), so together they resolve finer detail.
-            let directions = sampling.sky_directions() * accumulate as usize;
+            let directions = knobs.sky_directions() * accumulate as usize;
             let params = SamplingFrame {
-                sampling,
+                knobs,
                 lengths: self.lengths(),
                 sky_mip: kernel::sky_mip_level(self.sky.size, directions),
                 sky_strength: if s.view == View::DoIndirect { 0.0 } else { s.sky_strength },
-                indirect_strength: if s.view == View::DoDirect { 0.0 } else { s.indirect_strength },
+                indirect_strength: if s.view == View::DoDirect { 0.0 } else { knobs.indirect_strength },
                 sender_sky_strength: s.sky_strength,
                 schedule: kernel::schedule(held.wrapping_add(self.schedule_start)),
                 accumulate,

@@ -16,6 +16,7 @@ pub mod modes;
 pub mod passes;
 pub mod resources;
 pub mod sampling;
+pub mod senders;
 pub mod settings;
 pub mod surface_pack;
 pub mod targets;
@@ -41,8 +42,9 @@ pub use passes::StepIo;
 use resources::sampling::SamplingData;
 use resources::scene::SceneGpu;
 use resources::sky::{sky_layout, SkyGpu};
-pub use sampling::{Lengths, Sampling, REACH_RADII, THICKNESS_RADII};
-pub use settings::{motion_accumulate, SenderSky, Settings, View};
+pub use sampling::{GivenLengths, Lengths, REACH_RADII, THICKNESS_RADII};
+pub use senders::SenderSky;
+pub use settings::{motion_accumulate, Settings, View};
 pub use targets::TargetId;
 use targets::Targets;
 use timer::GpuTimer;
@@ -130,7 +132,7 @@ impl Renderer {
         let sky_gpu = SkyGpu::upload(gpu, &sky_layout, sky)?;
         let mut renderer = Self {
             settings,
-            prepared: (settings.sampling.variant, settings.view),
+            prepared: (settings.knobs.variant, settings.view),
             lights: scene.lights.clone(),
             rig: scene.rig,
             scene_radius: scene.default_radius(),
@@ -186,7 +188,7 @@ impl Renderer {
         if plan != self.plan {
             self.plan = plan;
             self.rebuild_targets(gpu);
-        } else if (self.settings.sampling.variant, self.settings.view) != self.prepared {
+        } else if (self.settings.knobs.variant, self.settings.view) != self.prepared {
             self.prepare_passes(gpu);
         }
     }
@@ -229,7 +231,7 @@ impl Renderer {
     /// Rebuilds the passes' bind groups for the targets, and their pipelines where the plan or
     /// variant asks for a different one.
     fn prepare_passes(&mut self, gpu: &Gpu) {
-        let (variant, view) = (self.settings.sampling.variant, self.settings.view);
+        let (variant, view) = (self.settings.knobs.variant, self.settings.view);
         let inputs = Inputs {
             targets: &self.targets,
             history: &self.history,

@@ -1,10 +1,11 @@
-//! What the user can change without reloading anything — the mode, the variant, the sampling
-//! and shading settings, what is shown — with their defaults.
+//! What the user can change without reloading anything — the mode, the knobs, the lengths given,
+//! the shading settings, what is shown — with their defaults.
 
 use super::modes::table::Mode;
-use super::sampling::Sampling;
-use super::variant::{CountId, Variant, ACCUMULATE};
+use super::sampling::{GivenLengths, Lengths};
+use super::variant::Variant;
 use crate::error::named_choice;
+use crate::knobs::Knobs;
 
 /// What the window shows: the final image or one of the intermediate buffers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -71,123 +72,23 @@ impl View {
 
 named_choice!(View, "view", View::ALL.map(|v| (v.name(), v)));
 
-/// What lights the senders of SSDO's one bounce besides the point lights: the light a surface
-/// sends to its neighbours is its direct light, and under a sky most of that is sky light.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum SenderSky {
-    /// The sky each sender sees, with its own visibility: a half-resolution march of one slice
-    /// per pixel before the lighting pass (the sky from the open sectors, and the constant
-    /// ambient by the open share), read by the lighting pass at each sender.
-    March,
-    /// The same march at a quarter of the width and height: a sixteenth of the pixels, each
-    /// standing for its 4x4 block. A sender's sky is smooth across a surface and the gather
-    /// averages many senders, so it loses little (the report measures it) for a quarter of the
-    /// cost.
-    MarchQuarter,
-    /// The sky each sender saw in the last frame's march (the march variant): the sampling pass
-    /// writes every pixel's visible sky and open share beside DO, into a history the next
-    /// frame's lighting pass reads where that surface was (reprojected through the last
-    /// camera; where it was off screen, the unoccluded irradiance). No march of the senders'
-    /// own but on a frame with no last frame (the first after a reset), which runs `March`'s.
-    /// The default: the same error as `March` on every scene, without its pass.
-    #[default]
-    LastFrame,
-    /// The sender's unoccluded sky irradiance for its normal (the spherical harmonics the
-    /// composite already has) plus the constant ambient: no extra pass, but blind to what
-    /// occludes the sender, so too bright wherever a sender stands on a floor or in a crevice.
-    Irradiance,
-    /// The point lights only (no bounce at all under a sky alone): what the renderer did before
-    /// the senders took the sky, kept for comparison in the report.
-    Off,
-}
-
-impl SenderSky {
-    pub const ALL: [SenderSky; 5] =
-        [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance, SenderSky::Off];
-
-    /// Whether the plan has the senders' own march (the sender-sky pass): every frame, or (for
-    /// `LastFrame`) on a frame with no last frame to read.
-    pub fn marches(self) -> bool {
-        matches!(self, SenderSky::March | SenderSky::MarchQuarter | SenderSky::LastFrame)
-    }
-
-    /// What a sampling pass that does not march (the points and classic variants) takes
-    /// instead: it writes no sky for the next frame, so `LastFrame` becomes `March`.
-    pub fn without_march(self) -> Self {
-        match self {
-            SenderSky::LastFrame => SenderSky::March,
-            other => other,
-        }
-    }
-
-    /// What the senders take with `variant`'s sampling pass: this, or [`SenderSky::without_march`]
-    /// where it does not march.
-    pub fn for_variant(self, variant: crate::render::Variant) -> Self {
-        if variant.decl().marched_lengths {
-            self
-        } else {
-            self.without_march()
-        }
-    }
-
-    /// The value of the lighting shader's `SENDER_SKY` constant.
-    pub fn shader_code(self) -> f64 {
-        match self {
-            SenderSky::Off => 0.0,
-            SenderSky::Irradiance => 1.0,
-            SenderSky::March => 2.0,
-            SenderSky::MarchQuarter => 3.0,
-            SenderSky::LastFrame => 4.0,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            SenderSky::March => "march",
-            SenderSky::MarchQuarter => "march-quarter",
-            SenderSky::LastFrame => "last-frame",
-            SenderSky::Irradiance => "irradiance",
-            SenderSky::Off => "off",
-        }
-    }
-}
-
-named_choice!(SenderSky, "sender sky", SenderSky::ALL.map(|v| (v.name(), v)));
-
 /// What the user can change without reloading anything. The renderer follows changes on the
 /// next frame, rebuilding only what the change affects (a mode or blur switch re-plans).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     pub mode: Mode,
-    /// The sampling pass: the variant, its counts, lengths and bias.
-    pub sampling: Sampling,
+    /// What trades error for time: the variant, its counts, the filters, the resolution, the
+    /// radius and thickness as multiples of the scene's, the bounce's senders (each declared in
+    /// `crate::knobs::KNOBS`).
+    pub knobs: Knobs,
+    /// The lengths given in model units, which win over the knobs' multiples, and the bias.
+    pub given: GivenLengths,
     /// 0 leaves the ambient term unoccluded, 1 applies AO fully.
     pub ao_strength: f32,
     /// AO is raised to this power before it is applied.
     pub ao_power: f32,
     /// Multiplies SSDO's sky light.
     pub sky_strength: f32,
-    /// Multiplies SSDO's indirect bounce.
-    pub indirect_strength: f32,
-    /// What lights the bounce's senders besides the point lights.
-    pub sender_sky: SenderSky,
-    /// The far side layer: a second geometry pass draws the surfaces turned from the eye, lit by
-    /// the point lights, and the bounce takes their light where the surface the screen shows
-    /// faces away from the receiver (off by default: docs/accuracy.md).
-    pub far_side: bool,
-    /// With the far side: a quarter-resolution march from each far side surface measures the sky
-    /// it sees, which it sends beside its point lights' light (off by default: docs/accuracy.md).
-    pub far_sky: bool,
-    /// Denoise the sampling output.
-    pub blur: bool,
-    /// The sampling pass runs at half width and height, and so do the blur and the average over
-    /// frames; the composite upsamples by depth and normal as it reads (the default: the report
-    /// measured the same error as full resolution at 0.7× the frame, see docs/accuracy.md).
-    pub half_resolution: bool,
-    /// Frames the temporal pass averages at most with the camera still (1 to 64; 1 turns the
-    /// pass and its history off). Each frame's samples follow the schedule, so N still frames
-    /// are N independent sample sets.
-    pub accumulate: usize,
     /// Multiplies HDR radiance before tone mapping.
     pub exposure: f32,
     /// Constant ambient radiance (grey), multiplied by albedo and AO.
@@ -200,31 +101,25 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Self {
-            mode: Mode::Off,
-            sampling: Sampling::default(),
-            ao_strength: 1.0,
-            ao_power: 1.0,
-            sky_strength: 1.0,
-            indirect_strength: 1.0,
-            sender_sky: SenderSky::LastFrame,
-            far_side: false,
-            far_sky: false,
-            blur: true,
-            half_resolution: true,
-            accumulate: ACCUMULATE.default,
-            exposure: 1.0,
-            ambient: Variant::default().decl().default_ambient,
-            sky_scale: 1.0,
-            view: View::Final,
-        }
+        Self::for_variant(Variant::default())
     }
 }
 
 impl Settings {
     /// The defaults of `variant`: the shared ones, with the variant's own samples and ambient.
     pub fn for_variant(variant: Variant) -> Self {
-        Self { sampling: Sampling::for_variant(variant), ambient: variant.decl().default_ambient, ..Self::default() }
+        Self {
+            mode: Mode::Off,
+            knobs: Knobs::for_variant(variant),
+            given: GivenLengths::default(),
+            ao_strength: 1.0,
+            ao_power: 1.0,
+            sky_strength: 1.0,
+            exposure: 1.0,
+            ambient: variant.decl().default_ambient,
+            sky_scale: 1.0,
+            view: View::Final,
+        }
     }
 
     /// The classic variant's defaults: 64 samples and the SSDO course report's `albedo·0.5·AO` ambient.
@@ -232,36 +127,53 @@ impl Settings {
         Self::for_variant(Variant::Classic)
     }
 
-    /// The value of a count: a sampling count or the frames averaged.
-    pub fn count(&self, id: CountId) -> usize {
-        self.sampling.count(id).unwrap_or(self.accumulate)
-    }
-
-    /// A count to change (the panel's sliders).
-    pub fn count_mut(&mut self, id: CountId) -> &mut usize {
-        match self.sampling.count_mut(id) {
-            Some(n) => n,
-            None => &mut self.accumulate,
-        }
+    /// These settings with `knobs` (a preset's): the radius and thickness go back to the scene's
+    /// defaults times the knobs' multiples; a variant other than the settings' brings its own
+    /// ambient.
+    pub fn with_knobs(self, knobs: Knobs) -> Self {
+        let ambient =
+            if knobs.variant == self.knobs.variant { self.ambient } else { knobs.variant.decl().default_ambient };
+        let given = GivenLengths { radius: None, thickness: None, ..self.given };
+        Self { knobs, given, ambient, ..self }
     }
 
     /// Whether the temporal pass runs: more than one frame is averaged and something is sampled.
     pub fn accumulates(&self) -> bool {
-        self.accumulate > 1
+        self.knobs.accumulate > 1
     }
 
     /// Whether `other` gives the temporal pass's history the same meaning: every setting but the
     /// exposure (applied after it) and the number of frames averaged is the same.
     pub fn same_history(&self, other: &Settings) -> bool {
-        let plain = |s: &Settings| Settings { exposure: 1.0, accumulate: 1, ..*s };
+        let plain = |s: &Settings| Settings { exposure: 1.0, knobs: Knobs { accumulate: 1, ..s.knobs }, ..*s };
         plain(self) == plain(other)
     }
-}
 
-/// The largest radiance-like setting (ambient, strengths, exposure, sky scale) taken: beyond it
-/// a frame's light no longer fits even pre-exposed half floats, and the sky and the light cubes
-/// would turn black instead of white.
-pub const MAX_GAIN: f32 = 1e6;
+    /// The lengths in use for a scene whose default radius is `default_radius`.
+    pub fn lengths(&self, default_radius: f32) -> Lengths {
+        self.given.lengths(self.knobs.radius_scale, self.knobs.thickness_scale, default_radius)
+    }
+
+    /// Whether each depth sample may take its material's thickness: the march (whose lengths
+    /// these are) with no thickness given: a given one, as a length or as a preset's multiple of
+    /// the default, is every sample's (so `resolved` states the same frame).
+    pub fn material_thickness(&self) -> bool {
+        self.knobs.variant.decl().marched_lengths && self.given.thickness.is_none() && self.knobs.thickness_scale == 1.0
+    }
+
+    /// The same settings with the radius and thickness scales made given lengths for a scene
+    /// whose default radius is `default_radius` (what the reproduce line states).
+    pub fn resolved(&self, default_radius: f32) -> Self {
+        let (k, lengths) = (self.knobs, self.lengths(default_radius));
+        let radius = self.given.radius.or((k.radius_scale != 1.0).then_some(lengths.radius));
+        let thickness = self.given.thickness.or((k.thickness_scale != 1.0).then_some(lengths.thickness));
+        Self {
+            knobs: Knobs { radius_scale: 1.0, thickness_scale: 1.0, ..k },
+            given: GivenLengths { radius, thickness, ..self.given },
+            ..*self
+        }
+    }
+}
 
 /// The most frames the temporal pass averages where the view moves (`shaders/temporal.wgsl`):
 /// screen-space occlusion changes with what the view shows, so a moving pixel keeps at most this

@@ -73,7 +73,7 @@ pub(crate) fn measure(
     camera: &OrbitCamera,
     (truth, radius, ambient): (&Truth, f32, f32),
 ) -> Result<PatternSpread> {
-    let entries = Settings::default().accumulate as u32;
+    let entries = Settings::default().knobs.accumulate as u32;
     renderer.settings = Config::new(Mode::Both, Knobs { accumulate: 1, ..Knobs::default() }).settings(radius);
     let measured: Result<Vec<Errors>> = (0..entries)
         .map(|entry| {

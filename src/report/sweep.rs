@@ -77,9 +77,9 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                 }
                 if variant == Variant::default()
                     && directional
-                    && (samples, steps) == (base.sampling.slices, base.sampling.steps)
+                    && (samples, steps) == (base.knobs.slices, base.knobs.steps)
                 {
-                    for sender_sky in SenderSky::ALL.into_iter().filter(|&s| s != base.sender_sky) {
+                    for sender_sky in SenderSky::ALL.into_iter().filter(|&s| s != base.knobs.sender_sky) {
                         configs.push(at(Knobs { sender_sky, ..counted }));
                     }
                     configs.push(at(Knobs { indirect_strength: 0.0, ..counted }));
@@ -167,9 +167,9 @@ impl Config {
     /// all meet one truth.
     pub fn settings(&self, radius: f32) -> Settings {
         let base = Settings { mode: self.mode, ..Settings::default() };
-        let mut s = self.knobs.settings(base);
+        let mut s = base.with_knobs(self.knobs);
         s.ambient = base.ambient;
-        s.sampling.radius = Some(radius);
+        s.given.radius = Some(radius);
         s
     }
 
@@ -214,7 +214,7 @@ mod tests {
             assert_eq!(planned_configurations(&o), 2 + radii * per_radius, "{samples} {march} {radii}");
         }
         let mut o = options(1, 1, 1);
-        o.accumulate = vec![1, Settings::default().accumulate];
+        o.accumulate = vec![1, Settings::default().knobs.accumulate];
         let configs = configurations(&o, true);
         assert_eq!(configs.iter().filter(|c| c.mode == Mode::Off).count(), 2);
         assert_eq!(configs.iter().filter(|c| c.is_the_default_both()).count(), 1);
@@ -241,16 +241,13 @@ mod tests {
         let none = Config::new(Mode::Ssdo, knobs);
         assert_eq!((none.samples(), none.steps(), none.bounce()), (4, 16, None));
         let s = none.settings(0.5);
-        assert_eq!((s.accumulate, s.half_resolution), (4, true));
-        assert_eq!(
-            (s.indirect_strength, s.sampling.slices, s.sampling.steps, s.sampling.radius),
-            (0.0, 4, 16, Some(0.5))
-        );
+        assert_eq!((s.knobs.accumulate, s.knobs.half_resolution), (4, true));
+        assert_eq!((s.knobs.indirect_strength, s.knobs.slices, s.knobs.steps, s.given.radius), (0.0, 4, 16, Some(0.5)));
         let knobs = Knobs { samples: 32, sender_sky: SenderSky::March, ..Knobs::for_variant(Variant::Points) };
         let points = Config::new(Mode::Ssdo, knobs);
         assert_eq!((points.samples(), points.steps(), points.bounce()), (32, 0, Some(SenderSky::March)));
         let s = points.settings(0.5);
-        assert_eq!((s.sampling.samples, s.indirect_strength), (32, 1.0));
-        assert_eq!((s.sampling.slices, s.sampling.steps), (SLICES.default, STEPS.default));
+        assert_eq!((s.knobs.samples, s.knobs.indirect_strength), (32, 1.0));
+        assert_eq!((s.knobs.slices, s.knobs.steps), (SLICES.default, STEPS.default));
     }
 }

@@ -81,11 +81,9 @@ mod tests {
         let (config, scale) = c.config();
         assert_eq!((scale, c.knobs.indirect_strength), (0.5, 0.0));
         let from_config = config.settings(0.25);
-        let from_knobs = c.knobs.settings(Settings { mode: Mode::Ssdo, ..Settings::default() });
-        assert_eq!(from_config.sampling.resolved(0.5), from_knobs.sampling.resolved(0.5));
-        // Every other knob is the same too (the lengths are resolved above).
-        let knobs = |s: &Settings| Knobs { radius_scale: 0.0, thickness_scale: 0.0, ..Knobs::from_settings(s) };
-        assert_eq!(knobs(&from_config), knobs(&from_knobs));
+        let from_knobs = Settings { mode: Mode::Ssdo, ..Settings::default() }.with_knobs(c.knobs);
+        // The same settings, every knob and length, once the lengths are resolved.
+        assert_eq!(from_config.resolved(0.5), from_knobs.resolved(0.5));
         let p = Candidate::new(Mode::Ssao, Knobs { samples: 32, ..Knobs::for_variant(Variant::Points) });
         assert_eq!((p.config().0.samples(), p.knobs.samples, p.knobs.indirect_strength), (32, 32, 1.0));
         // The starts are five distinct settings, and the cheapest has no bounce in SSDO only.

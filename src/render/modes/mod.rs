@@ -42,7 +42,8 @@ pub mod table;
 pub use table::{Mode, ModeDecl, MODES};
 
 use super::history::HistorySpec;
-use super::settings::{SenderSky, Settings, View};
+use super::senders::SenderSky;
+use super::settings::{Settings, View};
 use super::targets::{half_size, Place, Stage, TargetId, DO_FORMAT};
 use super::uniforms::{UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 use super::variant::Blur;
@@ -105,20 +106,20 @@ impl PlanOptions {
     /// The options `settings` give: a display plan (no HDR after the frame) unless HDR is kept
     /// (`keep_hdr`) or a debug view needs the tone-map pass.
     pub fn of(settings: &Settings, keep_hdr: bool) -> Self {
-        let variant = settings.sampling.variant;
+        let variant = settings.knobs.variant;
         Self {
-            blur: settings.blur,
+            blur: settings.knobs.blur,
             bilateral: variant.decl().blur == Blur::Bilateral,
-            pyramid: settings.sampling.reads_pyramid(),
+            pyramid: settings.knobs.reads_pyramid(),
             display: !keep_hdr && settings.view == View::Final,
-            indirect: settings.indirect_strength > 0.0,
-            sender_sky: settings.sender_sky.for_variant(variant),
+            indirect: settings.knobs.indirect_strength > 0.0,
+            sender_sky: settings.knobs.sender_sky.for_variant(variant),
             accumulate: settings.accumulates(),
-            half_resolution: settings.half_resolution,
-            material_thickness: settings.sampling.material_thickness()
+            half_resolution: settings.knobs.half_resolution,
+            material_thickness: settings.material_thickness()
                 && (settings.mode.declaration().runs_sampling() || settings.view == View::Thickness),
-            far_side: settings.far_side,
-            far_sky: settings.far_sky,
+            far_side: settings.knobs.far_side,
+            far_sky: settings.knobs.far_sky,
         }
     }
 }

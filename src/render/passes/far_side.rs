@@ -33,7 +33,7 @@ pub fn runs(f: &PlanFacts) -> bool {
 /// Whether the far side's surfaces take the sky they see (`far_sky.rs`): asked for, and the
 /// senders take the sky at all.
 pub fn sky(f: &PlanFacts) -> bool {
-    f.options.far_sky && f.sender_sky() != crate::render::settings::SenderSky::Off
+    f.options.far_sky && f.sender_sky() != crate::render::SenderSky::Off
 }
 
 /// The far side's surfaces: the packed normal and shininess as the G-buffer packs them (x), the

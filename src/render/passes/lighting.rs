@@ -17,8 +17,8 @@ use crate::render::graph::io::{PassIo, Read};
 use crate::render::graph::state::{flag, ParityGroups, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording};
 use crate::render::modes::{LightReads, Plan, Step};
-use crate::render::settings::SenderSky;
 use crate::render::targets::{bounce_target, ALBEDO, DEPTH, HDR, HDR_FORMAT, NORMAL, THICKNESS};
+use crate::render::SenderSky;
 use crate::Result;
 
 impl Step {

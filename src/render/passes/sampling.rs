@@ -12,9 +12,9 @@ use crate::render::graph::{fullscreen_pipeline, Entry, FullscreenDesc, Role};
 use crate::render::graph::{Pass, PassContext, Preparation, Recording};
 use crate::render::history::HistorySpec;
 use crate::render::modes::{Plan, PlanFacts, Step};
-use crate::render::settings::SenderSky;
 use crate::render::targets::{Place, Stage, TargetId, ALBEDO, AO_FORMAT, DEPTH, DO_FORMAT, NORMAL, THICKNESS};
 use crate::render::variant::{Estimator, Sampler};
+use crate::render::SenderSky;
 use crate::{shaders, Result};
 
 impl Step {

@@ -13,8 +13,8 @@ use crate::render::graph::io::PassIo;
 use crate::render::graph::state::{flag, PassState, PipelineSpec};
 use crate::render::graph::{Entry, FrameState, Pass, PassContext, Preparation, Recording, Role};
 use crate::render::modes::{Plan, Step};
-use crate::render::settings::SenderSky;
 use crate::render::targets::{Place, TargetId, DO_FORMAT};
+use crate::render::SenderSky;
 use crate::Result;
 
 impl Step {

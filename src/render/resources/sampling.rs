@@ -4,15 +4,16 @@
 //! beside them the little the filters read (the radius and the temporal pass's frame counts).
 
 use super::super::kernel;
-use super::super::sampling::{Lengths, Sampling};
+use super::super::sampling::Lengths;
 use super::super::uniforms::{FilterParams, SamplingParams};
 use super::super::variant::Variant;
+use crate::knobs::Knobs;
 
-/// Sampling parameters for one frame: the settings' [`Sampling`] with its counts clamped, the
+/// Sampling parameters for one frame: the settings' [`Knobs`] with their counts clamped, the
 /// lengths it resolves to, and what the sky and the temporal pass add.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SamplingFrame {
-    pub sampling: Sampling,
+    pub knobs: Knobs,
     pub lengths: Lengths,
     pub sky_mip: f32,
     pub sky_strength: f32,
@@ -60,8 +61,8 @@ impl SamplingData {
     /// Writes the parameters (their counts already clamped); the kernel is regenerated only when
     /// the variant or the sample count changes.
     pub fn update(&mut self, queue: &wgpu::Queue, params: &SamplingFrame) {
-        let (sampling, lengths) = (&params.sampling, &params.lengths);
-        let (variant, samples) = (sampling.variant, sampling.samples);
+        let (knobs, lengths) = (&params.knobs, &params.lengths);
+        let (variant, samples) = (knobs.variant, knobs.samples);
         if self.kernel_key != Some((variant, samples)) {
             for (slot, k) in self.uniforms.kernel.iter_mut().zip(kernel::kernel(variant.decl().kernel, samples)) {
                 *slot = k.extend(0.0).into();
@@ -76,7 +77,7 @@ impl SamplingData {
         u.sender_sky_strength = params.sender_sky_strength;
         u.schedule = params.schedule;
         (u.slices, u.steps, u.reach, u.thickness) =
-            (sampling.slices as u32, sampling.steps as u32, lengths.reach, lengths.thickness);
+            (knobs.slices as u32, knobs.steps as u32, lengths.reach, lengths.thickness);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(self.uniforms.as_ref()));
         let filter = FilterParams {
             radius: lengths.radius,

@@ -79,7 +79,7 @@ pub fn preset(data: &[u8]) {
     let text = preset.to_text();
     assert!(text.len() < 4 * ssdo::text::MAX_NAME_CHARS * 4 + 4096, "{} bytes written", text.len());
     assert_eq!(Preset::parse(&path, &text).ok().as_ref(), Some(&preset), "{text}");
-    let settings = preset.knobs.settings(ssdo::render::Settings::default());
+    let settings = ssdo::render::Settings::default().with_knobs(preset.knobs);
     drop((settings, preset.knobs.flags(0.5), preset.knobs.label(), preset.elsewhere("a device", (8, 8))));
 }
 

@@ -82,8 +82,8 @@ fn a_missing_setting_keeps_its_default_and_knobs_become_the_same_settings() {
     assert_eq!((p.name.as_str(), p.mode), ("p", Mode::Ssdo));
     // Points from a file bring the points' defaults for what the file leaves out.
     let p = Preset::parse(Path::new("p.json"), r#"{"ssdo_preset": 1, "settings": {"variant": "classic"}}"#).unwrap();
-    assert_eq!(p.knobs.samples, Settings::classic().sampling.samples);
-    assert_eq!(p.knobs.settings(Settings::default()).ambient, Settings::classic().ambient);
+    assert_eq!(p.knobs.samples, Settings::classic().knobs.samples);
+    assert_eq!(Settings::default().with_knobs(p.knobs).ambient, Settings::classic().ambient);
 }
 
 #[test]
@@ -157,10 +157,17 @@ fn flags_given_beside_a_preset_override_it() {
     let file = path.to_str().unwrap();
     let s = settings(&["--preset", file]).unwrap();
     assert_eq!(
-        (s.sampling.slices, s.sampling.steps, s.accumulate, s.blur, s.sender_sky, s.indirect_strength),
+        (
+            s.knobs.slices,
+            s.knobs.steps,
+            s.knobs.accumulate,
+            s.knobs.blur,
+            s.knobs.sender_sky,
+            s.knobs.indirect_strength
+        ),
         (2, 24, 8, false, SenderSky::Irradiance, 0.0)
     );
-    assert_eq!((s.sampling.radius, s.sampling.radius_scale), (None, std::f32::consts::SQRT_2));
+    assert_eq!((s.given.radius, s.knobs.radius_scale), (None, std::f32::consts::SQRT_2));
     let s = settings(&[
         "--preset",
         file,
@@ -177,19 +184,19 @@ fn flags_given_beside_a_preset_override_it() {
     ])
     .unwrap();
     assert_eq!(
-        (s.sampling.slices, s.sampling.steps, s.accumulate, s.sender_sky, s.indirect_strength),
+        (s.knobs.slices, s.knobs.steps, s.knobs.accumulate, s.knobs.sender_sky, s.knobs.indirect_strength),
         (3, 24, 1, SenderSky::March, 2.0)
     );
     // An explicit radius wins over the preset's scale.
-    assert_eq!(s.sampling.lengths(0.1).radius, 0.5);
+    assert_eq!(s.lengths(0.1).radius, 0.5);
     // Another variant than the preset's brings its own sample count.
     let s = settings(&["--preset", file, "--variant", "classic"]).unwrap();
-    assert_eq!((s.sampling.variant, s.sampling.samples), (Variant::Classic, Settings::classic().sampling.samples));
+    assert_eq!((s.knobs.variant, s.knobs.samples), (Variant::Classic, Settings::classic().knobs.samples));
     // No preset, no flags: the defaults; a level is its knobs; high is the default.
     assert_eq!(settings(&[]).unwrap(), Settings { mode: Mode::Ssdo, ..Settings::default() });
     assert_eq!(settings(&["--quality", "high"]).unwrap(), settings(&[]).unwrap());
     let low = settings(&["--quality", "low", "--no-blur"]).unwrap();
-    assert_eq!(Knobs::from_settings(&low), Knobs { blur: false, ..Quality::Low.knobs() });
+    assert_eq!(low.knobs, Knobs { blur: false, ..Quality::Low.knobs() });
     // A preset's flags are checked as the command line's are.
     let e = settings(&["--preset", file, "--steps", "0"]).unwrap_err();
     assert!(e.to_string().contains("--steps 0"), "{e}");

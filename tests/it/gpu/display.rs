@@ -9,7 +9,8 @@ use crate::common;
 use common::{gpu, renderer, shoot};
 use ssdo::headless::capture::{output_texture, CAPTURE_FORMAT};
 use ssdo::headless::readback::read_texture;
-use ssdo::render::{Mode, Sampling, Settings, Step, Variant};
+use ssdo::knobs::Knobs;
+use ssdo::render::{Mode, Settings, Step, Variant};
 use ssdo::scene::{self, OrbitCamera, Scene};
 
 const SIZE: (u32, u32) = (common::W, common::H);
@@ -40,7 +41,7 @@ fn display_frames_match_the_hdr_path_in_every_mode_and_variant() {
     let mut r = renderer(gpu, &scene, &sky, SIZE, Settings::default());
     for variant in Variant::ALL {
         for mode in Mode::ALL {
-            r.settings = Settings { mode, sampling: Sampling { variant, ..Default::default() }, ..Settings::default() };
+            r.settings = Settings { mode, knobs: Knobs { variant, ..Knobs::default() }, ..Settings::default() };
             r.keep_hdr(gpu, true);
             // Both frames the first of their average, so that they hold the same samples.
             r.reset_history();

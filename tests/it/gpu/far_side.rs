@@ -8,8 +8,9 @@ use common::{gpu, looking, renderer, shoot, H, W};
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::headless::readback::read_rgba16f;
+use ssdo::knobs::Knobs;
 use ssdo::reference::{ReferenceScene, TraceSettings};
-use ssdo::render::{Mode, Sampling, Settings, Step, Variant, View};
+use ssdo::render::{Mode, Settings, Step, Variant, View};
 use ssdo::scene::{OrbitCamera, PointLight, Scene, Skybox};
 
 /// A red block (1.2 wide, 0.25 tall, 0.4 deep: thicker than the march's slab) on a white floor,
@@ -29,10 +30,8 @@ fn block_lit_from_behind() -> Scene {
 fn bounce_only(far_side: bool, indirect_strength: f32) -> Settings {
     Settings {
         mode: Mode::Ssdo,
-        sampling: Sampling { variant: Variant::March, slices: 8, steps: 16, ..Default::default() },
+        knobs: Knobs { variant: Variant::March, slices: 8, steps: 16, indirect_strength, far_side, ..Knobs::default() },
         ambient: 0.0,
-        indirect_strength,
-        far_side,
         view: View::Final,
         ..Settings::default()
     }
@@ -171,7 +170,8 @@ fn the_floor_beside_a_deep_block_is_shaded_by_its_depth_not_a_slab() {
 /// The march's mean bounce over `at` under a white sky and no point lights (the DO-indirect view:
 /// the bounce alone), with the far side and its sky or without.
 fn sky_bounce(gpu: &ssdo::gpu::Gpu, scene: &Scene, camera: &OrbitCamera, far: bool, at: &[(usize, usize)]) -> Vec3 {
-    let settings = Settings { far_sky: far, view: View::DoIndirect, ..bounce_only(far, 1.0) };
+    let mut settings = Settings { view: View::DoIndirect, ..bounce_only(far, 1.0) };
+    settings.knobs.far_sky = far;
     let mut r = renderer(gpu, scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
     assert_eq!(r.plan().has(Step::FAR_SKY), far, "the far sky runs where asked");
     shoot(gpu, &mut r, camera);

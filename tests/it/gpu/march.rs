@@ -7,7 +7,8 @@ use crate::common;
 use common::{gpu, looking, project, renderer, shoot, H, W};
 use glam::Vec3;
 use ssdo::headless::readback::read_rgba16f;
-use ssdo::render::{Mode, Sampling, Settings, Variant, View};
+use ssdo::knobs::Knobs;
+use ssdo::render::{GivenLengths, Mode, Settings, Variant, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{Material, OrbitCamera, Scene, Skybox};
 
@@ -41,13 +42,8 @@ fn directional(
 fn march(radius: f32) -> Settings {
     Settings {
         mode: Mode::Ssdo,
-        sampling: Sampling {
-            variant: Variant::March,
-            slices: 8,
-            steps: 16,
-            radius: Some(radius),
-            ..Default::default()
-        },
+        knobs: Knobs { variant: Variant::March, slices: 8, steps: 16, ..Knobs::default() },
+        given: GivenLengths { radius: Some(radius), ..GivenLengths::default() },
         ambient: 0.0,
         ..Settings::default()
     }
@@ -81,12 +77,12 @@ fn a_receiver_three_radii_from_a_tall_wall_sees_the_analytic_sky_fraction() {
     // The sky light alone: under a white sky the white wall also bounces light onto the floor.
     let s = march(radius);
     let s = Settings {
-        sampling: Sampling { reach: Some(10.0), thickness: Some(1.0), ..s.sampling },
+        given: GivenLengths { reach: Some(10.0), thickness: Some(1.0), ..s.given },
         view: View::DoDirect,
         ..s
     };
     let got = directional(gpu, &scene, &sky, &camera, s, &[receiver])[0].x;
-    let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
+    let points = Settings { knobs: Knobs { variant: Variant::Points, samples: 64, ..s.knobs }, ..s };
     let old = directional(gpu, &scene, &sky, &camera, points, &[receiver])[0].x;
     eprintln!("sky fraction at 3R from the wall: analytic {want:.4}, march {got:.4}, points {old:.4}");
     assert!((got - want).abs() <= 0.05 * want, "march sees {got}, the closed form {want}");
@@ -111,12 +107,12 @@ fn a_thin_pole_darkens_its_foot_but_not_the_floor_behind_it() {
     let open = project(&camera, v(1.5, 0.0, -1.2));
     // The default thickness and reach, in radii, as the renderer derives them from a scene.
     let s = march(radius);
-    let sampling = Sampling {
+    let given = GivenLengths {
         thickness: Some(ssdo::render::THICKNESS_RADII * radius),
         reach: Some(ssdo::render::REACH_RADII * radius),
-        ..s.sampling
+        ..s.given
     };
-    let s = Settings { sampling, view: View::DoDirect, ..s };
+    let s = Settings { given, view: View::DoDirect, ..s };
     let d = directional(gpu, &scene, &sky, &camera, s, &[foot, behind, open]);
     let (foot, behind, open) = (d[0].x, d[1].x, d[2].x);
     eprintln!("pole: foot {foot:.4}, floor behind {behind:.4}, open floor {open:.4}");
@@ -134,9 +130,9 @@ fn a_red_wall_beyond_the_radius_still_bounces_red_onto_the_floor() {
     // R = 0.1; the floor point lies 0.4 = 4R from the wall.
     let receiver = project(&camera, v(0.4, 0.0, 0.0));
     let s = march(0.1);
-    let s = Settings { sampling: Sampling { reach: Some(3.0), thickness: Some(0.3), ..s.sampling }, ..s };
+    let s = Settings { given: GivenLengths { reach: Some(3.0), thickness: Some(0.3), ..s.given }, ..s };
     let bounce = directional(gpu, &scene, &sky, &camera, s, &[receiver])[0];
-    let points = Settings { sampling: Sampling { variant: Variant::Points, samples: 64, ..s.sampling }, ..s };
+    let points = Settings { knobs: Knobs { variant: Variant::Points, samples: 64, ..s.knobs }, ..s };
     let old = directional(gpu, &scene, &sky, &camera, points, &[receiver])[0];
     eprintln!("bounce at 4R from a red wall: march {bounce}, points {old}");
     assert!(bounce.x > 0.01 && bounce.x > 5.0 * bounce.y, "red bounce from beyond R: {bounce}");

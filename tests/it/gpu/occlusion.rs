@@ -8,19 +8,20 @@ use common::{gpu, looking, project, red_wall_view, renderer, shoot, Furnace, H, 
 use glam::Vec3;
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, OcclusionValues};
-use ssdo::render::{Mode, Renderer, Sampling, Settings, Variant};
+use ssdo::knobs::Knobs;
+use ssdo::render::{GivenLengths, Mode, Renderer, Settings, Variant};
 use ssdo::scene::builtin::{self, MeshBuilder};
 use ssdo::scene::{Material, Model, OrbitCamera, Scene, Skybox};
 
 /// Full resolution: these tests check the estimators at each pixel (tests/temporal.rs checks the
 /// half-resolution upsample, and the white furnace with it).
 fn settings(mode: Mode) -> Settings {
-    Settings { mode, ambient: 0.0, half_resolution: false, ..Settings::default() }
+    Settings { mode, ambient: 0.0, knobs: Knobs { half_resolution: false, ..Knobs::default() }, ..Settings::default() }
 }
 
 /// The default sampling at radius `r`.
-fn radius(r: f32) -> Sampling {
-    Sampling { radius: Some(r), ..Default::default() }
+fn radius(r: f32) -> GivenLengths {
+    GivenLengths { radius: Some(r), ..Default::default() }
 }
 
 /// Pixel coordinates of world point `p`.
@@ -64,8 +65,9 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
     }) {
         {
             // Points take `samples` points; the march takes `samples` slices.
-            let sampling = Sampling { variant, samples, slices: samples, radius: Some(0.5), ..Default::default() };
-            let s = Settings { sampling, blur, ..settings(Mode::Ssdo) };
+            let base = settings(Mode::Ssdo);
+            let knobs = Knobs { variant, samples, slices: samples, blur, ..base.knobs };
+            let s = Settings { knobs, given: radius(0.5), ..base };
             let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             let b = render(gpu, &mut r, &camera, true);
             let direct = b.directional.unwrap();
@@ -85,7 +87,7 @@ fn white_furnace_open_plane_returns_albedo_times_sky() {
     // give ρ·L as well, with and without a constant ambient A on top (ρ·(L + A)).
     for ambient in [0.0, 0.2] {
         for mode in Mode::ALL {
-            let s = Settings { sampling: radius(0.5), ambient, ..settings(mode) };
+            let s = Settings { given: radius(0.5), ambient, ..settings(mode) };
             let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             let hdr = render(gpu, &mut r, &camera, true).hdr;
             let want = albedo * (sky_radiance + Vec3::splat(ambient));
@@ -105,8 +107,9 @@ fn open_plane_ao_is_one_everywhere_including_the_edges() {
     // Looking down steeply: samples near the borders project off-screen and must be skipped.
     let camera = looking(Vec3::ZERO, 0.0, 70.0, 2.0);
     for variant in Variant::ALL {
-        let sampling = Sampling { variant, samples: 32, radius: Some(0.4), ..Default::default() };
-        let s = Settings { sampling, blur: false, ..settings(Mode::Ssao) };
+        let base = settings(Mode::Ssao);
+        let knobs = Knobs { variant, samples: 32, blur: false, ..base.knobs };
+        let s = Settings { knobs, given: radius(0.4), ..base };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         let ao = render(gpu, &mut r, &camera, false).ao.unwrap();
         let low = ao.iter().copied().fold(1.0, f32::min);
@@ -122,10 +125,8 @@ fn inside_corner_is_more_occluded_than_open_floor() {
     let (mut scene, sky, camera) = red_wall_view(Vec3::ONE);
     scene.lights.clear();
     for variant in Variant::ALL {
-        let s = Settings {
-            sampling: Sampling { variant, samples: 32, radius: Some(0.5), ..Default::default() },
-            ..settings(Mode::Ssao)
-        };
+        let base = settings(Mode::Ssao);
+        let s = Settings { knobs: Knobs { variant, samples: 32, ..base.knobs }, given: radius(0.5), ..base };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         let ao = render(gpu, &mut r, &camera, true).ao.unwrap();
         let corner = at(&ao, project(&camera, Vec3::new(0.1, 0.0, 0.0)));
@@ -144,7 +145,8 @@ fn red_wall_bleeds_onto_white_floor_in_ssdo_not_in_ssao() {
     let far = project(&camera, Vec3::new(1.8, 0.0, 1.0));
     let ratio = |c: Vec3| c.x / c.y.max(1e-6);
 
-    let s = Settings { sampling: Sampling { samples: 32, ..radius(0.5) }, ..settings(Mode::Ssdo) };
+    let base = settings(Mode::Ssdo);
+    let s = Settings { knobs: Knobs { samples: 32, ..base.knobs }, given: radius(0.5), ..base };
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
     let b = render(gpu, &mut r, &camera, true);
     // The sky is black: DO is the indirect bounce alone.
@@ -194,7 +196,7 @@ fn redblue_sky_lights_tops_blue_and_bottoms_red_in_the_sky_lit_modes() {
     assert!(blueness(up) > 0.1 && blueness(down) < -0.1, "Off: top {up}, bottom {down}");
 
     // The classic variant keeps the SSDO course project's constant grey ambient in Off: no sky.
-    r.settings.sampling.variant = Variant::Classic;
+    r.settings.knobs.variant = Variant::Classic;
     let hdr = render(gpu, &mut r, &camera, true).hdr;
     let (up, down) = (common::window_mean(&hdr, top, 1), common::window_mean(&hdr, bottom, 1));
     assert!((up - down).abs().max_element() < 1e-3, "classic Off has no directional sky: top {up}, bottom {down}");
@@ -207,7 +209,8 @@ fn ssao_and_ssdo_differ_only_where_the_sky_is_occluded() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = redblue_ball();
     let top = project(&camera, Vec3::new(0.0, 2.8, 0.6));
-    let s = Settings { sampling: Sampling { samples: 64, ..Default::default() }, ..settings(Mode::Ssao) };
+    let base = settings(Mode::Ssao);
+    let s = Settings { knobs: Knobs { samples: 64, ..base.knobs }, ..base };
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
     let ssao = common::window_mean(&render(gpu, &mut r, &camera, true).hdr, top, 1);
     r.set_mode(gpu, Mode::Ssdo);
@@ -222,7 +225,8 @@ fn both_is_one_pass_with_the_same_ao_and_do_as_the_separate_modes() {
     let sky = ssdo::scene::load_skybox(None).unwrap();
     let camera = OrbitCamera::framing(&scene.model.bounds);
     for variant in Variant::ALL {
-        let s = Settings { sampling: Sampling { variant, ..Default::default() }, blur: false, ..settings(Mode::Ssao) };
+        let base = settings(Mode::Ssao);
+        let s = Settings { knobs: Knobs { variant, blur: false, ..base.knobs }, ..base };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         let ao = render(gpu, &mut r, &camera, false).ao.unwrap();
         r.set_mode(gpu, Mode::Ssdo);
@@ -290,7 +294,7 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     );
     assert!(names(&r).iter().any(|n| n.starts_with("bounce")));
     // No lights and senders lit by the point lights alone: nothing to bounce, no lighting pass.
-    r.settings.sender_sky = ssdo::render::SenderSky::Off;
+    r.settings.knobs.sender_sky = ssdo::render::SenderSky::Off;
     r.apply(gpu);
     assert_eq!(
         r.plan().step_names(),
@@ -298,22 +302,22 @@ fn each_mode_plans_exactly_its_passes_and_targets() {
     );
     assert!(!names(&r).iter().any(|n| n.starts_with("bounce") || n == "sender_sky"));
     // A bounce of strength 0 runs none of it either, whatever lights the senders.
-    r.settings.sender_sky = ssdo::render::SenderSky::March;
-    r.settings.indirect_strength = 0.0;
+    r.settings.knobs.sender_sky = ssdo::render::SenderSky::March;
+    r.settings.knobs.indirect_strength = 0.0;
     r.apply(gpu);
     assert_eq!(
         r.plan().step_names(),
         vec!["gbuffer", "ssao_ssdo", "blur", "temporal", "composite", "skybox", "tonemap"]
     );
-    r.settings.indirect_strength = 1.0;
-    r.settings.sender_sky = ssdo::render::SenderSky::Off;
+    r.settings.knobs.indirect_strength = 1.0;
+    r.settings.knobs.sender_sky = ssdo::render::SenderSky::Off;
     // No blur: no blur pass and no blurred targets.
-    r.settings.blur = false;
+    r.settings.knobs.blur = false;
     r.apply(gpu);
     assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "temporal", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.ends_with("blurred")));
     // One frame: no temporal pass, no accumulated target, no history.
-    r.settings.accumulate = 1;
+    r.settings.knobs.accumulate = 1;
     r.apply(gpu);
     assert_eq!(r.plan().step_names(), vec!["gbuffer", "ssao_ssdo", "composite", "skybox", "tonemap"]);
     assert!(!names(&r).iter().any(|n| n.ends_with("accumulated") || n.starts_with("history_")));
@@ -332,7 +336,7 @@ fn every_buffer_is_finite_on_the_default_scene_in_every_mode_and_variant() {
                 &scene,
                 &sky,
                 (W, H),
-                Settings { mode, sampling: Sampling { variant, ..Default::default() }, ..Settings::default() },
+                Settings { mode, knobs: Knobs { variant, ..Knobs::default() }, ..Settings::default() },
             );
             for blurred in [false, true] {
                 let b = render(gpu, &mut r, &camera, blurred);
@@ -368,7 +372,8 @@ fn blur_does_not_bleed_across_silhouettes() {
     let scene = Scene::new(model, 0, 1);
     let sky = Skybox::constant(Vec3::ONE);
     let camera = looking(v(0.0, 0.5, 0.0), 0.0, 30.0, 4.0);
-    let s = Settings { sampling: Sampling { samples: 32, ..radius(0.3) }, ..settings(Mode::Ssao) };
+    let base = settings(Mode::Ssao);
+    let s = Settings { knobs: Knobs { samples: 32, ..base.knobs }, given: radius(0.3), ..base };
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
     let ao = render(gpu, &mut r, &camera, true).ao.unwrap();
     // The top face of the block is open: its AO must stay 1 up to the silhouette edge.

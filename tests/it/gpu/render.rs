@@ -316,7 +316,7 @@ fn a_presets_lengths_follow_the_model_they_are_used_on() {
     let Some(gpu) = gpu() else { return };
     // Ultra's radius is twice the scene's default; the thickness a third of it.
     let knobs = ssdo::knobs::Knobs { thickness_scale: 1.0 / 3.0, ..ssdo::preset::Quality::Ultra.knobs() };
-    let settings = knobs.settings(Settings { mode: Mode::Ssdo, ..Settings::default() });
+    let settings = Settings { mode: Mode::Ssdo, ..Settings::default() }.with_knobs(knobs);
     let sky = Skybox::constant(Vec3::ONE);
     let room = Scene::new(builtin::cornell().unwrap(), 2, 1);
     let plane = Scene::new(builtin::plane(40.0, [0.5; 3]).unwrap(), 2, 1);

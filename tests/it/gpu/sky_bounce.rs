@@ -10,9 +10,10 @@ use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::gpu::Gpu;
 use ssdo::headless::readback::read_rgba16f;
+use ssdo::knobs::Knobs;
 use ssdo::reference::{ReferenceScene, TraceSettings};
 use ssdo::render::targets::BOUNCE;
-use ssdo::render::{Mode, Renderer, Sampling, SenderSky, Settings, View};
+use ssdo::render::{GivenLengths, Mode, Renderer, SenderSky, Settings, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{LightRig, Material, OrbitCamera, Scene, Skybox};
 
@@ -27,11 +28,16 @@ fn frame(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, s: Settin
     (hdr, directional.unwrap_or_default())
 }
 
+/// `s` with the bounce's senders lit by `sender_sky`.
+fn with_senders(sender_sky: SenderSky, s: Settings) -> Settings {
+    Settings { knobs: Knobs { sender_sky, ..s.knobs }, ..s }
+}
+
 fn settings(mode: Mode) -> Settings {
     Settings {
         mode,
         ambient: 0.0,
-        sampling: Sampling { radius: Some(0.3), ..Default::default() },
+        given: GivenLengths { radius: Some(0.3), ..Default::default() },
         ..Settings::default()
     }
 }
@@ -85,7 +91,7 @@ fn under_a_white_sky_alone_the_red_wall_turns_the_floor_beside_it_red_in_ssdo_on
     assert!((got.x / want.x - 1.0).abs() < 0.25, "GPU bounce {got} against the truth {want} (±25%)");
 
     // Senders lit by the point lights alone: no light, so no bounce at all.
-    let s = Settings { sender_sky: SenderSky::Off, view: View::DoIndirect, ..settings(Mode::Ssdo) };
+    let s = with_senders(SenderSky::Off, Settings { view: View::DoIndirect, ..settings(Mode::Ssdo) });
     let mut r = renderer(gpu, &scene, &sky, (W, H), s);
     shoot(gpu, &mut r, &camera);
     let d = read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
@@ -139,8 +145,9 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
     // 32 steps: with 12 the sparse far steps see the floor from the wall's upper half short by a
     // step, and the bounce comes out 11% high (0.232 against 0.209, measured).
     let base = settings(Mode::Ssdo);
-    let sampling = Sampling { slices: 8, steps: 32, reach: Some(10.0), thickness: Some(1.0), ..base.sampling };
-    let s = Settings { view: View::DoIndirect, sampling, ..base };
+    let knobs = Knobs { slices: 8, steps: 32, ..base.knobs };
+    let given = GivenLengths { reach: Some(10.0), thickness: Some(1.0), ..base.given };
+    let s = Settings { view: View::DoIndirect, knobs, given, ..base };
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
     let got = common::window_mean(&directional, project(&camera, receiver), 1).x;
     eprintln!("wall on a floor strip at d = {d}: GPU bounce {got:.4}, truth {:.4} ± {sigma:.4}", want.x);
@@ -148,14 +155,14 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
 
     // The senders' sky marched at quarter resolution: each sender stands for its 4x4 block, and
     // the bounce holds as well.
-    let quarter = Settings { sender_sky: SenderSky::MarchQuarter, ..s };
+    let quarter = with_senders(SenderSky::MarchQuarter, s);
     let got = common::window_mean(&frame(gpu, &scene, &sky, &camera, quarter).1, project(&camera, receiver), 1).x;
     eprintln!("the same with the senders' sky at quarter resolution: {got:.4}");
     assert!((got / want.x - 1.0).abs() < 0.1, "quarter-resolution senders: {got} against the truth {}", want.x);
 
     // The senders' sky from the last frame's march: the second frame reads what the first one's
     // sampling pass saw (all its 8 slices), and the bounce holds as well.
-    let last_frame = Settings { sender_sky: SenderSky::LastFrame, accumulate: 1, ..s };
+    let last_frame = Settings { knobs: Knobs { sender_sky: SenderSky::LastFrame, accumulate: 1, ..s.knobs }, ..s };
     let mut r = renderer(gpu, &scene, &sky, (W, H), last_frame);
     shoot(gpu, &mut r, &camera);
     shoot(gpu, &mut r, &camera);
@@ -165,7 +172,7 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
     assert!((got / want.x - 1.0).abs() < 0.1, "the last frame's senders: {got} against the truth {}", want.x);
 
     // The senders' unoccluded irradiance ignores the floor below the wall: measurably too bright.
-    let s = Settings { sender_sky: SenderSky::Irradiance, ..s };
+    let s = with_senders(SenderSky::Irradiance, s);
     let (_, directional) = frame(gpu, &scene, &sky, &camera, s);
     let unoccluded = common::window_mean(&directional, project(&camera, receiver), 1).x;
     assert!(unoccluded > 1.25 * want.x, "unoccluded senders {unoccluded} against the truth {}", want.x);
@@ -175,7 +182,7 @@ fn a_floor_point_facing_a_wall_gets_the_truths_bounce_when_the_screen_shows_what
 fn under_a_black_sky_the_bounce_is_the_point_lights_alone_as_before() {
     let Some(gpu) = gpu() else { return };
     let (scene, sky, camera) = red_wall_view(Vec3::ZERO);
-    let lit = |sender_sky| frame(gpu, &scene, &sky, &camera, Settings { sender_sky, ..settings(Mode::Both) }).1;
+    let lit = |sender_sky| frame(gpu, &scene, &sky, &camera, with_senders(sender_sky, settings(Mode::Both))).1;
     let before = lit(SenderSky::Off);
     for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance] {
         let now = lit(sender_sky);
@@ -193,7 +200,7 @@ fn the_sky_strength_scales_the_senders_sky_as_it_scales_the_receivers() {
     let near = project(&camera, Vec3::new(0.15, 0.0, 0.0));
     for sender_sky in [SenderSky::March, SenderSky::MarchQuarter, SenderSky::LastFrame, SenderSky::Irradiance] {
         let bounce = |sky_strength| {
-            let s = Settings { sender_sky, sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) };
+            let s = with_senders(sender_sky, Settings { sky_strength, view: View::DoIndirect, ..settings(Mode::Ssdo) });
             common::window_mean(&frame(gpu, &scene, &sky, &camera, s).1, near, 1).x
         };
         let (one, two) = (bounce(1.0), bounce(2.0));
@@ -207,7 +214,10 @@ fn the_senders_sky_from_the_last_frame_bounces_what_their_own_march_does_still_a
     let (scene, sky, camera) = red_wall_under_a_white_sky();
     let near_point = Vec3::new(0.15, 0.0, 0.0);
     // One frame each (no average), the bounce alone.
-    let s = |sender_sky| Settings { sender_sky, accumulate: 1, view: View::DoIndirect, ..settings(Mode::Ssdo) };
+    let s = |sender_sky| {
+        let base = Settings { view: View::DoIndirect, ..settings(Mode::Ssdo) };
+        Settings { knobs: Knobs { sender_sky, accumulate: 1, ..base.knobs }, ..base }
+    };
     let bounce = |r: &Renderer| read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap();
     let red = |d: &[[f32; 4]], camera: &OrbitCamera| common::window_mean(d, project(camera, near_point), 1).x;
 

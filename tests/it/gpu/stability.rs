@@ -140,16 +140,16 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(with_model("missing normals", "--model no_normals.obj", messy_obj(dir, false)));
     list.push(with_model("half the faces wound against their normals", "--model rewound.obj", rewound_obj(dir)));
     let mut c = base("radius 0", "--radius 0");
-    c.settings.sampling.radius = Some(0.0);
+    c.settings.given.radius = Some(0.0);
     list.push(c);
     let mut c = base("radius 1e6", "--radius 1e6");
-    c.settings.sampling.radius = Some(1e6);
+    c.settings.given.radius = Some(1e6);
     list.push(c);
     let mut c = base("1 sample", "--samples 1");
-    c.settings.sampling.samples = 1;
+    c.settings.knobs.samples = 1;
     list.push(c);
     let mut c = base("256 samples", "--samples 256");
-    c.settings.sampling.samples = 256;
+    c.settings.knobs.samples = 256;
     list.push(c);
     let mut c = base("1x1 target", "--size 1x1");
     c.size = (1, 1);
@@ -159,15 +159,15 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     list.push(c);
     let mut c = base("depth pyramid, 37x23 (odd sizes down the chain)", "--depth-pyramid --size 37x23");
     c.size = (37, 23);
-    c.settings.sampling.depth_pyramid = true;
+    c.settings.knobs.depth_pyramid = true;
     list.push(c);
     let mut c = base("depth pyramid, 1x1", "--depth-pyramid --size 1x1");
     c.size = (1, 1);
-    c.settings.sampling.depth_pyramid = true;
+    c.settings.knobs.depth_pyramid = true;
     list.push(c);
     let mut c = base("far side layer, 37x23", "--far-side --size 37x23");
     c.size = (37, 23);
-    c.settings.far_side = true;
+    c.settings.knobs.far_side = true;
     list.push(c);
     // The far sky's quarter-size cells scan blocks that run past the screen's edge.
     for (size, label, line) in [
@@ -176,7 +176,7 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     ] {
         let mut c = base(label, line);
         c.size = size;
-        (c.settings.far_side, c.settings.far_sky) = (true, true);
+        (c.settings.knobs.far_side, c.settings.knobs.far_sky) = (true, true);
         list.push(c);
     }
     let max = gpu.device.limits().max_texture_dimension_2d;
@@ -218,7 +218,7 @@ fn cases(gpu: &Gpu, dir: &std::path::Path) -> Vec<Case> {
     );
     c.settings.ambient = 1e6;
     c.settings.sky_strength = 1e6;
-    c.settings.indirect_strength = 1e6;
+    c.settings.knobs.indirect_strength = 1e6;
     list.push(c);
     // Scales and offsets in the file's own coordinates, beyond what --scale takes: scaled to a
     // unit radius or moved to the origin at load (with a warning), then like any model.
@@ -262,7 +262,7 @@ fn every_extreme_case_renders_finite_in_every_mode_and_variant() {
         for variant in Variant::ALL {
             for mode in Mode::ALL {
                 renderer.settings = case.settings;
-                (renderer.settings.mode, renderer.settings.sampling.variant) = (mode, variant);
+                (renderer.settings.mode, renderer.settings.knobs.variant) = (mode, variant);
                 let stats =
                     frame_stats(gpu, &mut renderer, &case.camera).unwrap_or_else(|e| panic!("{}: {e}", case.name));
                 let find = |n: &str| stats.iter().find(|s| s.name == n);
@@ -344,13 +344,14 @@ fn accumulation_stays_finite_at_any_size_while_moving_and_across_a_resize() {
     let camera = OrbitCamera::framing(&scene.model.bounds);
     let mut failures = Vec::new();
     for size in [(1, 1), (2, 3), (33, 17), (48, 36)] {
-        let settings = Settings { accumulate: 16, ..Settings::default() };
+        let mut settings = Settings::default();
+        settings.knobs.accumulate = 16;
         let mut r = Renderer::new(gpu, &scene, &sky, size, CAPTURE_FORMAT, settings).unwrap();
         r.keep_hdr(gpu, true);
         for variant in Variant::ALL {
             for mode in Mode::sampled() {
                 r.settings = settings;
-                (r.settings.mode, r.settings.sampling.variant) = (mode, variant);
+                (r.settings.mode, r.settings.knobs.variant) = (mode, variant);
                 r.resize(gpu, size.0, size.1).unwrap();
                 // Twelve frames turning 5° and tilting; half way through the window grows.
                 for k in 0..12 {

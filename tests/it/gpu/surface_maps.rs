@@ -268,8 +268,8 @@ fn a_checker_masked_fence_lets_half_its_texels_through_on_the_gpu_and_in_the_tru
     // fence is as thin as its quad: measured with a thickness of 0.05 (relative RMSE 0.025),
     // the GPU sees what the truth sees through the holes. See docs/accuracy.md.
     let behind = common::project(&camera, v(0.0, 0.0, -0.4));
-    let sampling = ssdo::render::Sampling { thickness: Some(0.05), ..Default::default() };
-    let s = Settings { sampling, ..settings(Mode::Ssdo) };
+    let given = ssdo::render::GivenLengths { thickness: Some(0.05), ..Default::default() };
+    let s = Settings { given, ..settings(Mode::Ssdo) };
     let through = |scene: &Scene| common::window_mean(&hdr(gpu, scene, &sky, &camera, s), behind, 1).z;
     let (gpu_cut, gpu_solid) = (through(&cut), through(&solid));
     let truth_cut = trace_truth(gpu, &cut, &sky, &camera, 64);

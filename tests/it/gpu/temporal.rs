@@ -17,13 +17,19 @@ use glam::{Vec3, Vec4, Vec4Swizzles};
 use ssdo::gpu::Gpu;
 use ssdo::headless::capture::{capture_converged, render_frames};
 use ssdo::headless::readback::{read_occlusion, read_rgba16f, read_texture};
+use ssdo::knobs::Knobs;
 use ssdo::render::modes::{OCCLUSION_HISTORY, SURFACE_HISTORY};
 use ssdo::render::surface_pack::unpack_surface;
-use ssdo::render::{Mode, Renderer, Sampling, Settings, Step, Variant};
+use ssdo::render::{GivenLengths, Mode, Renderer, Settings, Step, Variant};
 use ssdo::scene::{self, builtin, OrbitCamera, Scene, Skybox};
 
+/// `s` with the blur on or off.
+fn with_blur(blur: bool, s: Settings) -> Settings {
+    Settings { knobs: Knobs { blur, ..s.knobs }, ..s }
+}
+
 fn settings(mode: Mode, accumulate: usize) -> Settings {
-    Settings { mode, accumulate, ambient: 0.0, ..Settings::default() }
+    Settings { mode, knobs: Knobs { accumulate, ..Knobs::default() }, ambient: 0.0, ..Settings::default() }
 }
 
 /// AO of the frame's composite input (the temporal pass's output where the plan accumulates).
@@ -81,8 +87,9 @@ fn the_white_furnace_holds_after_one_frame_and_after_sixteen() {
     let albedo = Furnace::ALBEDO;
     for variant in [Variant::March, Variant::Points] {
         for blur in [true, false] {
-            let sampling = Sampling { variant, slices: 1, samples: 8, radius: Some(0.5), ..Default::default() };
-            let s = Settings { sampling, blur, ..settings(Mode::Both, 16) };
+            let base = settings(Mode::Both, 16);
+            let knobs = Knobs { variant, slices: 1, samples: 8, blur, ..base.knobs };
+            let s = Settings { knobs, given: GivenLengths { radius: Some(0.5), ..base.given }, ..base };
             let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             assert!(r.plan().has(Step::TEMPORAL));
             for frames in [1, 16] {
@@ -120,8 +127,8 @@ fn sixteen_still_frames_of_one_slice_agree_with_one_frame_of_sixteen_slices() {
     for mode in [Mode::Ssao, Mode::Ssdo] {
         let render = |slices: usize, accumulate: usize| {
             // At full resolution, so that each pixel's own samples are compared.
-            let sampling = Sampling { slices, ..Default::default() };
-            let s = Settings { sampling, blur: false, half_resolution: false, ..settings(mode, accumulate) };
+            let base = settings(mode, accumulate);
+            let s = Settings { knobs: Knobs { slices, blur: false, half_resolution: false, ..base.knobs }, ..base };
             let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             capture_converged(gpu, &mut r, &camera).unwrap();
             let depth = ssdo::headless::readback::read_depth(gpu, &r.targets().depth().texture).unwrap();
@@ -153,7 +160,7 @@ fn a_still_view_blurs_its_first_frames_only_and_then_averages_the_raw_samples() 
     let first = ssdo::render::BLURRED_FRAMES as usize;
     // The average after the first frames and after 16, and which frames blurred.
     let render = |mode: Mode, blur: bool| {
-        let mut r = renderer(gpu, &scene, &sky, (W, H), Settings { blur, ..settings(mode, 16) });
+        let mut r = renderer(gpu, &scene, &sky, (W, H), with_blur(blur, settings(mode, 16)));
         let (mut blurred, mut young) = (Vec::new(), Vec::new());
         for frame in 1..=16 {
             render_frames(gpu, &mut r, [camera]).unwrap();
@@ -401,7 +408,8 @@ fn a_moving_camera_keeps_ao_in_range_and_every_value_finite() {
     let (scene, sky, camera) = cornell();
     for mode in [Mode::Ssao, Mode::Both] {
         for variant in [Variant::March, Variant::Points] {
-            let s = Settings { sampling: Sampling { variant, ..Default::default() }, ..settings(mode, 16) };
+            let base = settings(mode, 16);
+            let s = Settings { knobs: Knobs { variant, ..base.knobs }, ..base };
             let mut r = renderer(gpu, &scene, &sky, (W, H), s);
             for frame in 0..24 {
                 let turned = OrbitCamera {
@@ -433,18 +441,18 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     let average = |name: &str| name.contains("history_occlusion") || name.contains("history_surface");
     assert!(r.allocations().iter().all(|(name, _)| !average(name) && !name.contains("accumulated")));
 
-    r.settings.accumulate = 8;
+    r.settings.knobs.accumulate = 8;
     render_frames(gpu, &mut r, [camera; 3]).unwrap();
     assert_eq!(r.frames_accumulated(), 3);
     let generation = r.history().get(OCCLUSION_HISTORY).unwrap().generation;
     // More frames, or another exposure: the same average goes on.
-    r.settings.accumulate = 16;
+    r.settings.knobs.accumulate = 16;
     r.settings.exposure = 2.0;
     render_frames(gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.frames_accumulated(), 4);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);
     // Another radius starts it anew in the same textures.
-    r.settings.sampling.radius = Some(0.2);
+    r.settings.given.radius = Some(0.2);
     render_frames(gpu, &mut r, [camera]).unwrap();
     assert_eq!(r.frames_accumulated(), 1);
     assert_eq!(r.history().get(OCCLUSION_HISTORY).unwrap().generation, generation);
@@ -462,7 +470,7 @@ fn the_history_lives_as_long_as_its_plan_size_and_settings() {
     assert_eq!((pair.size, pair.frames), ((49, 31), 1));
     assert!(pair.generation > both);
     // Accumulation off again: the average's histories go (the senders' sky stays).
-    r.settings.accumulate = 1;
+    r.settings.knobs.accumulate = 1;
     render_frames(gpu, &mut r, [camera]).unwrap();
     assert!(r.history().get(OCCLUSION_HISTORY).is_none() && r.history().all().count() == 1);
 }
@@ -503,7 +511,8 @@ fn half_resolution_sampling_leaves_no_halo_along_silhouettes() {
         (Mode::Ssao, true, 16),
         (Mode::Both, false, 16),
     ] {
-        let s = Settings { half_resolution: true, blur, ..settings(mode, frames) };
+        let base = settings(mode, frames);
+        let s = Settings { knobs: Knobs { half_resolution: true, blur, ..base.knobs }, ..base };
         let mut r = renderer(gpu, &scene, &sky, (W, H), s);
         shoot(gpu, &mut r, &camera);
         assert!(r.plan().has(Step::UPSAMPLE));

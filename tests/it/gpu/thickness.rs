@@ -8,8 +8,9 @@ use common::{gpu, looking, renderer, shoot, H, W};
 use glam::Vec3;
 use rand::{rngs::StdRng, SeedableRng};
 use ssdo::headless::readback::read_rgba16f;
+use ssdo::knobs::Knobs;
 use ssdo::reference::{ReferenceScene, Surface, TraceSettings};
-use ssdo::render::{Mode, Sampling, Settings, Variant, View};
+use ssdo::render::{GivenLengths, Mode, Settings, Variant, View};
 use ssdo::scene::builtin::MeshBuilder;
 use ssdo::scene::{LightRig, Material, Model, OrbitCamera, Scene, Skybox};
 
@@ -18,7 +19,8 @@ use ssdo::scene::{LightRig, Material, Model, OrbitCamera, Scene, Skybox};
 fn sky_light(thickness: Option<f32>) -> Settings {
     Settings {
         mode: Mode::Ssdo,
-        sampling: Sampling { variant: Variant::March, slices: 8, steps: 16, thickness, ..Default::default() },
+        knobs: Knobs { variant: Variant::March, slices: 8, steps: 16, ..Knobs::default() },
+        given: GivenLengths { thickness, ..GivenLengths::default() },
         ambient: 0.0,
         view: View::DoDirect,
         ..Settings::default()
@@ -196,7 +198,7 @@ fn only_a_scene_with_a_thin_material_and_no_given_thickness_draws_the_thickness_
     let thin = fins();
     assert!(plans_layer(gpu, &thin, sky_light(None)), "thin fins take their own thickness");
     assert!(!plans_layer(gpu, &thin, sky_light(Some(0.1))), "a given thickness is every sample's");
-    let points = Settings { sampling: Sampling::for_variant(Variant::Points), ..sky_light(None) };
+    let points = Settings { knobs: Knobs::for_variant(Variant::Points), ..sky_light(None) };
     assert!(!plans_layer(gpu, &thin, points), "the point estimator has no thickness");
     let off = Settings { mode: Mode::Off, view: View::Final, ..sky_light(None) };
     assert!(!plans_layer(gpu, &thin, off), "Off samples nothing");
@@ -237,7 +239,8 @@ fn the_thickness_view_shows_a_cut_out_as_a_sheet_and_the_floor_as_the_default_sl
 fn march_bounce(gpu: &ssdo::gpu::Gpu, model: &Model, camera: &OrbitCamera, at: &[((usize, usize), Surface)]) -> Vec3 {
     let scene = Scene::new(model.clone(), 0, 1);
     let directional = |indirect_strength: f32| {
-        let settings = Settings { indirect_strength, view: View::Final, ..sky_light(None) };
+        let base = sky_light(None);
+        let settings = Settings { knobs: Knobs { indirect_strength, ..base.knobs }, view: View::Final, ..base };
         let mut r = renderer(gpu, &scene, &Skybox::constant(Vec3::ONE), (W, H), settings);
         shoot(gpu, &mut r, camera);
         read_rgba16f(gpu, &r.targets().occlusion().directional.unwrap().texture).unwrap()

@@ -21,11 +21,11 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
             ..TruthScene::named("cornell", (48, 36))
         },
         samples: vec![4],
-        march: vec![(base.sampling.slices, base.sampling.steps)],
+        march: vec![(base.knobs.slices, base.knobs.steps)],
         radii: vec![RadiusChoice::Times(1.0)],
         samples_per_pixel: 8,
         frames: 1,
-        accumulate: vec![base.accumulate],
+        accumulate: vec![base.knobs.accumulate],
         orbit: 0.0,
         out: out.path().to_path_buf(),
         preset: None,
@@ -55,9 +55,9 @@ fn a_captures_errors_against_the_truth_are_the_reports_for_its_view() {
                     && k.blur
                     && !c.pyramid()
                     && !c.far_side()
-                    && k.half_resolution == base.half_resolution
-                    && k.accumulate == base.accumulate
-                    && (mode == Mode::Ssao || c.bounce() == Some(base.sender_sky))
+                    && k.half_resolution == base.knobs.half_resolution
+                    && k.accumulate == base.knobs.accumulate
+                    && (mode == Mode::Ssao || c.bounce() == Some(base.knobs.sender_sky))
             })
             .expect("the report has the default row");
         assert!(measured.hdr_rmse > 1e-3 && measured.flip > 1e-3, "{mode}: an error to compare");

@@ -60,7 +60,8 @@ fn redblue() -> Skybox {
 
 /// HDR of the final image and of the DO-direct view, and the AO buffer, in one mode.
 fn buffers(gpu: &Gpu, scene: &Scene, sky: &Skybox, camera: &OrbitCamera, mode: Mode, view: View) -> Vec<[f32; 4]> {
-    let settings = Settings { mode, view, ambient: 0.05, blur: false, ..Settings::default() };
+    let mut settings = Settings { mode, view, ambient: 0.05, ..Settings::default() };
+    settings.knobs.blur = false;
     let mut r = renderer(gpu, scene, sky, (W, H), settings);
     shoot(gpu, &mut r, camera);
     let t = r.targets();
@@ -162,7 +163,8 @@ fn a_single_quad_is_lit_from_whichever_side_the_camera_sees() {
         // From above and from below: the open sky on the seen side lights it as ρ·L.
         for pitch in [40.0, -40.0] {
             let camera = looking(Vec3::ZERO, 30.0, pitch, 4.0);
-            let settings = Settings { mode: Mode::Ssdo, ambient: 0.0, blur: false, ..Settings::default() };
+            let mut settings = Settings { mode: Mode::Ssdo, ambient: 0.0, ..Settings::default() };
+            settings.knobs.blur = false;
             let mut r = renderer(gpu, &scene, &sky, (W, H), settings);
             shoot(gpu, &mut r, &camera);
             let hdr = read_rgba16f(gpu, &r.targets().hdr().unwrap().texture).unwrap();

@@ -4,8 +4,8 @@
 use super::*;
 use crate::render::graph::io::{Kind, Read};
 use crate::render::modes::{MODES, SURFACE_HISTORY};
-use crate::render::settings::SenderSky;
 use crate::render::targets::{Stage, BOUNCE, BOUNCE_WITH_FAR, HDR, OUTPUT};
+use crate::render::SenderSky;
 use depth_pyramid::PYRAMID;
 use sampling::LAST_SKY;
 use sender_sky::{SENDER_SKY, SENDER_SKY_QUARTER};
