@@ -4,6 +4,7 @@ use std::path::Path;
 
 use super::row::Row;
 use super::Report;
+use crate::knobs::Knobs;
 use crate::render::{Mode, Variant};
 use crate::{output, Error, Result};
 
@@ -104,11 +105,11 @@ fn draw_lines(
 ) -> std::result::Result<(), DrawError> {
     use plotters::prelude::*;
     for line in lines {
-        let (colour, variant) = (colours[line.mode_index], line.variant);
+        let (colour, variant) = (colours[line.mode_index], line.kind.variant);
         let style = colour.mix(variant.decl().plot_opacity).stroke_width(variant.decl().plot_width);
         let points = line.points;
-        if line.accumulate > 1 {
-            let dash = if line.half_resolution { 3 } else { 8 };
+        if line.kind.accumulate > 1 {
+            let dash = if line.kind.half_resolution { 3 } else { 8 };
             chart
                 .draw_series(DashedLineSeries::new(points.clone(), dash, 4, style))?
                 .label(line.label)
@@ -130,9 +131,8 @@ fn draw_lines(
 /// counts, at a number of frames averaged and a resolution, in log-log coordinates.
 struct Line {
     mode_index: usize,
-    variant: Variant,
-    accumulate: usize,
-    half_resolution: bool,
+    /// The knobs the line's rows share: the variant, the frames averaged, the resolution.
+    kind: Knobs,
     label: String,
     points: Vec<(f64, f64)>,
 }
@@ -143,25 +143,27 @@ struct Line {
 fn lines(rows: &[Row]) -> Vec<Line> {
     let first_radius = rows.iter().find(|r| r.config.mode != Mode::Off).map_or(0.0, |r| r.radius);
     let most = rows.iter().map(|r| r.config.knobs.accumulate).max().unwrap_or(1);
-    // (variant, frames averaged, half resolution) of each line of a mode.
-    let mut kinds: Vec<(Variant, usize, bool)> = Variant::ALL.iter().map(|&v| (v, 1, false)).collect();
+    // The variant, frames averaged and resolution of each line of a mode.
+    let kind =
+        |variant, accumulate, half_resolution| Knobs { variant, accumulate, half_resolution, ..Knobs::default() };
+    let mut kinds: Vec<Knobs> = Variant::ALL.iter().map(|&v| kind(v, 1, false)).collect();
     if most > 1 {
-        kinds.extend([(Variant::default(), most, false), (Variant::default(), most, true)]);
+        kinds.extend([false, true].map(|half| kind(Variant::default(), most, half)));
     }
     let mut out = Vec::new();
     for (mode_index, mode) in Mode::ALL.into_iter().enumerate() {
-        for &(variant, accumulate, half_resolution) in &kinds {
+        for &kind in &kinds {
             // Through the sample counts in order (timings are noisy; samples are not).
             let mut line: Vec<&Row> = rows
                 .iter()
                 .filter(|r| {
                     let (c, k) = (&r.config, &r.config.knobs);
                     c.mode == mode
-                        && k.variant == variant
+                        && (k.variant, k.accumulate, k.half_resolution)
+                            == (kind.variant, kind.accumulate, kind.half_resolution)
                         && !c.pyramid()
                         && c.orbit == 0.0
                         && !c.cut
-                        && (k.accumulate, k.half_resolution) == (accumulate, half_resolution)
                         && (mode == Mode::Off || (k.blur && r.radius == first_radius))
                 })
                 .collect();
@@ -169,12 +171,16 @@ fn lines(rows: &[Row]) -> Vec<Line> {
                 continue;
             }
             line.sort_by_key(|r| r.config.samples() * 1000 + r.config.steps());
-            let mut label = format!("{} {}", mode.title(), variant);
-            if accumulate > 1 {
-                label = format!("{label} ×{accumulate} frames{}", if half_resolution { ", half res" } else { "" });
+            let mut label = format!("{} {}", mode.title(), kind.variant);
+            if kind.accumulate > 1 {
+                label = format!(
+                    "{label} ×{} frames{}",
+                    kind.accumulate,
+                    if kind.half_resolution { ", half res" } else { "" }
+                );
             }
             let points = line.iter().map(|r| (log_value(r.ms), log_value(r.hdr_rmse))).collect();
-            out.push(Line { mode_index, variant, accumulate, half_resolution, label, points });
+            out.push(Line { mode_index, kind, label, points });
         }
     }
     out
