@@ -147,7 +147,7 @@ pub struct RenderArgs {
     /// The march: steps along each side of a slice (range: `render::STEPS`)
     #[arg(long)]
     pub steps: Option<usize>,
-    /// The march's reach, in model units [default: 24 radii]
+    /// The march's reach, in model units [default: 24 radii, or the preset's multiple of it]
     #[arg(long, allow_hyphen_values = true)]
     pub reach: Option<f32>,
     /// The march's surface thickness, in model units [default: 1 radius, or the preset's multiple of it]

@@ -25,7 +25,7 @@ pub use switches::{switches, SwitchFlags};
 use table::choice;
 pub use table::{
     keys, Cost, Kind, Knob, Knobs, Rungs, Scope, Value, ACCUMULATE_RUNGS, BOUNCE_RUNGS, KNOBS, MAX_GAIN, RADIUS_RUNGS,
-    RADIUS_SCALE, SAMPLE_RUNGS, SLICE_RUNGS, STEP_RUNGS, THICKNESS_SCALE,
+    RADIUS_SCALE, REACH_SCALE, SAMPLE_RUNGS, SLICE_RUNGS, STEP_RUNGS, THICKNESS_SCALE,
 };
 
 impl Default for Knobs {
@@ -47,6 +47,7 @@ impl Knobs {
             half_resolution: true,
             radius_scale: 1.0,
             thickness_scale: 1.0,
+            reach_scale: 1.0,
             depth_pyramid: false,
             indirect_strength: 1.0,
             sender_sky: SenderSky::LastFrame,
@@ -169,11 +170,11 @@ impl Knobs {
             self.variant,
             if self.depth_pyramid && marches { " pyramid" } else { "" },
             self.radius_scale,
-            if self.thickness_scale != 1.0 && marches {
-                format!(", thickness {:.2}x", self.thickness_scale)
-            } else {
-                String::new()
-            },
+            [("reach", self.reach_scale), ("thickness", self.thickness_scale)]
+                .iter()
+                .filter(|(_, x)| *x != 1.0 && marches)
+                .map(|(name, x)| format!(", {name} {x:.2}x"))
+                .collect::<String>(),
             if self.blur { "on" } else { "off" },
             if self.half_resolution { "half" } else { "full" },
             self.accumulate,

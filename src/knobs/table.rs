@@ -1,7 +1,7 @@
 //! The table of knobs: what a knob is (its value, kind, rungs, cost and scope) and [`KNOBS`],
 //! every knob's declaration, and [`Knobs`], the values they set.
 
-use crate::render::sampling::THICKNESS_RADII;
+use crate::render::sampling::{REACH_RADII, THICKNESS_RADII};
 use crate::render::variant::Count;
 use crate::render::{SenderSky, Variant, ACCUMULATE, SAMPLES, SLICES, STEPS};
 
@@ -22,6 +22,8 @@ pub struct Knobs {
     pub radius_scale: f32,
     /// The thickness a depth sample is taken to have, as a multiple of the scene's default.
     pub thickness_scale: f32,
+    /// The march's reach (how far its far steps go), as a multiple of the scene's default.
+    pub reach_scale: f32,
     pub depth_pyramid: bool,
     /// 0: no bounce.
     pub indirect_strength: f32,
@@ -143,6 +145,7 @@ pub const MAX_GAIN: f32 = 1e6;
 /// The multiples of the scene's lengths a knob may hold.
 pub const RADIUS_SCALE: (f32, f32) = (0.125, 8.0);
 pub const THICKNESS_SCALE: (f32, f32) = (0.0625, 16.0);
+pub const REACH_SCALE: (f32, f32) = (0.0625, 16.0);
 
 pub(super) fn count(v: Value) -> usize {
     match v {
@@ -174,7 +177,7 @@ pub(super) fn choice<T: std::str::FromStr>(v: Value) -> T {
 
 /// Every knob, in the order tune steps them and a preset writes them (the variant first: the
 /// others' defaults are its own).
-pub const KNOBS: [Knob; 14] = [
+pub const KNOBS: [Knob; 15] = [
     Knob {
         key: "variant",
         flag: "variant",
@@ -285,6 +288,18 @@ pub const KNOBS: [Knob; 14] = [
         scope: Scope::March,
         get: |k| Value::Number(k.thickness_scale),
         set: |k, v| k.thickness_scale = number(v),
+    },
+    Knob {
+        key: "reach_scale",
+        flag: "reach",
+        label: "reach",
+        help: "How far the march's far steps go for what blocks the sky and sends the bounce, a multiple of the scene's default",
+        kind: Kind::Multiple { base: REACH_RADII, range: REACH_SCALE },
+        rungs: Rungs::Fixed,
+        cost: Cost::Same,
+        scope: Scope::MarchDirectional,
+        get: |k| Value::Number(k.reach_scale),
+        set: |k, v| k.reach_scale = number(v),
     },
     Knob {
         key: "depth_pyramid",

@@ -50,13 +50,14 @@ impl Default for GivenLengths {
 }
 
 impl GivenLengths {
-    /// The lengths in use for a scene whose default radius is `default_radius`, the radius and
-    /// thickness not given being the defaults times `radius_scale` and `thickness_scale`.
-    pub fn lengths(&self, radius_scale: f32, thickness_scale: f32, default_radius: f32) -> Lengths {
+    /// The lengths in use for a scene whose default radius is `default_radius`, those not given
+    /// being the defaults times their `scales` (the knobs' radius, reach and thickness multiples).
+    pub fn lengths(&self, scales: [f32; 3], default_radius: f32) -> Lengths {
+        let [radius_scale, reach_scale, thickness_scale] = scales;
         let radius = self.radius.unwrap_or(default_radius * radius_scale);
         Lengths {
             radius,
-            reach: self.reach.unwrap_or(REACH_RADII * default_radius).max(radius),
+            reach: self.reach.unwrap_or(REACH_RADII * default_radius * reach_scale).max(radius),
             thickness: self.thickness.unwrap_or(THICKNESS_RADII * default_radius * thickness_scale),
             bias_length: self.bias * radius,
             default_thickness: THICKNESS_RADII * default_radius,
@@ -71,13 +72,14 @@ mod tests {
     #[test]
     fn lengths_follow_the_default_radius_and_reach_never_falls_below_the_radius() {
         let s = GivenLengths::default();
-        let l = s.lengths(1.0, 1.0, 0.5);
+        let l = s.lengths([1.0; 3], 0.5);
         assert_eq!((l.radius, l.reach, l.thickness), (0.5, 0.5 * REACH_RADII, 0.5 * THICKNESS_RADII));
         assert!((l.bias_length - 0.03 * 0.5).abs() < 1e-7);
-        let wide = GivenLengths { radius: Some(100.0), reach: Some(1.0), ..s }.lengths(1.0, 1.0, 0.5);
+        let wide = GivenLengths { radius: Some(100.0), reach: Some(1.0), ..s }.lengths([1.0; 3], 0.5);
         assert_eq!((wide.radius, wide.reach), (100.0, 100.0));
         assert!((wide.bias_length - 3.0).abs() < 1e-5);
-        let scaled = s.lengths(2.0, 0.5, 0.5);
+        let scaled = s.lengths([2.0, 0.25, 0.5], 0.5);
         assert_eq!((scaled.radius, scaled.thickness, scaled.default_thickness), (1.0, 0.25, 0.5));
+        assert_eq!(scaled.reach, 0.25 * 0.5 * REACH_RADII);
     }
 }

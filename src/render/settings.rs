@@ -127,13 +127,13 @@ impl Settings {
         Self::for_variant(Variant::Classic)
     }
 
-    /// These settings with `knobs` (a preset's): the radius and thickness go back to the scene's
+    /// These settings with `knobs` (a preset's): the radius, reach and thickness go back to the scene's
     /// defaults times the knobs' multiples; a variant other than the settings' brings its own
     /// ambient.
     pub fn with_knobs(self, knobs: Knobs) -> Self {
         let ambient =
             if knobs.variant == self.knobs.variant { self.ambient } else { knobs.variant.decl().default_ambient };
-        let given = GivenLengths { radius: None, thickness: None, ..self.given };
+        let given = GivenLengths { radius: None, reach: None, thickness: None, ..self.given };
         Self { knobs, given, ambient, ..self }
     }
 
@@ -151,7 +151,8 @@ impl Settings {
 
     /// The lengths in use for a scene whose default radius is `default_radius`.
     pub fn lengths(&self, default_radius: f32) -> Lengths {
-        self.given.lengths(self.knobs.radius_scale, self.knobs.thickness_scale, default_radius)
+        let k = &self.knobs;
+        self.given.lengths([k.radius_scale, k.reach_scale, k.thickness_scale], default_radius)
     }
 
     /// Whether each depth sample may take its material's thickness: the march (whose lengths
@@ -161,15 +162,16 @@ impl Settings {
         self.knobs.variant.decl().marched_lengths && self.given.thickness.is_none() && self.knobs.thickness_scale == 1.0
     }
 
-    /// The same settings with the radius and thickness scales made given lengths for a scene
-    /// whose default radius is `default_radius` (what the reproduce line states).
+    /// The same settings with the radius, reach and thickness scales made given lengths for a
+    /// scene whose default radius is `default_radius` (what the reproduce line states).
     pub fn resolved(&self, default_radius: f32) -> Self {
         let (k, lengths) = (self.knobs, self.lengths(default_radius));
         let radius = self.given.radius.or((k.radius_scale != 1.0).then_some(lengths.radius));
+        let reach = self.given.reach.or((k.reach_scale != 1.0).then_some(lengths.reach));
         let thickness = self.given.thickness.or((k.thickness_scale != 1.0).then_some(lengths.thickness));
         Self {
-            knobs: Knobs { radius_scale: 1.0, thickness_scale: 1.0, ..k },
-            given: GivenLengths { radius, thickness, ..self.given },
+            knobs: Knobs { radius_scale: 1.0, reach_scale: 1.0, thickness_scale: 1.0, ..k },
+            given: GivenLengths { radius, reach, thickness, ..self.given },
             ..*self
         }
     }

@@ -39,6 +39,7 @@ fn preset() -> Preset {
             depth_pyramid: false,
             radius_scale: std::f32::consts::SQRT_2,
             thickness_scale: 0.3,
+            reach_scale: 0.5,
             blur: false,
             half_resolution: true,
             accumulate: 8,

@@ -152,7 +152,7 @@ fn gpu_error_falls_from_the_smallest_setting_to_the_largest_for_each_mode_and_va
     result.write(&options).unwrap();
     let csv = std::fs::read_to_string(out.path().join("report.csv")).unwrap();
     assert!(csv.starts_with(
-        "mode,variant,samples,slices,steps,accumulate,blur,half_resolution,radius_scale,thickness_scale,depth_pyramid,sender_sky,far_side,far_sky,indirect_strength,radius,orbit,cut,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,bounce_seen_ratio,hdr_rmse"
+        "mode,variant,samples,slices,steps,accumulate,blur,half_resolution,radius_scale,thickness_scale,reach_scale,depth_pyramid,sender_sky,far_side,far_sky,indirect_strength,radius,orbit,cut,ms,ao_rmse_within_r,do_rmse,do_rmse_within_r,bounce_ratio,bounce_seen_ratio,hdr_rmse"
     ));
     // Each knob's cell holds its value where it means something for the row, empty elsewhere:
     // the points variant has no steps, SSAO no senders, Off nothing but its variant.

@@ -314,8 +314,9 @@ fn the_specular_map_reaches_the_gbuffer_in_its_own_texture_or_in_the_diffuse_map
 #[test]
 fn a_presets_lengths_follow_the_model_they_are_used_on() {
     let Some(gpu) = gpu() else { return };
-    // Ultra's radius is twice the scene's default; the thickness a third of it.
-    let knobs = ssdo::knobs::Knobs { thickness_scale: 1.0 / 3.0, ..ssdo::preset::Quality::Ultra.knobs() };
+    // Ultra's radius is twice the scene's default; the thickness a third of it, the reach half.
+    let knobs =
+        ssdo::knobs::Knobs { thickness_scale: 1.0 / 3.0, reach_scale: 0.5, ..ssdo::preset::Quality::Ultra.knobs() };
     let settings = Settings { mode: Mode::Ssdo, ..Settings::default() }.with_knobs(knobs);
     let sky = Skybox::constant(Vec3::ONE);
     let room = Scene::new(builtin::cornell().unwrap(), 2, 1);
@@ -323,15 +324,16 @@ fn a_presets_lengths_follow_the_model_they_are_used_on() {
     let mut r = renderer(gpu, &room, &sky, (W, H), settings);
     let want = |scene: &Scene| {
         let radius = scene.default_radius();
-        (radius * 2.0, ssdo::render::THICKNESS_RADII * radius * knobs.thickness_scale)
+        let reach = ssdo::render::REACH_RADII * radius * knobs.reach_scale;
+        (radius * 2.0, ssdo::render::THICKNESS_RADII * radius * knobs.thickness_scale, reach)
     };
     let lengths = r.lengths();
-    assert_eq!((lengths.radius, lengths.thickness), want(&room));
+    assert_eq!((lengths.radius, lengths.thickness, lengths.reach), want(&room));
     // A model dropped in: the same knobs, this model's lengths, and the image a renderer made
     // for it from the start draws.
     r.set_scene(gpu, &plane);
     let lengths = r.lengths();
-    assert_eq!((lengths.radius, lengths.thickness), want(&plane));
+    assert_eq!((lengths.radius, lengths.thickness, lengths.reach), want(&plane));
     assert_ne!(want(&plane), want(&room));
     let camera = looking(Vec3::ZERO, 10.0, 40.0, 3.0);
     let dropped = ssdo::headless::capture::capture_settled(gpu, &mut r, &camera).unwrap();
