@@ -125,8 +125,9 @@ pub fn parse_far(s: &str) -> std::result::Result<f32, String> {
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Settings from a preset file (as `ssdo tune` writes): variant, counts, radius, blur,
-    /// resolution, accumulation and the bounce's senders; flags given beside it override it
+    /// Settings from a preset file (as `ssdo tune` writes): its knobs (variant, counts, radius, reach
+    /// and thickness as multiples of the scene's, blur, resolution, accumulation, the bounce and its
+    /// senders); flags given beside it override it
     #[arg(long, conflicts_with = "quality")]
     pub preset: Option<PathBuf>,
     /// A built-in quality level: low, medium, high (the default settings) or ultra, each tune's
