@@ -78,7 +78,7 @@ named_choice!(View, "view", View::ALL.map(|v| (v.name(), v)));
 pub struct Settings {
     pub mode: Mode,
     /// What trades error for time: the variant, its counts, the filters, the resolution, the
-    /// radius and thickness as multiples of the scene's, the bounce's senders (each declared in
+    /// radius, reach and thickness as multiples of the scene's, the bounce's senders (each declared in
     /// `crate::knobs::KNOBS`).
     pub knobs: Knobs,
     /// The lengths given in model units, which win over the knobs' multiples, and the bias.
