@@ -4,12 +4,16 @@
 //! from), all in its [`Entry`]; its struct and `new` — what lives as long as the renderer: shader
 //! modules, samplers, pipelines that depend on nothing else; and [`Pass`]: `prepare` rebuilds what
 //! depends on the targets and the plan — bind groups always, a pipeline specialised to a key
-//! (`KeyedPipeline`) when the plan, variant or view asks for another — and `record` records it
-//! into a frame from one [`Recording`]. The helpers below keep the pipeline and attachment
-//! boilerplate in one place; [`state::PassState`] is what a full-screen pass keeps.
+//! (`KeyedPipeline`, which keeps those built for earlier keys) when the plan, variant or view
+//! asks for another — and `record` records it into a frame from one [`Recording`]. The helpers
+//! below keep the pipeline and attachment boilerplate in one place; [`state::PassState`] is what
+//! a full-screen pass keeps.
 
 pub mod io;
+mod keyed;
 pub mod state;
+
+pub use keyed::{KeyedPipeline, KEPT_PIPELINES};
 
 use super::history::{History, HistorySpec};
 use super::modes::{Plan, PlanFacts, Step};
@@ -309,38 +313,5 @@ impl FullscreenPass<'_> {
             pass.set_bind_group(*index, *group, &[]);
         }
         pass.draw(0..3, 0..1);
-    }
-}
-
-/// A pipeline built for one key (a plan's variant), rebuilt only when the key changes.
-pub struct KeyedPipeline<K> {
-    built: Option<(K, wgpu::RenderPipeline)>,
-}
-
-impl<K: PartialEq + Copy> Default for KeyedPipeline<K> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl<K: PartialEq + Copy> KeyedPipeline<K> {
-    pub fn new() -> Self {
-        Self { built: None }
-    }
-
-    /// The pipeline for `key`, built by `build` if the current one is for another key.
-    pub fn ensure(&mut self, key: K, build: impl FnOnce(K) -> wgpu::RenderPipeline) -> &wgpu::RenderPipeline {
-        if self.built.as_ref().map(|(k, _)| *k) != Some(key) {
-            self.built = Some((key, build(key)));
-        }
-        &self.built.as_ref().expect("built above").1
-    }
-
-    pub fn get(&self) -> Option<(&K, &wgpu::RenderPipeline)> {
-        self.built.as_ref().map(|(k, p)| (k, p))
-    }
-
-    pub fn clear(&mut self) {
-        self.built = None;
     }
 }

@@ -221,9 +221,10 @@ impl<K: PartialEq + Copy> PassState<K> {
         self.ensure_fullscreen(device, p.plan, key(), spec);
     }
 
-    /// Drops the pipeline and bind group: the plan has no step for this pass.
+    /// Drops the bind group, and the pipeline from use (it is kept for a plan that has the pass
+    /// again): the plan has no step for this pass.
     pub fn clear(&mut self) {
-        self.pipeline.clear();
+        self.pipeline.park();
         self.bind_group = None;
         self.writes.clear();
     }
