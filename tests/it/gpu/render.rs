@@ -7,6 +7,7 @@ use crate::common;
 use common::{displayed, gpu, looking, mean_rgb, renderer, shoot, H, W};
 use glam::{Vec3, Vec4Swizzles};
 use ssdo::gpu::Gpu;
+use ssdo::headless::capture::capture_converged;
 use ssdo::headless::readback::{read_depth, read_rgba16f, read_surfaces};
 use ssdo::render::{Mode, Settings, Step, UNIFORM_LIGHTS, UNROLLED_LIGHTS};
 use ssdo::scene::{builtin, PointLight, Scene, Skybox};
@@ -341,4 +342,27 @@ fn a_presets_lengths_follow_the_model_they_are_used_on() {
         ssdo::headless::capture::capture_settled(gpu, &mut renderer(gpu, &plane, &sky, (W, H), settings), &camera)
             .unwrap();
     assert!(dropped == fresh, "the dropped model draws other than a renderer made for it");
+}
+
+#[test]
+fn a_mode_switched_back_to_draws_what_a_renderer_made_in_it_draws() {
+    // A pass keeps the pipelines of its last keys: SSDO after SSAO and the points variant takes
+    // its pipelines back, passes the plans in between left out included (the lighting pass), and
+    // must draw what a renderer built in SSDO draws, to the byte.
+    let Some(gpu) = gpu() else { return };
+    let scene = Scene::new(builtin::cornell().unwrap(), 8, 1);
+    let sky = Skybox::from_fn("day", 16, builtin::day_sky);
+    let camera = ssdo::scene::OrbitCamera::framing(&scene.model.bounds);
+    let ssdo = Settings { mode: Mode::Ssdo, ..Settings::default() };
+    let fresh = capture_converged(gpu, &mut renderer(gpu, &scene, &sky, (W, H), ssdo), &camera).unwrap();
+    let mut r = renderer(gpu, &scene, &sky, (W, H), ssdo);
+    let first = capture_converged(gpu, &mut r, &camera).unwrap();
+    r.settings.mode = Mode::Ssao;
+    capture_converged(gpu, &mut r, &camera).unwrap();
+    assert!(!r.plan().has(Step::LIGHTING), "SSAO leaves the lighting pass out");
+    r.settings.knobs.variant = ssdo::render::Variant::Points;
+    capture_converged(gpu, &mut r, &camera).unwrap();
+    r.settings = ssdo;
+    let back = capture_converged(gpu, &mut r, &camera).unwrap();
+    assert!(first == fresh && back == fresh, "SSDO drawn again after SSAO differs from a fresh renderer's");
 }
