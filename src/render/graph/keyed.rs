@@ -3,7 +3,7 @@
 /// The pipelines a pass has built, one per key it was asked for (a plan's variant, view,
 /// resolution...), the current one first. A key asked for again takes its pipeline back instead
 /// of building it anew: a viewer switching between modes or variants it has shown, and a report
-/// sweeping them, build each pipeline once (on lavapipe a mode switch spent 0.12-0.18 s
+/// sweeping them, build each pipeline once (on lavapipe a mode switch spent 0.12-0.23 s
 /// rebuilding what it had had a moment before). At most [`KEPT_PIPELINES`] are kept, the least
 /// recently used going first: a pipeline holds its compiled code, which on a CPU driver is a few
 /// MB of the machine's memory.
