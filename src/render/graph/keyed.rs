@@ -5,8 +5,8 @@
 /// of building it anew: a viewer switching between modes or variants it has shown, and a report
 /// sweeping them, build each pipeline once (on lavapipe a mode switch spent 0.12-0.23 s
 /// rebuilding what it had had a moment before). At most [`KEPT_PIPELINES`] are kept, the least
-/// recently used going first: a pipeline holds its compiled code, which on a CPU driver is a few
-/// MB of the machine's memory.
+/// recently used going first: a pipeline holds its compiled code, which on a CPU driver lives in
+/// the machine's memory.
 pub struct KeyedPipeline<K, P = wgpu::RenderPipeline> {
     built: Vec<(K, P)>,
     /// `built[0]` is the pipeline of the pass's current key (not where the plan has no step for
