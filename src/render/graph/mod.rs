@@ -13,7 +13,7 @@ pub mod io;
 mod keyed;
 pub mod state;
 
-pub use keyed::{KeyedPipeline, KEPT_PIPELINES};
+pub use keyed::KeyedPipeline;
 
 use super::history::{History, HistorySpec};
 use super::modes::{Plan, PlanFacts, Step};
