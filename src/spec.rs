@@ -364,7 +364,6 @@ impl RenderArgs {
             ambient: in_range("ambient", self.ambient.unwrap_or(base.ambient), 0.0, MAX_GAIN)?,
             sky_scale: in_range("sky-scale", self.sky_scale, 0.0, MAX_GAIN)?,
             view: self.view,
-            ..base
         };
         // Lengths given as flags win over the knobs' multiples of the scene's.
         s.given.radius = length("radius", self.radius)?;

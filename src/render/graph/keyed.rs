@@ -89,7 +89,6 @@ mod tests {
         ask(&mut pipelines, 1);
         pipelines.clear();
         ask(&mut pipelines, 2);
-        drop(ask);
         // 1 and 2 once, the new keys, 2 and 1 again (the new keys pushed them out), 2 after the clear.
         assert_eq!(builds, 2 + KEPT_PIPELINES + 3);
     }
