@@ -22,7 +22,7 @@
 
 override BILATERAL: bool = true;
 // On the half-size samples, in a half-resolution plan.
-#include "common/half_resolution.wgsl"
+#include "common/sample_grid.wgsl"
 // The input is DO + AO (SSDO, SSAO+SSDO) rather than the one-channel AO target (SSAO).
 override HAS_DO: bool = true;
 

@@ -56,7 +56,7 @@ override OUTPUT_SRGB: bool = true;
 // DISPLAY after a lighting pass: read its direct light from `direct_map`.
 override DIRECT_INPUT: bool = false;
 // In a half-resolution plan `current` holds half-size samples, upsampled here as they are read.
-#include "common/half_resolution.wgsl"
+#include "common/sample_grid.wgsl"
 // ... the temporal pass's average: the samples' surfaces are read from `surface_guide`, one load
 // a tap instead of the G-buffer's depth and normal.
 override GUIDE_INPUT: bool = false;

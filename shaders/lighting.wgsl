@@ -30,7 +30,7 @@
 override SENDER_SKY: u32 = 2u;
 // SENDER_SKY 4: the last frame's sampling pass ran where the samples are, so its sky is half
 // size in a half-resolution plan.
-#include "common/half_resolution.wgsl"
+#include "common/sample_grid.wgsl"
 // SENDER_SKY 4: the camera moved since the last frame, so a surface is looked for where the last
 // camera saw it. Without it each pixel reads its own texel.
 override REPROJECT: bool = false;

@@ -53,7 +53,7 @@ const STILL_PIXELS: f32 = 0.01;
 override CAMERA_MOVED: bool = true;
 // In a half-resolution plan the pass runs at half size, over half-size samples, into half-size
 // histories.
-#include "common/half_resolution.wgsl"
+#include "common/sample_grid.wgsl"
 
 struct TemporalOut {
     // what the composite reads this frame

@@ -40,7 +40,7 @@ struct SamplingParams {
 
 // At half resolution a sampling pass's pixel (x, y) samples the full-resolution pixel (2x, 2y),
 // with the rotation tile of its own pixel.
-#include "common/half_resolution.wgsl"
+#include "common/sample_grid.wgsl"
 
 // The full-resolution pixel centre a sampling pass's fragment at `frag` samples (`frag` itself
 // at full resolution).

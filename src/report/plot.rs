@@ -144,11 +144,11 @@ fn lines(rows: &[Row]) -> Vec<Line> {
     let first_radius = rows.iter().find(|r| r.config.mode != Mode::Off).map_or(0.0, |r| r.radius);
     let most = rows.iter().map(|r| r.config.knobs.accumulate).max().unwrap_or(1);
     // The variant, frames averaged and resolution of each line of a mode.
-    let kind =
+    let line_kind =
         |variant, accumulate, half_resolution| Knobs { variant, accumulate, half_resolution, ..Knobs::default() };
-    let mut kinds: Vec<Knobs> = Variant::ALL.iter().map(|&v| kind(v, 1, false)).collect();
+    let mut kinds: Vec<Knobs> = Variant::ALL.iter().map(|&v| line_kind(v, 1, false)).collect();
     if most > 1 {
-        kinds.extend([false, true].map(|half| kind(Variant::default(), most, half)));
+        kinds.extend([false, true].map(|half| line_kind(Variant::default(), most, half)));
     }
     let mut out = Vec::new();
     for (mode_index, mode) in Mode::ALL.into_iter().enumerate() {
@@ -159,8 +159,7 @@ fn lines(rows: &[Row]) -> Vec<Line> {
                 .filter(|r| {
                     let (c, k) = (&r.config, &r.config.knobs);
                     c.mode == mode
-                        && (k.variant, k.accumulate, k.half_resolution)
-                            == (kind.variant, kind.accumulate, kind.half_resolution)
+                        && line_kind(k.variant, k.accumulate, k.half_resolution) == kind
                         && !c.pyramid()
                         && c.orbit == 0.0
                         && !c.cut

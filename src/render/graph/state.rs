@@ -32,7 +32,7 @@ pub fn flag(b: bool) -> f64 {
 
 /// The override the framework sets from the plan in every pipeline whose shader declares it, so
 /// no pass's key carries it: the sampling chain runs at half width and height
-/// (`common/half_resolution.wgsl`).
+/// (`common/sample_grid.wgsl`).
 const SAMPLE_SCALE: &str = "HALF_RESOLUTION";
 
 pub struct PassState<K> {

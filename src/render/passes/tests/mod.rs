@@ -90,7 +90,7 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         reads_are_written_first(&plan.io()).unwrap_or_else(|e| panic!("{:?}: {e}", plan.step_names()));
         assert!(plan.writes(OUTPUT), "{:?}: nothing reaches the output", plan.steps);
         // The set by hand, as the plan's rules say it.
-        let sampled = plan.decl.runs_sampling();
+        let (sampled, half) = (plan.decl.runs_sampling(), plan.half_resolution);
         let t = set(&plan);
         assert_eq!(t.hdr, plan.keeps_hdr(), "{:?}", plan.steps);
         assert_eq!(t.bounce, plan.has(Step::LIGHTING));
@@ -101,22 +101,19 @@ fn every_read_is_written_by_an_earlier_step_and_the_targets_are_what_the_steps_w
         // A blurred target where a blur pass runs; none where the temporal pass blurs as it reads.
         assert_eq!(t.blurred, plan.has(Step::BLUR));
         assert_eq!(plan.blur, plan.has(Step::BLUR) || plan.temporal_blurs, "{:?}", plan.steps);
-        assert_eq!(
-            plan.temporal_blurs,
-            plan.blur && plan.half_resolution && plan.accumulates() && !plan.has(Step::BLUR)
-        );
+        assert_eq!(plan.temporal_blurs, plan.blur && half && plan.accumulates() && !plan.has(Step::BLUR));
         assert_eq!(t.accumulated, plan.accumulates());
-        assert_eq!(t.half, plan.half_resolution);
+        assert_eq!(t.half, half);
         // The composite upsamples a half-size chain as it reads it; an upsample pass makes a
         // full-size copy only for an HDR plan's readers (the debug views, the report).
-        assert_eq!(plan.has(Step::UPSAMPLE), plan.half_resolution && !plan.display);
+        assert_eq!(plan.has(Step::UPSAMPLE), half && !plan.display);
         // The average over frames lives where the samples are.
         let half_average = Stage::HalfAccumulated.targets().into_iter().any(|t| plan.allocates(t));
-        assert_eq!(half_average, plan.half_resolution && plan.accumulates(), "{:?}", plan.steps);
+        assert_eq!(half_average, half && plan.accumulates(), "{:?}", plan.steps);
         assert_eq!(plan.accumulates(), sampled && plan.has(Step::TEMPORAL));
         // After the temporal pass at half size the composite reads the samples' surfaces from
         // the surface history that pass has just written.
-        let guided = plan.half_resolution && plan.accumulates();
+        let guided = half && plan.accumulates();
         assert_eq!(Step::COMPOSITE.io(&plan).reads.contains(&SURFACE_HISTORY), guided, "{:?}", plan.steps);
         // The temporal pass's two; the senders' sky for the next frame where the plan keeps it.
         let last_sky = plan.sender_sky == SenderSky::LastFrame;

@@ -1,8 +1,9 @@
-// Half resolution: the sampling pass, its blur and the temporal pass run at half width and
-// height, each texel (x, y) standing for the full-resolution pixel (2x, 2y) (an upsample
-// follows); the composite then reads half-size samples, and the lighting pass the last frame's
-// half-size sky. One override for all of them, set from the plan; the passes map between their
-// texels and the full-resolution pixels with the functions below.
+// The samples' grid: the targets the sampling pass, its blur and the temporal pass write. At
+// half resolution they are half the width and height, each texel (x, y) standing for the
+// full-resolution pixel (2x, 2y) (an upsample follows); the composite then reads half-size
+// samples, and the lighting pass the last frame's half-size sky. One override for all of them,
+// set from the plan; the passes map between their texels and the full-resolution pixels with
+// the functions below.
 override HALF_RESOLUTION: bool = false;
 
 // Full-resolution pixels across one texel of the targets where the samples are: 2, or 1.
