@@ -224,7 +224,49 @@ fn log_axis(values: &[f64]) -> std::ops::Range<f64> {
 
 #[cfg(test)]
 mod tests {
-    use super::{log_axis, log_value};
+    use super::{lines, log_axis, log_value};
+    use crate::knobs::Knobs;
+    use crate::render::{Mode, Variant};
+    use crate::report::row::Row;
+    use crate::report::sweep::Config;
+
+    fn row(mode: Mode, knobs: Knobs) -> Row {
+        Row {
+            config: Config::new(mode, knobs),
+            radius: 1.0,
+            ms: knobs.samples as f64,
+            ao_rmse: None,
+            do_rmse: None,
+            do_rmse_near: None,
+            bounce_ratio: None,
+            bounce_seen_ratio: None,
+            hdr_rmse: 0.1,
+            hdr_rmse_near: 0.1,
+            hdr_psnr: 20.0,
+            flip: 0.1,
+            pareto: false,
+            preset: None,
+        }
+    }
+
+    #[test]
+    fn each_line_takes_the_rows_of_its_variant_frames_and_resolution_only() {
+        let mut rows = Vec::new();
+        for variant in Variant::ALL {
+            for (samples, accumulate, half) in [(8, 1, false), (16, 1, false), (16, 1, true), (16, 4, false)] {
+                let knobs = Knobs { samples, accumulate, half_resolution: half, ..Knobs::for_variant(variant) };
+                rows.push(row(Mode::Ssao, knobs));
+            }
+        }
+        let ssao: Vec<_> = lines(&rows).into_iter().filter(|l| l.mode_index == 1).collect();
+        let counts: Vec<(String, usize)> = ssao.iter().map(|l| (l.label.clone(), l.points.len())).collect();
+        // A single-frame line at full resolution per variant (two sample counts each), and the
+        // default variant's most accumulated rows at full resolution (there are none at half).
+        let mut expected: Vec<(String, usize)> =
+            Variant::ALL.iter().map(|v| (format!("{} {v}", Mode::Ssao.title()), 2)).collect();
+        expected.push((format!("{} {} ×4 frames", Mode::Ssao.title(), Variant::default()), 1));
+        assert_eq!(counts, expected);
+    }
 
     #[test]
     fn log_axes_are_finite_and_not_empty_for_any_values() {
