@@ -60,9 +60,9 @@ pub fn configurations(options: &ReportOptions, first_radius: bool) -> Vec<Config
                 };
                 // The pyramid's and the other bounces' rows: one frame at the default resolution.
                 let at = |knobs: Knobs| Config::new(mode, Knobs { accumulate: 1, ..knobs });
-                for (blur, half_resolution) in [(true, false), (true, true), (false, false)] {
+                for (blur, half) in [(true, false), (true, true), (false, false)] {
                     for &accumulate in &options.accumulate {
-                        let config = Config::new(mode, Knobs { blur, half_resolution, accumulate, ..counted });
+                        let config = Config::new(mode, Knobs { blur, half_resolution: half, accumulate, ..counted });
                         configs.push(config);
                         if accumulate > 1 && options.orbit != 0.0 {
                             configs.push(Config { orbit: options.orbit, ..config });
