@@ -1,8 +1,9 @@
-//! The stability suite: extreme cases in every mode and both variants. Each must render without a
+//! The stability suite: extreme cases in every mode and variant. Each must render without a
 //! panic with every value finite, AO in [0, 1] and DO ≥ 0. The table of results is printed
-//! (`cargo test --test stability -- --nocapture`); every case is reachable from the command line
-//! (the `cli` column). Every case renders the frames it averages (16 by default) before it is
-//! read; accumulation also runs at 1x1 and odd sizes, turning the camera and resizing mid-average.
+//! (`cargo test --test it gpu::stability -- --nocapture`); every case is reachable from the
+//! command line (the `cli` column). Every case renders the frames it averages (16 by default)
+//! before it is read; accumulation also runs at 1x1 and odd sizes, turning the camera and
+//! resizing mid-average.
 
 use crate::common;
 
